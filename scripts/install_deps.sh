@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages rbsim needs. Idempotent: when every package is
+# already present it only checks (no apt-get update, no download) and returns
+# in well under a second.
+set -euo pipefail
+
+packages=(
+  # build
+  build-essential cmake pkg-config git
+  # LCM (C/C++ library, lcm-gen, logger/player, Java jar for lcm-spy)
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
+  libjchart2d-java openjdk-17-jdk-headless openjdk-17-jre
+  # physics and config
+  libeigen3-dev libccd-dev libyaml-cpp-dev libqhull-dev
+  # tests and benchmarks
+  libgtest-dev googletest libgmock-dev libbenchmark-dev
+  # python side (run with /usr/bin/python3)
+  python3 python3-numpy python3-pytest python3-matplotlib
+  # hermetic multi-process tests (network namespaces)
+  iproute2 util-linux
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install_deps: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,463 @@
+#include "config/config_loader.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "config/yaml_reader.h"
+#include "physics/geometry/mesh_io.h"
+#include "physics/geometry/triangle_mesh.h"
+
+namespace rbsim {
+
+namespace {
+
+// Bounds that no sensible world comes near: they catch typos ("1e60") and
+// values for which the double arithmetic of the engine stops meaning much.
+constexpr double kMaxLength = 1e6;               // m: sizes, coordinates, plane offsets
+constexpr double kMaxDt = 1.0;                   // s
+constexpr double kMaxAcceleration = 1e4;         // m/s², gravity components (~1000 g)
+constexpr double kMaxLinearSpeed = 1e5;          // m/s, per component
+constexpr double kMaxAngularSpeed = 1e5;         // rad/s, per component
+constexpr double kMaxMass = 1e12;                // kg
+constexpr double kMaxDensity = 1e6;              // kg/m³ (osmium is 2.26e4)
+constexpr double kMaxDamping = 1e6;              // 1/s
+constexpr double kMaxAngle = 1e6;                // rad, roll/pitch/yaw
+constexpr double kMaxQuaternionComponent = 1e6;  // before normalisation
+constexpr double kMinNorm = 1e-9;            // below this a quaternion or normal has no direction
+constexpr std::size_t kMaxNameLength = 128;  // characters, body names
+
+constexpr std::array<std::string_view, 6> kTopLevelKeys = {
+    "world", "bodies",
+    // Reserved for the server's settings (later issues); accepted unchecked.
+    "lcm", "server", "contact", "limits"};
+constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
+constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
+constexpr std::array<std::string_view, 11> kBodyKeys = {
+    "name",    "shape",           "mass",
+    "density", "position",        "orientation",
+    "rpy",     "linear_velocity", "angular_velocity",
+    "static",  "damping"};
+
+constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
+constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
+constexpr std::array<std::string_view, 3> kCylinderKeys = {"type", "radius", "half_length"};
+constexpr std::array<std::string_view, 2> kMeshKeys = {"type", "file"};
+constexpr std::array<std::string_view, 3> kPlaneKeys = {"type", "normal", "offset"};
+constexpr std::string_view kShapeTypes = "sphere, box, cylinder, capsule, mesh, plane";
+
+constexpr std::array<IntegratorKind, 3> kIntegrators = {
+    IntegratorKind::ExplicitEuler, IntegratorKind::SemiImplicitEuler, IntegratorKind::Rk4};
+
+// Of two entries of one map, the one written later (to point at in "not
+// both" messages: the reader has just passed the first).
+const YamlMap::Entry& later(const YamlMap::Entry& a, const YamlMap::Entry& b) {
+  const bool aFirst = a.keyMark.line < b.keyMark.line ||
+                      (a.keyMark.line == b.keyMark.line && a.keyMark.column < b.keyMark.column);
+  return aFirst ? b : a;
+}
+
+class ConfigParser {
+ public:
+  ConfigParser(std::string sourceName, const std::string& baseDirectory)
+      : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory) {}
+
+  Expected<WorldDef> parseWorld(const YamlNode& root) const;
+  Expected<BodyDef> parseBody(const YamlNode& node) const;
+
+ private:
+  Expected<WorldSettings> parseSettings(const YamlNode& node) const;
+  Expected<IntegratorKind> parseIntegrator(const YamlNode& node) const;
+  // Reads {linear, angular} into the two outputs, which keep their values
+  // for absent keys.
+  std::optional<Error> parseDamping(const YamlNode& node, std::optional<double>& linear,
+                                    std::optional<double>& angular) const;
+  Expected<std::string> parseName(const YamlNode& node) const;
+  Expected<Quaternion> parseOrientation(const YamlMap& body) const;
+  Expected<Shape> parseShape(const YamlNode& node, bool isStatic) const;
+  Expected<Shape> parseMesh(const YamlMap& shape) const;
+  Expected<Shape> parsePlane(const YamlMap& shape, const YamlNode& type, bool isStatic) const;
+
+  YamlReader m_reader;
+  std::filesystem::path m_baseDirectory;
+};
+
+Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
+  Expected<YamlMap> top = m_reader.map(root);
+  if (!top) return top.error();
+  if (auto error = m_reader.checkKeys(*top, kTopLevelKeys, "the top level")) return *error;
+
+  WorldDef world;
+  if (const YamlMap::Entry* settings = top->find("world")) {
+    Expected<WorldSettings> parsed = parseSettings(settings->value);
+    if (!parsed) return parsed.error();
+    world.settings = *parsed;
+  }
+
+  const YamlMap::Entry* bodies = top->find("bodies");
+  if (bodies == nullptr) return world;
+  Expected<std::vector<YamlNode>> items = m_reader.list(bodies->value);
+  if (!items) return items.error();
+  // name -> index of the body that has it, for the duplicate message
+  std::map<std::string, std::size_t, std::less<>> indexByName;
+  for (std::size_t i = 0; i < items->size(); ++i) {
+    const YamlNode& item = (*items)[i];
+    Expected<BodyDef> body = parseBody(item);
+    if (!body) return body.error();
+    const auto [existing, inserted] = indexByName.emplace(body->name, i);
+    if (!inserted) {
+      const YAML::Node& itemNode = item.node;
+      return m_reader.error(itemNode["name"].Mark(), item.path + ".name",
+                            "duplicate body name \"" + body->name + "\" (also the name of " +
+                                bodies->value.path + "[" + std::to_string(existing->second) + "])");
+    }
+    world.bodies.push_back(std::move(*body));
+  }
+  return world;
+}
+
+Expected<WorldSettings> ConfigParser::parseSettings(const YamlNode& node) const {
+  Expected<YamlMap> map = m_reader.map(node);
+  if (!map) return map.error();
+  if (auto error = m_reader.checkKeys(*map, kWorldKeys, "the world")) return *error;
+
+  WorldSettings settings;
+  Expected<double> dt = m_reader.number(*map, "dt", NumberRule::positive(kMaxDt), settings.dt);
+  if (!dt) return dt.error();
+  settings.dt = *dt;
+
+  Expected<Vec3> gravity =
+      m_reader.vec3(*map, "gravity", NumberRule::any(kMaxAcceleration), settings.gravity);
+  if (!gravity) return gravity.error();
+  settings.gravity = *gravity;
+
+  if (const YamlMap::Entry* integrator = map->find("integrator")) {
+    Expected<IntegratorKind> kind = parseIntegrator(integrator->value);
+    if (!kind) return kind.error();
+    settings.integrator = *kind;
+  }
+
+  if (const YamlMap::Entry* damping = map->find("damping")) {
+    std::optional<double> linear = settings.linearDamping;
+    std::optional<double> angular = settings.angularDamping;
+    if (auto error = parseDamping(damping->value, linear, angular)) return *error;
+    settings.linearDamping = *linear;
+    settings.angularDamping = *angular;
+  }
+  return settings;
+}
+
+Expected<IntegratorKind> ConfigParser::parseIntegrator(const YamlNode& node) const {
+  Expected<std::string> name = m_reader.string(node);
+  if (!name) return name.error();
+  if (std::optional<IntegratorKind> kind = integratorFromName(*name)) return *kind;
+  std::string names;
+  for (IntegratorKind kind : kIntegrators) {
+    if (!names.empty()) names += ", ";
+    names += integratorName(kind);
+  }
+  return m_reader.error(node, "expected one of " + names + ", got " + describeNode(node.node));
+}
+
+std::optional<Error> ConfigParser::parseDamping(const YamlNode& node, std::optional<double>& linear,
+                                                std::optional<double>& angular) const {
+  Expected<YamlMap> map = m_reader.map(node);
+  if (!map) return map.error();
+  if (auto error = m_reader.checkKeys(*map, kDampingKeys, "damping")) return error;
+  const NumberRule rule = NumberRule::nonNegative(kMaxDamping);
+  if (const YamlMap::Entry* entry = map->find("linear")) {
+    Expected<double> value = m_reader.number(entry->value, rule);
+    if (!value) return value.error();
+    linear = *value;
+  }
+  if (const YamlMap::Entry* entry = map->find("angular")) {
+    Expected<double> value = m_reader.number(entry->value, rule);
+    if (!value) return value.error();
+    angular = *value;
+  }
+  return std::nullopt;
+}
+
+Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
+  Expected<YamlMap> map = m_reader.map(node);
+  if (!map) return map.error();
+  if (auto error = m_reader.checkKeys(*map, kBodyKeys, "a body")) return *error;
+
+  BodyDef body;
+  Expected<YamlNode> nameNode = m_reader.required(*map, "name");
+  if (!nameNode) return nameNode.error();
+  Expected<std::string> name = parseName(*nameNode);
+  if (!name) return name.error();
+  body.name = *name;
+
+  // Before the shape: a plane needs to know.
+  Expected<bool> isStatic = m_reader.boolean(*map, "static", false);
+  if (!isStatic) return isStatic.error();
+  body.isStatic = *isStatic;
+
+  Expected<YamlNode> shapeNode = m_reader.required(*map, "shape");
+  if (!shapeNode) return shapeNode.error();
+  Expected<Shape> shape = parseShape(*shapeNode, body.isStatic);
+  if (!shape) return shape.error();
+  body.shape = std::move(*shape);
+
+  const YamlMap::Entry* mass = map->find("mass");
+  const YamlMap::Entry* density = map->find("density");
+  if (mass != nullptr && density != nullptr) {
+    const YamlMap::Entry& second = later(*mass, *density);
+    return m_reader.error(second.keyMark, second.value.path, "give mass or density, not both");
+  }
+  if (mass != nullptr) {
+    Expected<double> value = m_reader.number(mass->value, NumberRule::positive(kMaxMass));
+    if (!value) return value.error();
+    body.mass = *value;
+  }
+  if (density != nullptr) {
+    Expected<double> value = m_reader.number(density->value, NumberRule::positive(kMaxDensity));
+    if (!value) return value.error();
+    body.density = *value;
+  }
+
+  Expected<Vec3> position =
+      m_reader.vec3(*map, "position", NumberRule::any(kMaxLength), body.position);
+  if (!position) return position.error();
+  body.position = *position;
+
+  Expected<Quaternion> orientation = parseOrientation(*map);
+  if (!orientation) return orientation.error();
+  body.orientation = *orientation;
+
+  Expected<Vec3> linearVelocity =
+      m_reader.vec3(*map, "linear_velocity", NumberRule::any(kMaxLinearSpeed), body.linearVelocity);
+  if (!linearVelocity) return linearVelocity.error();
+  body.linearVelocity = *linearVelocity;
+
+  Expected<Vec3> angularVelocity = m_reader.vec3(
+      *map, "angular_velocity", NumberRule::any(kMaxAngularSpeed), body.angularVelocity);
+  if (!angularVelocity) return angularVelocity.error();
+  body.angularVelocity = *angularVelocity;
+
+  // The engine never integrates a static body: a velocity would be ignored
+  // without a word, which is worse than refusing it.
+  if (body.isStatic) {
+    for (std::string_view key : {"linear_velocity", "angular_velocity"}) {
+      const YamlMap::Entry* entry = map->find(key);
+      const Vec3& velocity = key == "linear_velocity" ? body.linearVelocity : body.angularVelocity;
+      if (entry != nullptr && !velocity.isZero(0.0)) {
+        return m_reader.error(entry->value, "a static body cannot move; expected [0, 0, 0] or no " +
+                                                std::string(key));
+      }
+    }
+  }
+
+  if (const YamlMap::Entry* damping = map->find("damping")) {
+    if (auto error = parseDamping(damping->value, body.linearDamping, body.angularDamping)) {
+      return *error;
+    }
+  }
+  return body;
+}
+
+Expected<std::string> ConfigParser::parseName(const YamlNode& node) const {
+  Expected<std::string> name = m_reader.string(node);
+  if (!name) return name.error();
+  if (name->empty()) return m_reader.error(node, "expected a non-empty name");
+  if (name->size() > kMaxNameLength) {
+    return m_reader.error(node, "expected a name of at most " + std::to_string(kMaxNameLength) +
+                                    " characters, got " + std::to_string(name->size()));
+  }
+  for (const char c : *name) {
+    if (std::iscntrl(static_cast<unsigned char>(c)) != 0) {
+      return m_reader.error(node, "expected a name without control characters");
+    }
+  }
+  return name;
+}
+
+Expected<Quaternion> ConfigParser::parseOrientation(const YamlMap& body) const {
+  const YamlMap::Entry* quaternion = body.find("orientation");
+  const YamlMap::Entry* rpy = body.find("rpy");
+  if (quaternion != nullptr && rpy != nullptr) {
+    const YamlMap::Entry& second = later(*quaternion, *rpy);
+    return m_reader.error(second.keyMark, second.value.path, "give orientation or rpy, not both");
+  }
+  if (rpy != nullptr) {
+    Expected<Vec3> angles = m_reader.vec3(rpy->value, NumberRule::any(kMaxAngle));
+    if (!angles) return angles.error();
+    return Quaternion::fromRollPitchYaw(angles->x(), angles->y(), angles->z());
+  }
+  if (quaternion == nullptr) return Quaternion::identity();
+  Expected<std::array<double, 4>> wxyz =
+      m_reader.numbers<4>(quaternion->value, NumberRule::any(kMaxQuaternionComponent));
+  if (!wxyz) return wxyz.error();
+  const Quaternion q{(*wxyz)[0], (*wxyz)[1], (*wxyz)[2], (*wxyz)[3]};
+  if (q.norm() < kMinNorm) {
+    return m_reader.error(quaternion->value, "expected a non-zero quaternion (w, x, y, z)");
+  }
+  return q.normalized();
+}
+
+Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) const {
+  Expected<YamlMap> map = m_reader.map(node);
+  if (!map) return map.error();
+  Expected<YamlNode> typeNode = m_reader.required(*map, "type");
+  if (!typeNode) return typeNode.error();
+  Expected<std::string> type = m_reader.string(*typeNode);
+  if (!type) return type.error();
+
+  const NumberRule length = NumberRule::positive(kMaxLength);
+  if (*type == "sphere") {
+    if (auto error = m_reader.checkKeys(*map, kSphereKeys, "a sphere shape")) return *error;
+    Expected<YamlNode> radius = m_reader.required(*map, "radius");
+    if (!radius) return radius.error();
+    Expected<double> value = m_reader.number(*radius, length);
+    if (!value) return value.error();
+    return Shape{SphereShape{*value}};
+  }
+  if (*type == "box") {
+    if (auto error = m_reader.checkKeys(*map, kBoxKeys, "a box shape")) return *error;
+    Expected<YamlNode> halfExtents = m_reader.required(*map, "half_extents");
+    if (!halfExtents) return halfExtents.error();
+    Expected<Vec3> value = m_reader.vec3(*halfExtents, length);
+    if (!value) return value.error();
+    return Shape{BoxShape{*value}};
+  }
+  if (*type == "cylinder" || *type == "capsule") {
+    const std::string owner = "a " + *type + " shape";
+    if (auto error = m_reader.checkKeys(*map, kCylinderKeys, owner)) return *error;
+    Expected<YamlNode> radiusNode = m_reader.required(*map, "radius");
+    if (!radiusNode) return radiusNode.error();
+    Expected<double> radius = m_reader.number(*radiusNode, length);
+    if (!radius) return radius.error();
+    Expected<YamlNode> halfLengthNode = m_reader.required(*map, "half_length");
+    if (!halfLengthNode) return halfLengthNode.error();
+    Expected<double> halfLength = m_reader.number(*halfLengthNode, length);
+    if (!halfLength) return halfLength.error();
+    if (*type == "cylinder") return Shape{CylinderShape{*radius, *halfLength}};
+    return Shape{CapsuleShape{*radius, *halfLength}};
+  }
+  if (*type == "mesh") {
+    if (auto error = m_reader.checkKeys(*map, kMeshKeys, "a mesh shape")) return *error;
+    return parseMesh(*map);
+  }
+  if (*type == "plane") {
+    if (auto error = m_reader.checkKeys(*map, kPlaneKeys, "a plane shape")) return *error;
+    return parsePlane(*map, *typeNode, isStatic);
+  }
+  return m_reader.error(*typeNode, "expected one of " + std::string(kShapeTypes) + ", got " +
+                                       describeNode(typeNode->node));
+}
+
+Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
+  Expected<YamlNode> fileNode = m_reader.required(shape, "file");
+  if (!fileNode) return fileNode.error();
+  Expected<std::string> file = m_reader.string(*fileNode);
+  if (!file) return file.error();
+  if (file->empty()) return m_reader.error(*fileNode, "expected a mesh file path");
+
+  // Relative to the config file, so that a world and its meshes move together.
+  std::filesystem::path path(*file);
+  if (path.is_relative() && !m_baseDirectory.empty()) path = m_baseDirectory / path;
+  const std::string resolved = path.lexically_normal().string();
+
+  Expected<TriangleMesh> mesh = loadMesh(resolved);
+  if (!mesh) return m_reader.error(*fileNode, mesh.error().message);
+  Expected<bool> closed = validateClosedMesh(*mesh, resolved);
+  if (!closed) return m_reader.error(*fileNode, closed.error().message);
+  for (const Vec3& vertex : mesh->vertices) {
+    if (!vertex.allFinite() || vertex.cwiseAbs().maxCoeff() > kMaxLength) {
+      return m_reader.error(*fileNode, resolved + ": a vertex is not finite or lies beyond " +
+                                           std::to_string(static_cast<long long>(kMaxLength)) +
+                                           " m");
+    }
+  }
+  return Shape{MeshShape{resolved, std::make_shared<const TriangleMesh>(std::move(*mesh))}};
+}
+
+Expected<Shape> ConfigParser::parsePlane(const YamlMap& shape, const YamlNode& type,
+                                         bool isStatic) const {
+  // A half-space has infinite mass; nothing could move it or integrate it.
+  if (!isStatic) {
+    return m_reader.error(type, "a plane is only allowed on a static body (add static: true)");
+  }
+  PlaneShape plane;
+  Expected<Vec3> normal = m_reader.vec3(shape, "normal", NumberRule::any(kMaxLength), plane.normal);
+  if (!normal) return normal.error();
+  if (normal->norm() < kMinNorm) {
+    return m_reader.error(shape.find("normal")->value, "expected a non-zero normal vector");
+  }
+  plane.normal = normal->normalized();
+  Expected<double> offset =
+      m_reader.number(shape, "offset", NumberRule::any(kMaxLength), plane.offset);
+  if (!offset) return offset.error();
+  plane.offset = *offset;
+  return Shape{plane};
+}
+
+// Runs `parse` on the single document of `yamlText`, turning every yaml-cpp
+// exception (syntax errors, nesting too deep) into an Error.
+template <class T, class Parse>
+Expected<T> parseDocument(const std::string& yamlText, const std::string& sourceName,
+                          const Parse& parse) {
+  const YamlReader reader(sourceName);
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(yamlText);
+    if (documents.empty()) {
+      return reader.error(YAML::Mark(), "", "expected a mapping, got an empty document");
+    }
+    if (documents.size() > 1) {
+      return reader.error(documents[1].Mark(), "",
+                          "expected one YAML document, found a second one");
+    }
+    return parse(YamlNode::root(documents[0]));
+  } catch (const YAML::Exception& e) {
+    return reader.error(e.mark, "", "YAML syntax error: " + e.msg);
+  } catch (const std::exception& e) {
+    return reader.error(YAML::Mark::null_mark(), "", e.what());
+  }
+}
+
+}  // namespace
+
+Expected<WorldDef> parseWorldConfig(const std::string& yamlText, const std::string& sourceName,
+                                    const std::string& baseDirectory) {
+  const ConfigParser parser(sourceName, baseDirectory);
+  return parseDocument<WorldDef>(yamlText, sourceName,
+                                 [&](const YamlNode& root) { return parser.parseWorld(root); });
+}
+
+Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& sourceName,
+                               const std::string& baseDirectory) {
+  const ConfigParser parser(sourceName, baseDirectory);
+  return parseDocument<BodyDef>(yamlText, sourceName,
+                                [&](const YamlNode& root) { return parser.parseBody(root); });
+}
+
+Expected<WorldDef> loadWorldConfig(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    const std::string why =
+        ec ? ec.message()
+           : (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+    return Error{path + ": cannot read the config file: " + why};
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return Error{path + ": cannot read the config file: " + ec.message()};
+  std::string text(size, '\0');
+  std::ifstream in(path, std::ios::binary);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!in) return Error{path + ": cannot read the config file: " + std::strerror(errno)};
+  const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
+  return parseWorldConfig(text, path, baseDirectory);
+}
+
+}  // namespace rbsim

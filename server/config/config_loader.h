@@ -1,0 +1,33 @@
+#pragma once
+// Loading worlds from YAML config files (schema: config/default.yaml).
+//
+// Errors are Error values, never exceptions, and read like compiler
+// messages: "world.yaml:7:15: bodies[2].shape.radius: expected a positive
+// number, got "-1"" (1-based line and column, then the key path).
+// Loading stops at the first error.
+
+#include <string>
+
+#include "physics/body/body_def.h"
+#include "physics/common/expected.h"
+#include "physics/world/world_settings.h"
+
+namespace rbsim {
+
+// Reads and parses the file at `path`; mesh files are resolved relative to
+// the directory of `path`, and messages name `path` as given.
+Expected<WorldDef> loadWorldConfig(const std::string& path);
+
+// Parses a whole world from YAML text. `sourceName` is what messages call
+// the text (usually its file name); relative mesh paths are resolved against
+// `baseDirectory` (the current directory if empty).
+Expected<WorldDef> parseWorldConfig(const std::string& yamlText, const std::string& sourceName,
+                                    const std::string& baseDirectory);
+
+// Parses one body, a mapping in the schema of one `bodies:` entry (used to
+// spawn bodies sent over LCM). Key paths in messages start at the body's
+// keys ("shape.radius").
+Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& sourceName,
+                               const std::string& baseDirectory);
+
+}  // namespace rbsim

@@ -1,0 +1,103 @@
+// rbserver: the real-time rigid-body simulation server.
+#include <sys/prctl.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "config/config_loader.h"
+#include "daemon/log.h"
+#include "daemon/mass_properties_report.h"
+#include "daemon/options.h"
+#include "daemon/server.h"
+#include "daemon/server_settings.h"
+#include "daemon/signal_events.h"
+
+using namespace rbsim;
+
+namespace {
+
+// Channel names become exact-match subscriptions (LCM treats them as
+// regular expressions): keep the prefix to characters that mean themselves.
+bool isPlainChannelPrefix(const std::string& prefix) {
+  if (prefix.size() > 40) return false;
+  for (const char c : prefix)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+  if (!options) {
+    std::fprintf(stderr, "rbserver: %s\n", options.error().message.c_str());
+    return 2;
+  }
+  if (options->help) {
+    std::fputs(usage().c_str(), stdout);
+    return 0;
+  }
+  if (options->logLevel) {
+    LogLevel level;
+    if (!parseLogLevel(*options->logLevel, level)) {
+      std::fprintf(stderr, "rbserver: --log-level: expected debug, info, warning or error, got '%s'\n",
+                   options->logLevel->c_str());
+      return 2;
+    }
+    setLogLevel(level);
+  }
+
+  const auto worldDef = loadWorldConfig(options->configPath);
+  if (!worldDef) {
+    std::fprintf(stderr, "rbserver: %s\n", worldDef.error().message.c_str());
+    return 1;
+  }
+  auto world = World::fromDef(*worldDef);
+  if (!world) {
+    std::fprintf(stderr, "rbserver: %s: %s\n", options->configPath.c_str(),
+                 world.error().message.c_str());
+    return 1;
+  }
+  if (options->massProperties) {
+    std::fputs(massPropertiesJson(*world).c_str(), stdout);
+    return 0;
+  }
+
+  auto settings = loadServerSettings(options->configPath);
+  if (!settings) {
+    std::fprintf(stderr, "rbserver: %s\n", settings.error().message.c_str());
+    return 1;
+  }
+  if (options->realTimeFactor) settings->realTimeFactor = *options->realTimeFactor;
+  if (options->duration) settings->duration = *options->duration;
+  if (options->lcmUrl) settings->lcmUrl = *options->lcmUrl;
+  if (options->channelPrefix) settings->channelPrefix = *options->channelPrefix;
+  if (options->recordPath) settings->recordPath = *options->recordPath;
+  if (options->stateRate) settings->stateRate = *options->stateRate;
+  if (options->startPaused) settings->startPaused = true;
+  if (!isPlainChannelPrefix(settings->channelPrefix)) {
+    std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
+                 settings->channelPrefix.c_str());
+    return 2;
+  }
+
+  // Wake-ups for the step deadlines as close to the deadline as the kernel
+  // can: the default 50 µs timer slack would be most of our jitter budget.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+
+  SignalEvents signals;
+  if (!signals.ok()) {
+    std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
+    return 1;
+  }
+  const std::string configDirectory =
+      std::filesystem::path(options->configPath).parent_path().string();
+  Server server(*settings, std::move(world).value(), configDirectory);
+  const auto opened = server.open();
+  if (!opened) {
+    std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());
+    return 1;
+  }
+  return server.run(signals);
+}

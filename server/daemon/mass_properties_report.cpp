@@ -1,0 +1,72 @@
+#include "daemon/mass_properties_report.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace rbsim {
+
+namespace {
+
+// Round-trip precision: 17 significant digits.
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+std::string vector3(const Vec3& v) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+  return buffer;
+}
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string massPropertiesJson(const World& world) {
+  std::ostringstream out;
+  out << "{\n  \"bodies\": [";
+  bool first = true;
+  for (const Body& body : world.bodies()) {
+    const BodyDescription& d = body.description();
+    const MassProperties& m = d.massProperties;
+    // Principal axes in the shape frame are the rows of shapeRotation (it
+    // maps shape coordinates to body coordinates).
+    const Mat3 axes = d.shapeRotation.transpose();
+    const Vec3 moments = body.dynamics().inertiaBody;
+    out << (first ? "\n" : ",\n") << "    {\n";
+    out << "      \"name\": " << jsonString(d.name) << ",\n";
+    out << "      \"shape\": " << jsonString(shapeTypeName(d.shape)) << ",\n";
+    out << "      \"static\": " << (d.isStatic ? "true" : "false") << ",\n";
+    out << "      \"mass\": " << number(m.mass) << ",\n";
+    out << "      \"volume\": " << number(m.volume) << ",\n";
+    out << "      \"center_of_mass\": " << vector3(m.centerOfMass) << ",\n";
+    out << "      \"inertia\": [" << vector3(m.inertia.row(0)) << ", " << vector3(m.inertia.row(1))
+        << ", " << vector3(m.inertia.row(2)) << "],\n";
+    out << "      \"principal_moments\": " << vector3(moments) << ",\n";
+    out << "      \"principal_axes\": [" << vector3(axes.col(0)) << ", " << vector3(axes.col(1))
+        << ", " << vector3(axes.col(2)) << "]\n";
+    out << "    }";
+    first = false;
+  }
+  out << "\n  ]\n}\n";
+  return out.str();
+}
+
+}  // namespace rbsim

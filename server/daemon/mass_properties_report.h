@@ -1,0 +1,17 @@
+#pragma once
+// `rbserver --mass-properties`: the mass properties of every body as JSON.
+
+#include <string>
+
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+// For every body, in creation order: name, mass (kg), volume (m³),
+// center_of_mass (m) and inertia (kg·m², 3×3 about the centre of mass), both
+// in the frame the shape was given in, principal_moments (ascending) and
+// principal_axes (a list of three unit vectors in that frame, one per moment).
+// Static planes have no finite mass and report zeros.
+std::string massPropertiesJson(const World& world);
+
+}  // namespace rbsim

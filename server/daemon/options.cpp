@@ -1,0 +1,87 @@
+#include "daemon/options.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace rbsim {
+
+namespace {
+
+Expected<double> parseNumber(const std::string& option, const std::string& text, bool allowZero) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value) || value < 0.0 ||
+      (!allowZero && value == 0.0))
+    return Error{option + ": expected a " + (allowZero ? "non-negative" : "positive") +
+                 " number, got '" + text + "'"};
+  return value;
+}
+
+}  // namespace
+
+std::string usage() {
+  return R"(usage: rbserver --config FILE [options]
+
+Real-time rigid-body simulation server on LCM. Loads the world in FILE,
+steps it at its fixed dt paced to the wall clock, publishes RBSIM_STATE,
+RBSIM_STATUS, RBSIM_WORLD and RBSIM_ACK, and takes RBSIM_WRENCH and
+RBSIM_COMMAND from clients. SIGINT/SIGTERM stop it cleanly.
+
+options (each overrides the config file's key):
+  --config FILE            world and server settings (YAML), required
+  --mass-properties        print every body's mass properties as JSON and exit
+  --real-time-factor X     simulated s per wall s; 0 = as fast as possible (server.real_time_factor)
+  --duration S             stop after S s of simulated time (server.duration)
+  --lcm-url URL            LCM provider URL (lcm.url)
+  --channel-prefix P       channel name prefix, default RBSIM_ (lcm.channel_prefix)
+  --state-rate HZ          RBSIM_STATE rate in Hz of simulated time; 0 = every step (lcm.state_rate)
+  --record FILE            write every published and received message to an LCM log (server.record)
+  --paused                 start paused (server.start_paused)
+  --log-level LEVEL        debug, info, warning or error (default info)
+  --help                   this text
+)";
+}
+
+Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
+  Options options;
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& arg = arguments[i];
+    const auto value = [&]() -> Expected<std::string> {
+      if (i + 1 >= arguments.size()) return Error{arg + ": missing value"};
+      return arguments[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      options.help = true;
+    } else if (arg == "--mass-properties") {
+      options.massProperties = true;
+    } else if (arg == "--paused") {
+      options.startPaused = true;
+    } else if (arg == "--config" || arg == "--lcm-url" || arg == "--channel-prefix" ||
+               arg == "--record" || arg == "--log-level" || arg == "--real-time-factor" ||
+               arg == "--duration" || arg == "--state-rate") {
+      const auto text = value();
+      if (!text) return text.error();
+      if (arg == "--config") options.configPath = *text;
+      if (arg == "--lcm-url") options.lcmUrl = *text;
+      if (arg == "--channel-prefix") options.channelPrefix = *text;
+      if (arg == "--record") options.recordPath = *text;
+      if (arg == "--log-level") options.logLevel = *text;
+      if (arg == "--real-time-factor" || arg == "--state-rate") {
+        const auto number = parseNumber(arg, *text, true);
+        if (!number) return number.error();
+        (arg == "--real-time-factor" ? options.realTimeFactor : options.stateRate) = *number;
+      }
+      if (arg == "--duration") {
+        const auto number = parseNumber(arg, *text, false);
+        if (!number) return number.error();
+        options.duration = *number;
+      }
+    } else {
+      return Error{"unknown argument '" + arg + "' (see --help)"};
+    }
+  }
+  if (!options.help && options.configPath.empty()) return Error{"--config FILE is required (see --help)"};
+  return options;
+}
+
+}  // namespace rbsim

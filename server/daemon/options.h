@@ -1,0 +1,31 @@
+#pragma once
+// rbserver's command line.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/common/expected.h"
+
+namespace rbsim {
+
+struct Options {
+  std::string configPath;
+  bool massProperties = false;
+  bool help = false;
+  std::optional<double> realTimeFactor;
+  std::optional<double> duration;  // s of simulated time
+  std::optional<std::string> lcmUrl;
+  std::optional<std::string> channelPrefix;
+  std::optional<std::string> recordPath;
+  std::optional<double> stateRate;  // Hz
+  std::optional<std::string> logLevel;
+  bool startPaused = false;
+};
+
+// Parses argv[1..]; errors say which argument is wrong and why.
+Expected<Options> parseOptions(const std::vector<std::string>& arguments);
+
+std::string usage();
+
+}  // namespace rbsim

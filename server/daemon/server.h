@@ -1,0 +1,91 @@
+#pragma once
+// rbserver's stepping loop: one thread steps the world on a real-time
+// schedule, and between steps drains LCM (wrenches, commands) and signals.
+// No message is handled in the middle of a step.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "daemon/event_recorder.h"
+#include "daemon/lateness_histogram.h"
+#include "daemon/server_settings.h"
+#include "daemon/signal_events.h"
+#include "daemon/step_clock.h"
+#include "daemon/wrench_scheduler.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+class Server {
+ public:
+  // `initialWorld` is what RESET returns to; `configDirectory` resolves mesh
+  // paths of spawned bodies.
+  Server(ServerSettings settings, World initialWorld, std::string configDirectory);
+
+  // Connects to LCM, subscribes, opens the record file. A bad URL or an
+  // unwritable record file is an error, before any stepping.
+  Expected<bool> open();
+
+  // Runs until SIGINT/SIGTERM or the configured duration; then publishes a
+  // last status and closes the record file. Returns the process exit code.
+  int run(SignalEvents& signals);
+
+ private:
+  struct Counters {
+    int64_t accepted = 0;
+    int64_t rejected = 0;
+  };
+  struct StepTimes {  // wall time of World::step, over the current status window
+    double sum = 0.0;
+    double worst = 0.0;
+    int64_t count = 0;
+  };
+
+  std::string channel(const char* suffix) const { return m_settings.channelPrefix + suffix; }
+  bool shouldStep() const;
+  bool durationReached() const;
+  void stepOnce();
+  void drainMessages();
+
+  void onWrench(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
+  void onCommand(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
+  void acknowledge(const std::string& client, int64_t seq, int8_t kind, int8_t request,
+                   bool accepted, const std::string& reason, int64_t effectiveStep);
+
+  void publishState();
+  void publishStatus(Nanoseconds now);
+  void publishWorld();
+  template <class Message>
+  void publish(const std::string& channelName, const Message& message);
+  void record(const std::string& channelName, const void* data, std::size_t size, int64_t utime);
+
+  ServerSettings m_settings;
+  World m_initialWorld;
+  World m_world;
+  std::string m_configDirectory;
+  std::unique_ptr<lcm::LCM> m_lcm;
+  EventRecorder m_recorder;
+  WrenchScheduler m_wrenches;
+  StepClock m_clock;
+
+  bool m_paused = false;
+  int64_t m_stepsRequested = 0;  // STEP while paused: steps still to take
+  int64_t m_worldRevision = 1;
+  int64_t m_stateEverySteps = 1;
+  Counters m_counters;
+  StepTimes m_stepTimes;
+  Nanoseconds m_lastStatus = 0;
+  int64_t m_stepAtLastStatus = 0;
+  Nanoseconds m_lastPausedStatePublish = 0;
+  bool m_stopRequested = false;
+  int64_t m_controlVersion = 0;   // bumped by commands that change the pace
+  LatenessHistogram m_lateness;   // paced steps only
+  double m_worstStepEver = 0.0;   // s
+  std::vector<uint8_t> m_encodeBuffer;
+};
+
+}  // namespace rbsim

@@ -1,0 +1,153 @@
+#include "daemon/server_settings.h"
+
+#include <array>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include <yaml-cpp/yaml.h>
+
+#include "config/yaml_reader.h"
+
+namespace rbsim {
+
+namespace {
+
+// Reads the optional section `name` of the root map into `settings` with `read`.
+template <class ReadSection>
+std::optional<Error> readSection(const YamlReader& reader, const YamlMap& root,
+                                 std::string_view name, ReadSection read) {
+  const YamlMap::Entry* entry = root.find(name);
+  if (entry == nullptr) return std::nullopt;
+  const auto section = reader.map(entry->value);
+  if (!section) return section.error();
+  return read(*section);
+}
+
+std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, ServerSettings& out) {
+  static constexpr std::array<std::string_view, 4> kKeys = {"url", "channel_prefix", "state_rate",
+                                                            "status_rate"};
+  if (auto error = reader.checkKeys(lcm, kKeys, "the lcm section")) return error;
+  if (const auto* url = lcm.find("url")) {
+    const auto text = reader.string(url->value);
+    if (!text) return text.error();
+    out.lcmUrl = *text;
+  }
+  if (const auto* prefix = lcm.find("channel_prefix")) {
+    const auto text = reader.string(prefix->value);
+    if (!text) return text.error();
+    out.channelPrefix = *text;
+  }
+  const auto stateRate = reader.number(lcm, "state_rate", NumberRule::nonNegative(1e6), out.stateRate);
+  if (!stateRate) return stateRate.error();
+  out.stateRate = *stateRate;
+  if (const auto* entry = lcm.find("status_rate")) {
+    const auto rate = reader.number(entry->value, NumberRule::positive(10.0));
+    if (!rate) return rate.error();
+    if (*rate < 1.0) return reader.error(entry->value, "expected a rate between 1 and 10 Hz");
+    out.statusRate = *rate;
+  }
+  return std::nullopt;
+}
+
+std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
+                                ServerSettings& out) {
+  static constexpr std::array<std::string_view, 6> kKeys = {
+      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused"};
+  if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
+  const auto rtf = reader.number(server, "real_time_factor",
+                                 NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
+  if (!rtf) return rtf.error();
+  out.realTimeFactor = *rtf;
+  if (const auto* entry = server.find("duration")) {
+    const auto duration = reader.number(entry->value, NumberRule::positive(1e9));
+    if (!duration) return duration.error();
+    out.duration = *duration;
+  }
+  if (const auto* entry = server.find("catch_up")) {
+    const auto policy = reader.string(entry->value);
+    if (!policy) return policy.error();
+    if (*policy == "burst") {
+      out.catchUp = CatchUpPolicy::Burst;
+    } else if (*policy == "reanchor") {
+      out.catchUp = CatchUpPolicy::Reanchor;
+    } else {
+      return reader.error(entry->value, "expected burst or reanchor, got \"" + *policy + "\"");
+    }
+  }
+  const auto burst = reader.number(server, "max_burst", NumberRule::positive(100000),
+                                   static_cast<double>(out.maxBurst));
+  if (!burst) return burst.error();
+  out.maxBurst = static_cast<int>(*burst);
+  if (const auto* entry = server.find("record")) {
+    const auto path = reader.string(entry->value);
+    if (!path) return path.error();
+    out.recordPath = *path;
+  }
+  const auto paused = reader.boolean(server, "start_paused", out.startPaused);
+  if (!paused) return paused.error();
+  out.startPaused = *paused;
+  return std::nullopt;
+}
+
+std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
+                                ServerSettings& out) {
+  static constexpr std::array<std::string_view, 7> kKeys = {
+      "max_force", "max_torque", "max_lever_arm", "max_duration", "max_steps_ahead",
+      "max_real_time_factor", "max_steps_per_command"};
+  if (auto error = reader.checkKeys(limits, kKeys, "the limits section")) return error;
+  struct Field {
+    std::string_view key;
+    double* value;
+  };
+  double stepsAhead = static_cast<double>(out.limits.maxStepsAhead);
+  double stepsPerCommand = static_cast<double>(out.maxStepsPerCommand);
+  const std::array<Field, 7> fields = {{{"max_force", &out.limits.maxForce},
+                                        {"max_torque", &out.limits.maxTorque},
+                                        {"max_lever_arm", &out.limits.maxLeverArm},
+                                        {"max_duration", &out.limits.maxDuration},
+                                        {"max_steps_ahead", &stepsAhead},
+                                        {"max_real_time_factor", &out.maxRealTimeFactor},
+                                        {"max_steps_per_command", &stepsPerCommand}}};
+  for (const Field& field : fields) {
+    const auto value = reader.number(limits, field.key, NumberRule::positive(1e15), *field.value);
+    if (!value) return value.error();
+    *field.value = *value;
+  }
+  out.limits.maxStepsAhead = static_cast<int64_t>(stepsAhead);
+  out.maxStepsPerCommand = static_cast<int64_t>(stepsPerCommand);
+  return std::nullopt;
+}
+
+}  // namespace
+
+Expected<ServerSettings> loadServerSettings(const std::string& configPath) {
+  std::ifstream file(configPath);
+  if (!file) return Error{configPath + ": cannot open the file"};
+  std::stringstream text;
+  text << file.rdbuf();
+  YAML::Node document;
+  try {
+    document = YAML::Load(text.str());
+  } catch (const YAML::Exception& e) {
+    return Error{configPath + ":" + std::to_string(e.mark.line + 1) + ":" +
+                 std::to_string(e.mark.column + 1) + ": " + e.msg};
+  }
+  const YamlReader reader(configPath);
+  ServerSettings settings;
+  if (!document || document.IsNull()) return settings;
+  const auto root = reader.map(YamlNode::root(document));
+  if (!root) return root.error();
+  if (auto error = readSection(reader, *root, "lcm",
+                               [&](const YamlMap& m) { return readLcm(reader, m, settings); }))
+    return *error;
+  if (auto error = readSection(reader, *root, "server",
+                               [&](const YamlMap& m) { return readServer(reader, m, settings); }))
+    return *error;
+  if (auto error = readSection(reader, *root, "limits",
+                               [&](const YamlMap& m) { return readLimits(reader, m, settings); }))
+    return *error;
+  return settings;
+}
+
+}  // namespace rbsim

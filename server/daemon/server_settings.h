@@ -1,0 +1,38 @@
+#pragma once
+// How rbserver runs: the `lcm:`, `server:` and `limits:` sections of a config
+// file, overridden by the command line.
+
+#include <optional>
+#include <string>
+
+#include "daemon/step_clock.h"
+#include "daemon/wire_convert.h"
+#include "physics/common/expected.h"
+
+namespace rbsim {
+
+struct ServerSettings {
+  // LCM. ttl=0 keeps every packet on this host; recv_buf_size lets the
+  // server take bursts of commands without the kernel dropping them.
+  std::string lcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152";
+  std::string channelPrefix = "RBSIM_";
+  double stateRate = 100.0;  // Hz of simulated time; 0 = every step
+  double statusRate = 2.0;   // Hz of wall-clock time, 1..10
+
+  double realTimeFactor = 1.0;           // simulated s per wall s; 0 = as fast as possible
+  std::optional<double> duration;        // s of simulated time, then a clean exit
+  CatchUpPolicy catchUp = CatchUpPolicy::Burst;
+  int maxBurst = 20;                     // steps, Burst policy only
+  bool startPaused = false;
+  std::string recordPath;                // empty: no recording
+
+  WrenchLimits limits;
+  double maxRealTimeFactor = 1000.0;     // SET_REAL_TIME_FACTOR above this is rejected
+  int64_t maxStepsPerCommand = 10000000; // STEP num_steps above this is rejected
+};
+
+// Reads the `lcm`, `server` and `limits` sections of the config file (absent
+// sections keep the defaults). Errors name file, line and column.
+Expected<ServerSettings> loadServerSettings(const std::string& configPath);
+
+}  // namespace rbsim

@@ -1,0 +1,250 @@
+#include "daemon/wire_convert.h"
+
+#include <cmath>
+#include <variant>
+
+namespace rbsim {
+
+namespace {
+
+template <std::size_t N>
+void copyTo(double (&out)[N], const Vec3& v) {
+  static_assert(N == 3);
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+void copyTo(double (&out)[4], const Quaternion& q) {
+  out[0] = q.w;
+  out[1] = q.x;
+  out[2] = q.y;
+  out[3] = q.z;
+}
+
+Vec3 vec3From(const double (&in)[3]) { return {in[0], in[1], in[2]}; }
+
+rbsim::body_state_t bodyState(const Body& body) {
+  rbsim::body_state_t out;
+  out.id = body.serial();
+  out.name = body.name();
+  copyTo(out.position, body.position());
+  copyTo(out.orientation, body.orientation());
+  copyTo(out.linear_velocity, body.linearVelocity());
+  copyTo(out.angular_velocity, body.angularVelocity());
+  return out;
+}
+
+rbsim::body_description_t bodyDescription(const Body& body) {
+  const BodyDescription& d = body.description();
+  rbsim::body_description_t out;
+  out.id = body.serial();
+  out.name = d.name;
+  out.is_static = d.isStatic;
+  out.mass = body.mass();
+  copyTo(out.inertia, body.dynamics().inertiaBody);
+  out.linear_damping = body.dynamics().linearDamping;
+  out.angular_damping = body.dynamics().angularDamping;
+  out.shape_type = shapeTypeName(d.shape);
+  copyTo(out.shape_position, d.shapeTranslation);
+  copyTo(out.shape_orientation, Quaternion::fromRotationMatrix(d.shapeRotation));
+  out.radius = 0.0;
+  out.half_length = 0.0;
+  out.plane_offset = 0.0;
+  copyTo(out.half_extents, Vec3::Zero());
+  copyTo(out.plane_normal, Vec3::Zero());
+  out.num_vertices = 0;
+  out.num_triangles = 0;
+  std::visit(
+      [&](const auto& shape) {
+        using S = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<S, SphereShape>) {
+          out.radius = shape.radius;
+        } else if constexpr (std::is_same_v<S, BoxShape>) {
+          copyTo(out.half_extents, shape.halfExtents);
+        } else if constexpr (std::is_same_v<S, CylinderShape> || std::is_same_v<S, CapsuleShape>) {
+          out.radius = shape.radius;
+          out.half_length = shape.halfLength;
+        } else if constexpr (std::is_same_v<S, PlaneShape>) {
+          copyTo(out.plane_normal, shape.normal);
+          out.plane_offset = shape.offset;
+        } else if constexpr (std::is_same_v<S, MeshShape>) {
+          out.mesh_file = shape.file;
+          // Vertices in the shape's frame: shape_position/orientation place it in body space.
+          const TriangleMesh& mesh = *shape.mesh;
+          out.num_vertices = static_cast<int32_t>(mesh.vertices.size());
+          out.vertices.resize(mesh.vertices.size(), std::vector<double>(3));
+          for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+            for (int k = 0; k < 3; ++k) out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
+          out.num_triangles = static_cast<int32_t>(mesh.triangles.size());
+          out.triangles.resize(mesh.triangles.size(), std::vector<int32_t>(3));
+          for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+            for (std::size_t k = 0; k < 3; ++k) out.triangles[i][k] = mesh.triangles[i][k];
+        }
+      },
+      d.shape);
+  return out;
+}
+
+// Splits items into pages whose encoded size stays under the budget.
+// `Page` has the world_state_t/world_t paging fields and a `bodies` vector.
+template <class Page, class Item>
+std::vector<Page> paginate(const Page& header, std::vector<Item> items) {
+  std::vector<Page> pages;
+  Page current = header;
+  const auto emptySize = static_cast<std::size_t>(header.getEncodedSize());
+  std::size_t size = emptySize;
+  int32_t index = 0;
+  current.first_body_index = 0;
+  for (Item& item : items) {
+    const auto itemSize = static_cast<std::size_t>(item._getEncodedSizeNoHash());
+    if (!current.bodies.empty() && size + itemSize > kMaxPagePayloadBytes) {
+      current.num_bodies = static_cast<int32_t>(current.bodies.size());
+      pages.push_back(std::move(current));
+      current = header;
+      current.first_body_index = index;
+      size = emptySize;
+    }
+    current.bodies.push_back(std::move(item));
+    size += itemSize;
+    ++index;
+  }
+  current.num_bodies = static_cast<int32_t>(current.bodies.size());
+  pages.push_back(std::move(current));
+  for (std::size_t i = 0; i < pages.size(); ++i) {
+    pages[i].page = static_cast<int32_t>(i);
+    pages[i].num_pages = static_cast<int32_t>(pages.size());
+    pages[i].total_bodies = index;
+  }
+  return pages;
+}
+
+bool finite3(const double (&v)[3]) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+}  // namespace
+
+std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t utime,
+                                                  int64_t revision) {
+  rbsim::world_state_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.world_revision = revision;
+  header.page = 0;
+  header.num_pages = 1;
+  header.total_bodies = 0;
+  header.first_body_index = 0;
+  header.num_bodies = 0;
+  std::vector<rbsim::body_state_t> bodies;
+  bodies.reserve(world.bodies().size());
+  for (const Body& body : world.bodies()) bodies.push_back(bodyState(body));
+  return paginate(header, std::move(bodies));
+}
+
+std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
+                                                  int64_t revision) {
+  rbsim::world_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.world_revision = revision;
+  header.dt = world.settings().dt;
+  copyTo(header.gravity, world.settings().gravity);
+  header.integrator = std::string(integratorName(world.settings().integrator));
+  header.linear_damping = world.settings().linearDamping;
+  header.angular_damping = world.settings().angularDamping;
+  header.page = 0;
+  header.num_pages = 1;
+  header.total_bodies = 0;
+  header.first_body_index = 0;
+  header.num_bodies = 0;
+  std::vector<rbsim::body_description_t> bodies;
+  bodies.reserve(world.bodies().size());
+  for (const Body& body : world.bodies()) bodies.push_back(bodyDescription(body));
+  return paginate(header, std::move(bodies));
+}
+
+Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
+                                          int64_t nextStep, const WrenchLimits& limits) {
+  WrenchRequest request;
+  request.client = message.client;
+  request.seq = message.seq;
+  request.body = message.body;
+
+  switch (message.mode) {
+    case rbsim::wrench_t::MODE_ONE_STEP:
+      request.mode = WrenchMode::OneStep;
+      break;
+    case rbsim::wrench_t::MODE_DURATION:
+      request.mode = WrenchMode::Duration;
+      break;
+    case rbsim::wrench_t::MODE_PERSISTENT:
+      request.mode = WrenchMode::Persistent;
+      break;
+    case rbsim::wrench_t::MODE_CLEAR:
+      request.mode = WrenchMode::Clear;
+      break;
+    default:
+      return Error{"unknown mode " + std::to_string(message.mode)};
+  }
+  if (message.frame == rbsim::wrench_t::FRAME_WORLD) {
+    request.frame = WrenchFrame::World;
+  } else if (message.frame == rbsim::wrench_t::FRAME_BODY) {
+    request.frame = WrenchFrame::Body;
+  } else {
+    return Error{"unknown frame " + std::to_string(message.frame)};
+  }
+
+  const bool clearEverything = request.mode == WrenchMode::Clear && message.body.empty();
+  const BodyId id = world.findBody(message.body);
+  if (!clearEverything && id.isNull()) return Error{"unknown body '" + message.body + "'"};
+
+  if (message.apply_at_step == -1) {
+    request.firstStep = nextStep;
+  } else if (message.apply_at_step < nextStep) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) +
+                 " is in the past (next step is " + std::to_string(nextStep) + ")"};
+  } else if (message.apply_at_step - nextStep > limits.maxStepsAhead) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) + " is more than " +
+                 std::to_string(limits.maxStepsAhead) + " steps ahead"};
+  } else {
+    request.firstStep = message.apply_at_step;
+  }
+
+  if (request.mode == WrenchMode::Clear) return request;
+
+  if (!finite3(message.force) || !finite3(message.torque) || !finite3(message.point))
+    return Error{"force, torque and point must be finite"};
+  request.force = vec3From(message.force);
+  request.torque = vec3From(message.torque);
+  request.point = vec3From(message.point);
+  if (request.force.norm() > limits.maxForce)
+    return Error{"force magnitude " + std::to_string(request.force.norm()) + " N exceeds the limit of " +
+                 std::to_string(limits.maxForce) + " N"};
+  if (request.torque.norm() > limits.maxTorque)
+    return Error{"torque magnitude " + std::to_string(request.torque.norm()) +
+                 " N·m exceeds the limit of " + std::to_string(limits.maxTorque) + " N·m"};
+  const Body& body = world.body(id);
+  if (body.isStatic()) return Error{"body '" + message.body + "' is static"};
+  const double leverArm = request.frame == WrenchFrame::World
+                              ? (request.point - body.position()).norm()
+                              : request.point.norm();
+  if (leverArm > limits.maxLeverArm)
+    return Error{"point is " + std::to_string(leverArm) + " m from the centre of mass (limit " +
+                 std::to_string(limits.maxLeverArm) + " m)"};
+
+  if (request.mode == WrenchMode::Duration) {
+    if (!std::isfinite(message.duration) || message.duration <= 0.0)
+      return Error{"duration must be a positive number of seconds"};
+    if (message.duration > limits.maxDuration)
+      return Error{"duration " + std::to_string(message.duration) + " s exceeds the limit of " +
+                   std::to_string(limits.maxDuration) + " s"};
+    const double steps = std::round(message.duration / world.settings().dt);
+    request.durationSteps = std::max<int64_t>(1, static_cast<int64_t>(steps));
+  }
+  return request;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,50 @@
+#pragma once
+// Conversions between the physics library's values and the LCM wire types.
+// Pure functions: no LCM handle, no clock (the caller passes utime).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <rbsim/ack_t.hpp>
+#include <rbsim/status_t.hpp>
+#include <rbsim/world_state_t.hpp>
+#include <rbsim/world_t.hpp>
+#include <rbsim/wrench_t.hpp>
+
+#include "daemon/wrench_scheduler.h"
+#include "physics/common/expected.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+// Largest payload we put in one LCM message: under one UDP datagram
+// (65499 bytes with header and channel, LCM_NOTES.md §8), so a page is never
+// fragmented and a lost datagram loses one page, not a whole state.
+constexpr std::size_t kMaxPagePayloadBytes = 60000;
+
+// The world's state split into pages of whole bodies, each page encoding to
+// at most kMaxPagePayloadBytes. Bodies go in creation order (ascending id).
+std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t utime,
+                                                  int64_t revision);
+
+// The world's description, paged the same way (meshes make bodies large).
+std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
+                                                  int64_t revision);
+
+// What a server accepts in a wrench (configurable in the `limits:` section).
+struct WrenchLimits {
+  double maxForce = 1e6;         // N, magnitude
+  double maxTorque = 1e6;        // N·m, magnitude
+  double maxLeverArm = 1e3;      // m, |point − centre of mass| (world) or |point| (body)
+  double maxDuration = 86400.0;  // s of simulated time
+  int64_t maxStepsAhead = 100000000;  // how far ahead apply_at_step may schedule
+};
+
+// Checks a wrench message against the world and the limits; on success the
+// request is ready for the WrenchScheduler. `nextStep` is the step the
+// server takes next (world.stepCount() + 1).
+Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
+                                          int64_t nextStep, const WrenchLimits& limits);
+
+}  // namespace rbsim

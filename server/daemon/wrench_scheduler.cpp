@@ -1,0 +1,71 @@
+#include "daemon/wrench_scheduler.h"
+
+#include <algorithm>
+
+namespace rbsim {
+
+void WrenchScheduler::add(const WrenchRequest& request) { m_pending.push_back(request); }
+
+void WrenchScheduler::start(const WrenchRequest& request) {
+  const auto sameClientAndBody = [&](const WrenchRequest& active) {
+    return active.client == request.client && (request.body.empty() || active.body == request.body);
+  };
+  if (request.mode == WrenchMode::Clear) {
+    std::erase_if(m_active, [&](const WrenchRequest& active) {
+      return sameClientAndBody(active) && active.mode != WrenchMode::OneStep;
+    });
+    return;
+  }
+  if (request.mode == WrenchMode::Persistent) {
+    std::erase_if(m_active, [&](const WrenchRequest& active) {
+      return sameClientAndBody(active) && active.mode == WrenchMode::Persistent;
+    });
+  }
+  m_active.push_back(request);
+}
+
+void WrenchScheduler::applyForStep(World& world, int64_t step) {
+  // Start what is due, in acceptance order; keep the rest waiting.
+  std::vector<WrenchRequest> stillPending;
+  for (const WrenchRequest& request : m_pending) {
+    if (request.firstStep <= step) {
+      start(request);
+    } else {
+      stillPending.push_back(request);
+    }
+  }
+  m_pending.swap(stillPending);
+
+  std::erase_if(m_active, [&](const WrenchRequest& active) {
+    const BodyId id = world.findBody(active.body);
+    if (id.isNull()) return true;  // the body was removed
+    Body& body = world.body(id);
+    if (active.frame == WrenchFrame::World) {
+      body.applyWorldWrench(active.force, active.torque, active.point);
+    } else {
+      body.applyBodyWrench(active.force, active.torque, active.point);
+    }
+    return false;
+  });
+}
+
+void WrenchScheduler::finishStep(int64_t step) {
+  std::erase_if(m_active, [&](const WrenchRequest& active) {
+    switch (active.mode) {
+      case WrenchMode::OneStep:
+        return true;
+      case WrenchMode::Duration:
+        return step >= active.firstStep + active.durationSteps - 1;
+      default:
+        return false;
+    }
+  });
+}
+
+void WrenchScheduler::removeBody(const std::string& body) {
+  const auto onBody = [&](const WrenchRequest& r) { return r.body == body; };
+  std::erase_if(m_pending, onBody);
+  std::erase_if(m_active, onBody);
+}
+
+}  // namespace rbsim

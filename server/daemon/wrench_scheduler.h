@@ -1,0 +1,73 @@
+#pragma once
+// External wrenches requested by clients, kept between steps and applied to
+// the world at each step boundary.
+//
+// Steps are numbered as on the wire: the step taken from a world that has
+// taken s steps is step s + 1. A wrench accepted for step k acts during
+// steps k, k+1, ... as its mode says:
+//  - OneStep: step k only.
+//  - Duration: `durationSteps` steps from k.
+//  - Persistent: until cleared; a new persistent wrench from the same client
+//    on the same body replaces the old one when it starts.
+//  - Clear: at step k removes the client's active duration and persistent
+//    wrenches on the body (on all bodies when the body name is empty).
+// Everything is processed in acceptance order, so the result depends only on
+// the sequence of accepted requests: replayable and deterministic.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "physics/math/types.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+enum class WrenchFrame { World, Body };
+enum class WrenchMode { OneStep, Duration, Persistent, Clear };
+
+struct WrenchRequest {
+  std::string client;
+  int64_t seq = 0;
+  std::string body;  // empty only for Clear (= every body)
+  WrenchFrame frame = WrenchFrame::World;
+  Vec3 force = Vec3::Zero();   // N
+  Vec3 torque = Vec3::Zero();  // N·m
+  Vec3 point = Vec3::Zero();   // m, world point or body point (relative to the centre of mass)
+  WrenchMode mode = WrenchMode::OneStep;
+  int64_t durationSteps = 1;   // Duration only, >= 1
+  int64_t firstStep = 0;       // the step during which it first acts
+};
+
+class WrenchScheduler {
+ public:
+  // The request must already be validated (body exists, finite values,
+  // firstStep not in the past).
+  void add(const WrenchRequest& request);
+
+  // Applies the wrenches acting during `step` (= world.stepCount() + 1) to the
+  // world's bodies: call right before world.step(). Wrenches whose body no
+  // longer exists are dropped.
+  void applyForStep(World& world, int64_t step);
+  // Call right after world.step(): retires wrenches that have run out.
+  void finishStep(int64_t step);
+
+  void clearAll() {
+    m_pending.clear();
+    m_active.clear();
+  }
+  void removeBody(const std::string& body);
+
+  int activeCount() const { return static_cast<int>(m_active.size()); }
+  int pendingCount() const { return static_cast<int>(m_pending.size()); }
+  const std::vector<WrenchRequest>& active() const { return m_active; }
+  const std::vector<WrenchRequest>& pending() const { return m_pending; }
+
+ private:
+  void start(const WrenchRequest& request);
+
+  std::vector<WrenchRequest> m_pending;  // firstStep in the future, acceptance order
+  std::vector<WrenchRequest> m_active;   // acting now, acceptance order
+};
+
+}  // namespace rbsim

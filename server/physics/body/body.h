@@ -1,0 +1,103 @@
+#pragma once
+// A rigid body: its immutable description and its moving state.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "physics/body/body_def.h"
+#include "physics/body/external_load.h"
+#include "physics/body/rigid_state.h"
+#include "physics/geometry/shape.h"
+#include "physics/mass/mass_properties.h"
+#include "physics/math/quaternion.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+// What a body is, fixed at creation. Shared (immutably) between copies of a
+// world, so copying a world for a look-ahead or a checkpoint is cheap.
+struct BodyDescription {
+  std::string name;
+  Shape shape;                  // in the shape's own frame, as the user gave it
+  bool isStatic = false;
+  MassProperties massProperties;  // in the shape's frame (zero for static bodies)
+  // Placement of the shape's frame in body space (origin at the centre of
+  // mass, axes along the principal axes): p_body = shapeRotation p_shape + shapeTranslation.
+  Mat3 shapeRotation = Mat3::Identity();
+  Vec3 shapeTranslation = Vec3::Zero();  // m
+  // For mesh shapes: the mesh re-expressed in body space. Null otherwise.
+  std::shared_ptr<const TriangleMesh> bodySpaceMesh;
+};
+
+class Body {
+ public:
+  // `dynamics` must already hold the principal moments of `description`.
+  Body(std::shared_ptr<const BodyDescription> description, const BodyDynamics& dynamics,
+       const RigidState& state);
+
+  const BodyDescription& description() const { return *m_description; }
+  const std::shared_ptr<const BodyDescription>& sharedDescription() const { return m_description; }
+  const std::string& name() const { return m_description->name; }
+  // Never reused within a world: the n-th body created has serial n (from 1).
+  // Creation order is ascending serial order.
+  int32_t serial() const { return m_serial; }
+  bool isStatic() const { return m_description->isStatic; }
+
+  const BodyDynamics& dynamics() const { return m_dynamics; }
+  double mass() const { return m_dynamics.mass; }               // kg (0 for static)
+  double inverseMass() const { return m_dynamics.inverseMass; }  // 1/kg
+
+  const RigidState& state() const { return m_state; }
+  const Vec3& position() const { return m_state.position; }
+  const Quaternion& orientation() const { return m_state.orientation; }
+  const Vec3& linearMomentum() const { return m_state.linearMomentum; }
+  const Vec3& angularMomentum() const { return m_state.angularMomentum; }
+
+  // Derived quantities, recomputed whenever the state changes.
+  const Mat3& rotation() const { return m_rotation; }                  // body -> world
+  const Mat3& inverseInertiaWorld() const { return m_invInertiaWorld; }  // R Ibody⁻¹ Rᵀ
+  Mat3 inertiaWorld() const;                                            // R Ibody Rᵀ
+  const Vec3& linearVelocity() const { return m_linearVelocity; }      // m/s, world
+  const Vec3& angularVelocity() const { return m_angularVelocity; }    // rad/s, world
+
+  // Velocity of the material point at a world position: v + ω × (p − x).
+  Vec3 velocityAtPoint(const Vec3& worldPoint) const;
+  Vec3 bodyToWorld(const Vec3& bodyPoint) const { return m_state.position + m_rotation * bodyPoint; }
+  Vec3 worldToBody(const Vec3& worldPoint) const {
+    return m_rotation.transpose() * (worldPoint - m_state.position);
+  }
+  double kineticEnergy() const;  // J: ½ P·v + ½ L·ω
+
+  // Replaces the whole state (normalising the quaternion) and the derived values.
+  void setState(const RigidState& state);
+  void setVelocities(const Vec3& linearVelocity, const Vec3& angularVelocity);
+  void setDamping(double linear, double angular);
+
+  // External wrenches for the coming step (cleared by the world after it).
+  void applyWorldWrench(const Vec3& force, const Vec3& torque, const Vec3& point) {
+    m_load.addWorldWrench(force, torque, point, m_state.position);
+  }
+  void applyBodyWrench(const Vec3& force, const Vec3& torque, const Vec3& point) {
+    m_load.addBodyWrench(force, torque, point);
+  }
+  const ExternalLoad& load() const { return m_load; }
+  void clearLoad() { m_load.clear(); }
+
+ private:
+  void updateDerived();
+
+  std::shared_ptr<const BodyDescription> m_description;
+  BodyDynamics m_dynamics;
+  RigidState m_state;
+  ExternalLoad m_load;
+  Mat3 m_rotation = Mat3::Identity();
+  Mat3 m_invInertiaWorld = Mat3::Zero();
+  Vec3 m_linearVelocity = Vec3::Zero();
+  Vec3 m_angularVelocity = Vec3::Zero();
+  int32_t m_serial = 0;
+
+  friend class World;  // the stepping loop writes state and derived values in one pass
+};
+
+}  // namespace rbsim

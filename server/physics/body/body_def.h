@@ -1,0 +1,41 @@
+#pragma once
+// Everything needed to create a body: a plain value, filled with defaults.
+
+#include <optional>
+#include <string>
+
+#include "physics/geometry/shape.h"
+#include "physics/math/quaternion.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+struct BodyDef {
+  std::string name;  // unique within a world
+  Shape shape = SphereShape{};
+
+  // Give at most one of mass and density; with neither, density defaults to
+  // kDefaultDensity. Ignored for static bodies.
+  std::optional<double> mass;     // kg
+  std::optional<double> density;  // kg/m³
+
+  // Pose of the shape's frame (the frame its dimensions or mesh vertices are
+  // given in) in the world. The body frame itself has its origin at the
+  // centre of mass and its axes along the principal axes of inertia (the
+  // seed's body space); for the primitives the two frames coincide.
+  Vec3 position = Vec3::Zero();                         // m
+  Quaternion orientation = Quaternion::identity();      // shape -> world
+  Vec3 linearVelocity = Vec3::Zero();                   // m/s, of the centre of mass, world frame
+  Vec3 angularVelocity = Vec3::Zero();                  // rad/s, world frame
+
+  bool isStatic = false;  // immovable: infinite mass, never integrated
+
+  // Exponential decay rates of linear and angular momentum: dP/dt = -c P.
+  // Unset means the world's default.
+  std::optional<double> linearDamping;   // 1/s
+  std::optional<double> angularDamping;  // 1/s
+
+  static constexpr double kDefaultDensity = 1000.0;  // kg/m³, water
+};
+
+}  // namespace rbsim

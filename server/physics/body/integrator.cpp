@@ -1,0 +1,125 @@
+#include "physics/body/integrator.h"
+
+namespace rbsim {
+
+namespace {
+
+// dq/dt = ½ [0, ω] q (the seed's quaternion kinematics, ω in the world frame).
+Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
+  const Quaternion w{0.0, omega.x(), omega.y(), omega.z()};
+  const Quaternion product = w * q;
+  return {0.5 * product.w, 0.5 * product.x, 0.5 * product.y, 0.5 * product.z};
+}
+
+Quaternion addScaled(const Quaternion& q, const Quaternion& rate, double h) {
+  return {q.w + h * rate.w, q.x + h * rate.x, q.y + h * rate.y, q.z + h * rate.z};
+}
+
+struct StateRate {
+  Vec3 velocity;           // dx/dt
+  Quaternion spin;         // dq/dt
+  Vec3 force;              // dP/dt
+  Vec3 torque;             // dL/dt
+};
+
+StateRate rateAt(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                 const ForceInputs& inputs) {
+  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, true);
+  const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, state.angularMomentum);
+  return {state.linearMomentum * dynamics.inverseMass, orientationRate(state.orientation, omega),
+          wrench.force, wrench.torque};
+}
+
+RigidState advance(const RigidState& state, const StateRate& rate, double h) {
+  return {state.position + h * rate.velocity, addScaled(state.orientation, rate.spin, h),
+          state.linearMomentum + h * rate.force, state.angularMomentum + h * rate.torque};
+}
+
+}  // namespace
+
+Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                      const ForceInputs& inputs, bool includeDamping) {
+  Wrench wrench;
+  wrench.force = dynamics.mass * inputs.gravity;
+  if (inputs.load != nullptr && inputs.load->active) {
+    const Vec3 external = inputs.load->forceAt(rotation);
+    wrench.force += external;
+    wrench.torque += inputs.load->torqueAt(state.position, rotation);
+  }
+  if (includeDamping) {
+    wrench.force -= dynamics.linearDamping * state.linearMomentum;
+    wrench.torque -= dynamics.angularDamping * state.angularMomentum;
+  }
+  return wrench;
+}
+
+RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
+                             const BodyDynamics& dynamics, const ForceInputs& inputs, double dt) {
+  RigidState next = advance(state, rateAt(state, rotation, dynamics, inputs), dt);
+  next.orientation = next.orientation.normalized();
+  return next;
+}
+
+RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
+                                 const BodyDynamics& dynamics, const ForceInputs& inputs,
+                                 double dt) {
+  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
+  RigidState next;
+  next.linearMomentum = state.linearMomentum + dt * wrench.force;
+  next.angularMomentum = state.angularMomentum + dt * wrench.torque;
+  // Implicit (backward Euler) damping: P' = P* − c dt P'. Skipped when zero so
+  // that undamped bodies pay no division.
+  if (dynamics.linearDamping != 0.0) next.linearMomentum /= 1.0 + dt * dynamics.linearDamping;
+  if (dynamics.angularDamping != 0.0) next.angularMomentum /= 1.0 + dt * dynamics.angularDamping;
+
+  const Vec3 velocity = next.linearMomentum * dynamics.inverseMass;
+  const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, next.angularMomentum);
+  next.position = state.position + dt * velocity;
+  next.orientation =
+      addScaled(state.orientation, orientationRate(state.orientation, omega), dt).normalized();
+  return next;
+}
+
+RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                   const ForceInputs& inputs, double dt) {
+  // Intermediate stages use the rotation of their normalised quaternion; the
+  // stage state itself is left as the method prescribes.
+  const auto stageRate = [&](const RigidState& stage) {
+    return rateAt(stage, stage.orientation.normalized().toRotationMatrix(), dynamics, inputs);
+  };
+  const StateRate k1 = rateAt(state, rotation, dynamics, inputs);
+  const StateRate k2 = stageRate(advance(state, k1, 0.5 * dt));
+  const StateRate k3 = stageRate(advance(state, k2, 0.5 * dt));
+  const StateRate k4 = stageRate(advance(state, k3, dt));
+
+  const double h6 = dt / 6.0;
+  RigidState next;
+  next.position =
+      state.position + h6 * (k1.velocity + 2.0 * k2.velocity + 2.0 * k3.velocity + k4.velocity);
+  next.linearMomentum =
+      state.linearMomentum + h6 * (k1.force + 2.0 * k2.force + 2.0 * k3.force + k4.force);
+  next.angularMomentum =
+      state.angularMomentum + h6 * (k1.torque + 2.0 * k2.torque + 2.0 * k3.torque + k4.torque);
+  Quaternion q = state.orientation;
+  q = addScaled(q, k1.spin, h6);
+  q = addScaled(q, k2.spin, 2.0 * h6);
+  q = addScaled(q, k3.spin, 2.0 * h6);
+  q = addScaled(q, k4.spin, h6);
+  next.orientation = q.normalized();
+  return next;
+}
+
+RigidState integrateStep(IntegratorKind kind, const RigidState& state, const Mat3& rotation,
+                         const BodyDynamics& dynamics, const ForceInputs& inputs, double dt) {
+  switch (kind) {
+    case IntegratorKind::ExplicitEuler:
+      return explicitEulerStep(state, rotation, dynamics, inputs, dt);
+    case IntegratorKind::SemiImplicitEuler:
+      return semiImplicitEulerStep(state, rotation, dynamics, inputs, dt);
+    case IntegratorKind::Rk4:
+      return rk4Step(state, rotation, dynamics, inputs, dt);
+  }
+  return state;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,53 @@
+#pragma once
+// ODE integrators over the seed's state (x, q, P, L).
+//
+// Each is a pure function (state, constants, loads, dt) -> state, so tests
+// can call it without a World. The quaternion is renormalised once at the end
+// of every step; the angular momentum L is the state, so a torque-free body
+// keeps its world-frame L exactly (no gyroscopic term to integrate).
+
+#include "physics/body/external_load.h"
+#include "physics/body/rigid_state.h"
+#include "physics/math/types.h"
+#include "physics/world/world_settings.h"
+
+namespace rbsim {
+
+// Everything that pushes on one body during a step: gravity, the external
+// load (may be null) and the body's damping (in BodyDynamics).
+struct ForceInputs {
+  Vec3 gravity = Vec3::Zero();          // m/s²
+  const ExternalLoad* load = nullptr;   // null or inactive: no external load
+};
+
+// Total force and torque (about the centre of mass) at a state, damping included.
+struct Wrench {
+  Vec3 force = Vec3::Zero();   // N, world
+  Vec3 torque = Vec3::Zero();  // N·m, world
+};
+Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                      const ForceInputs& inputs, bool includeDamping);
+
+// `rotation` must be state.orientation's rotation matrix (callers cache it).
+
+// x += v dt, q += ½ ω q dt, P += F dt, L += τ dt, every right-hand side
+// taken at the start of the step.
+RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
+                             const BodyDynamics& dynamics, const ForceInputs& inputs, double dt);
+
+// P and L first (damping implicitly: P' = (P + F dt) / (1 + c dt), stable for
+// any c dt), then x and q with the new v and ω. Symplectic for the
+// translational part.
+RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
+                                 const BodyDynamics& dynamics, const ForceInputs& inputs,
+                                 double dt);
+
+// Classical RK4: forces, torques, velocities re-evaluated at each stage.
+RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                   const ForceInputs& inputs, double dt);
+
+// Dispatches on the world's choice.
+RigidState integrateStep(IntegratorKind kind, const RigidState& state, const Mat3& rotation,
+                         const BodyDynamics& dynamics, const ForceInputs& inputs, double dt);
+
+}  // namespace rbsim

@@ -1,0 +1,26 @@
+#pragma once
+// Loading triangle meshes from files: Wavefront OBJ (faces triangulated as
+// fans) and STL, ASCII and binary (told apart by content, not by name).
+// Load-time I/O only; nothing here runs in the stepping path.
+
+#include <string>
+
+#include "physics/common/expected.h"
+#include "physics/geometry/triangle_mesh.h"
+
+namespace rbsim {
+
+// Mesh files are untrusted input: a file with more triangles than this is
+// rejected before its triangles are stored.
+inline constexpr int kMaxMeshTriangles = 2'000'000;
+
+// Chooses the reader by extension (.obj, .stl, case-insensitive). STL
+// vertices are welded by exact position so that closedness can be checked.
+// Errors name the file and, where it applies, the line. Loading does not
+// check that the mesh is closed: call validateClosedMesh before computing
+// mass properties.
+Expected<TriangleMesh> loadMesh(const std::string& path);
+Expected<TriangleMesh> loadObj(const std::string& path);
+Expected<TriangleMesh> loadStl(const std::string& path);
+
+}  // namespace rbsim

@@ -1,0 +1,30 @@
+#pragma once
+// An indexed triangle mesh: the boundary representation of a closed polyhedron.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "physics/common/expected.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+struct TriangleMesh {
+  std::vector<Vec3> vertices;                 // m, in the mesh's own frame
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
+};
+
+// Checks that the mesh bounds a solid: no degenerate (zero-area) or
+// out-of-range triangles, every edge shared by exactly two triangles that
+// traverse it in opposite directions (closed and consistently wound), and a
+// strictly positive enclosed volume (outward normals). The error names
+// `sourceName` (usually the file path) and the first problem found; triangle
+// and vertex numbers in messages count from 0.
+Expected<bool> validateClosedMesh(const TriangleMesh& mesh, const std::string& sourceName);
+
+// The same mesh with every vertex mapped by p -> rotation * p + translation.
+// A reflection (det(rotation) < 0) turns the mesh inside out.
+TriangleMesh transformed(const TriangleMesh& mesh, const Mat3& rotation, const Vec3& translation);
+
+}  // namespace rbsim

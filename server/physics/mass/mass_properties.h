@@ -1,0 +1,62 @@
+#pragma once
+// Mass properties of a solid of uniform density.
+
+#include "physics/common/expected.h"
+#include "physics/geometry/triangle_mesh.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+struct MassProperties {
+  double mass = 0.0;                    // kg
+  double volume = 0.0;                  // m³
+  Vec3 centerOfMass = Vec3::Zero();     // m, in the frame the shape was given in
+  Mat3 inertia = Mat3::Zero();          // kg·m², about the centre of mass, same frame
+};
+
+// The inertia tensor diagonalised: inertia = axes * diag(moments) * axesᵀ.
+struct PrincipalAxes {
+  Vec3 moments = Vec3::Zero();   // kg·m², ascending
+  Mat3 axes = Mat3::Identity();  // columns are the principal axes; a proper rotation (det = +1)
+};
+
+// Closed forms for primitives centred at the origin of their frame; the
+// cylinder and the capsule have their axis along z. `halfLength` is half the
+// length of the cylindrical part (the capsule's caps come on top).
+MassProperties sphereMassProperties(double radius, double density);
+MassProperties boxMassProperties(const Vec3& halfExtents, double density);
+MassProperties cylinderMassProperties(double radius, double halfLength, double density);
+MassProperties capsuleMassProperties(double radius, double halfLength, double density);
+
+// Exact mass properties of the solid bounded by a closed, outward-wound
+// triangle mesh, by the divergence theorem (Mirtich 1996, "Fast and Accurate
+// Computation of Polyhedral Mass Properties"). The mesh is shifted to a
+// reference point inside its bounding box before integrating so that a mesh
+// far from the origin loses no precision. The mesh must have passed
+// validateClosedMesh.
+MassProperties polyhedronMassProperties(const TriangleMesh& mesh, double density);
+
+// Monte Carlo estimate by sampling points uniformly in the bounding box and
+// testing them against the mesh: an independent cross-check of the exact
+// integrals. Each field comes with its standard error.
+struct MonteCarloMassProperties {
+  MassProperties estimate;
+  MassProperties standardError;  // one standard error of each field (inertia element-wise)
+  int samples = 0;
+  int insideSamples = 0;
+};
+MonteCarloMassProperties monteCarloMassProperties(const TriangleMesh& mesh, double density,
+                                                   int samples, unsigned long long seed);
+
+// Eigen-decomposition of a symmetric inertia tensor. When the tensor is
+// already diagonal (off-diagonal terms below 1e-12 of its trace) the axes
+// stay the identity, so primitives keep their natural axes even when two
+// moments are equal; the moments are then the diagonal in x, y, z order,
+// which need not be ascending. Otherwise they are ascending.
+PrincipalAxes principalAxes(const Mat3& inertia);
+
+// Inertia of the same body about a point displaced by `offset` from the
+// centre of mass (parallel-axis theorem): I + m (|d|² 1 − d dᵀ).
+Mat3 shiftInertia(const Mat3& inertiaAboutCenter, double mass, const Vec3& offset);
+
+}  // namespace rbsim

@@ -1,0 +1,264 @@
+#include "physics/world/world.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstring>
+#include <utility>
+
+#include "physics/body/integrator.h"
+
+namespace rbsim {
+
+namespace {
+
+bool isPositiveFinite(double value) { return std::isfinite(value) && value > 0.0; }
+bool isFiniteVec(const Vec3& v) { return v.allFinite(); }
+
+// Mass properties of the shape at unit density, or an error for a bad size.
+Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
+  const std::string where = "body '" + def.name + "': ";
+  struct Visitor {
+    const std::string& where;
+    Expected<MassProperties> operator()(const SphereShape& s) const {
+      if (!isPositiveFinite(s.radius)) return Error{where + "sphere radius must be positive"};
+      return sphereMassProperties(s.radius, 1.0);
+    }
+    Expected<MassProperties> operator()(const BoxShape& s) const {
+      if (!isPositiveFinite(s.halfExtents.minCoeff()) || !s.halfExtents.allFinite())
+        return Error{where + "box half_extents must be positive"};
+      return boxMassProperties(s.halfExtents, 1.0);
+    }
+    Expected<MassProperties> operator()(const CylinderShape& s) const {
+      if (!isPositiveFinite(s.radius) || !isPositiveFinite(s.halfLength))
+        return Error{where + "cylinder radius and half_length must be positive"};
+      return cylinderMassProperties(s.radius, s.halfLength, 1.0);
+    }
+    Expected<MassProperties> operator()(const CapsuleShape& s) const {
+      // A capsule of zero cylindrical length is a sphere: allowed.
+      if (!isPositiveFinite(s.radius) || !(std::isfinite(s.halfLength) && s.halfLength >= 0.0))
+        return Error{where + "capsule radius must be positive and half_length not negative"};
+      return capsuleMassProperties(s.radius, s.halfLength, 1.0);
+    }
+    Expected<MassProperties> operator()(const MeshShape& s) const {
+      if (!s.mesh) return Error{where + "mesh '" + s.file + "' was not loaded"};
+      const auto valid = validateClosedMesh(*s.mesh, s.file);
+      if (!valid) return valid.error();
+      return polyhedronMassProperties(*s.mesh, 1.0);
+    }
+    Expected<MassProperties> operator()(const PlaneShape& s) const {
+      if (!s.normal.allFinite() || s.normal.norm() < 1e-12 || !std::isfinite(s.offset))
+        return Error{where + "plane normal must be a finite non-zero vector"};
+      return MassProperties{};  // a half-space has no finite mass
+    }
+  };
+  return std::visit(Visitor{where}, def.shape);
+}
+
+MassProperties scaled(const MassProperties& unit, double density) {
+  MassProperties result = unit;
+  result.mass = unit.mass * density;
+  result.inertia = unit.inertia * density;
+  return result;
+}
+
+}  // namespace
+
+World::World(const WorldSettings& settings) : m_settings(settings) {}
+
+Expected<World> World::fromDef(const WorldDef& def) {
+  World world(def.settings);
+  for (const BodyDef& body : def.bodies) {
+    const auto id = world.createBody(body);
+    if (!id) return id.error();
+  }
+  return world;
+}
+
+Expected<BodyId> World::createBody(const BodyDef& def) {
+  if (def.name.empty()) return Error{"a body needs a non-empty name"};
+  if (!findBody(def.name).isNull()) return Error{"a body named '" + def.name + "' already exists"};
+  const std::string where = "body '" + def.name + "': ";
+  if (!isFiniteVec(def.position) || !isFiniteVec(def.linearVelocity) ||
+      !isFiniteVec(def.angularVelocity) || !def.orientation.isFinite())
+    return Error{where + "position, orientation and velocities must be finite"};
+  if (def.orientation.norm() < 1e-9) return Error{where + "orientation quaternion is zero"};
+  const bool isPlane = std::holds_alternative<PlaneShape>(def.shape);
+  if (isPlane && !def.isStatic) return Error{where + "a plane can only be a static body"};
+  if (def.mass && def.density) return Error{where + "give mass or density, not both"};
+  if (def.mass && !isPositiveFinite(*def.mass)) return Error{where + "mass must be positive"};
+  if (def.density && !isPositiveFinite(*def.density))
+    return Error{where + "density must be positive"};
+  const double linearDamping = def.linearDamping.value_or(m_settings.linearDamping);
+  const double angularDamping = def.angularDamping.value_or(m_settings.angularDamping);
+  if (!(std::isfinite(linearDamping) && linearDamping >= 0.0) ||
+      !(std::isfinite(angularDamping) && angularDamping >= 0.0))
+    return Error{where + "damping must be finite and not negative"};
+
+  const auto unit = unitDensityMassProperties(def);
+  if (!unit) return unit.error();
+
+  auto description = std::make_shared<BodyDescription>();
+  description->name = def.name;
+  description->shape = def.shape;
+  description->isStatic = def.isStatic;
+
+  BodyDynamics dynamics;
+  dynamics.linearDamping = linearDamping;
+  dynamics.angularDamping = angularDamping;
+  Vec3 centerOfMass = Vec3::Zero();
+  Mat3 principal = Mat3::Identity();  // columns: principal axes in the shape frame
+  if (isPlane) {
+    dynamics.mass = 0.0;  // a half-space has no finite mass
+    dynamics.inertiaBody = Vec3::Zero();
+  } else {
+    const double density = def.mass ? *def.mass / unit->volume
+                                    : def.density.value_or(BodyDef::kDefaultDensity);
+    description->massProperties = scaled(*unit, density);
+    if (def.mass) description->massProperties.mass = *def.mass;  // exactly as given
+    const PrincipalAxes axes = principalAxes(description->massProperties.inertia);
+    centerOfMass = description->massProperties.centerOfMass;
+    principal = axes.axes;
+    if (!isPositiveFinite(description->massProperties.mass) || !isPositiveFinite(axes.moments.minCoeff()))
+      return Error{where + "mass properties are degenerate (zero mass or moment)"};
+    dynamics.mass = description->massProperties.mass;
+    dynamics.inertiaBody = axes.moments;
+  }
+  if (def.isStatic) {
+    dynamics.inverseMass = 0.0;
+    dynamics.inverseInertiaBody = Vec3::Zero();
+  } else {
+    dynamics.inverseMass = 1.0 / dynamics.mass;
+    dynamics.inverseInertiaBody = dynamics.inertiaBody.cwiseInverse();
+  }
+
+  // Body space: origin at the centre of mass, axes along the principal axes.
+  // p_shape = c + A p_body, so p_body = Aᵀ (p_shape − c).
+  description->shapeRotation = principal.transpose();
+  description->shapeTranslation = -(principal.transpose() * centerOfMass);
+  if (const auto* mesh = std::get_if<MeshShape>(&def.shape)) {
+    description->bodySpaceMesh = std::make_shared<TriangleMesh>(
+        transformed(*mesh->mesh, description->shapeRotation, description->shapeTranslation));
+  }
+
+  const Quaternion shapeOrientation = def.orientation.normalized();
+  RigidState state;
+  state.position = def.position + shapeOrientation.rotate(centerOfMass);
+  state.orientation = (shapeOrientation * Quaternion::fromRotationMatrix(principal)).normalized();
+  Body body(std::move(description), dynamics, state);
+  if (!def.isStatic) body.setVelocities(def.linearVelocity, def.angularVelocity);
+
+  int32_t slot;
+  if (!m_freeSlots.empty()) {
+    const auto lowest = std::min_element(m_freeSlots.begin(), m_freeSlots.end());
+    slot = *lowest;
+    m_freeSlots.erase(lowest);
+  } else {
+    slot = static_cast<int32_t>(m_slots.size());
+    m_slots.push_back({});
+  }
+  m_slots[static_cast<size_t>(slot)].denseIndex = static_cast<int32_t>(m_bodies.size());
+  const BodyId id{slot + 1, m_slots[static_cast<size_t>(slot)].generation};
+  body.m_serial = ++m_lastSerial;
+  m_idByName.emplace(def.name, id);
+  m_bodies.push_back(std::move(body));
+  m_denseIds.push_back(id);
+  return id;
+}
+
+bool World::removeBody(BodyId id) {
+  if (!isValid(id)) return false;
+  Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
+  const auto dense = static_cast<size_t>(slot.denseIndex);
+  m_idByName.erase(m_bodies[dense].name());
+  m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
+  m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
+  for (size_t i = dense; i < m_denseIds.size(); ++i)
+    m_slots[static_cast<size_t>(m_denseIds[i].index - 1)].denseIndex = static_cast<int32_t>(i);
+  slot.denseIndex = -1;
+  ++slot.generation;
+  m_freeSlots.push_back(id.index - 1);
+  return true;
+}
+
+BodyId World::findBody(std::string_view name) const {
+  const auto found = m_idByName.find(std::string(name));
+  return found == m_idByName.end() ? BodyId{} : found->second;
+}
+
+bool World::isValid(BodyId id) const {
+  if (id.index <= 0 || static_cast<size_t>(id.index) > m_slots.size()) return false;
+  const Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
+  return slot.denseIndex >= 0 && slot.generation == id.generation;
+}
+
+const Body& World::body(BodyId id) const {
+  assert(isValid(id));
+  return m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)];
+}
+
+Body& World::body(BodyId id) {
+  assert(isValid(id));
+  return m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)];
+}
+
+void World::step() {
+  const double dt = m_settings.dt;
+  const IntegratorKind integrator = m_settings.integrator;
+  for (Body& body : m_bodies) {
+    if (body.isStatic()) continue;
+    ForceInputs inputs;
+    inputs.gravity = m_settings.gravity;
+    inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    body.m_state =
+        integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, dt);
+    body.updateDerived();
+    if (body.m_load.active) body.m_load.clear();
+  }
+  ++m_stepCount;
+}
+
+Vec3 World::totalLinearMomentum() const {
+  Vec3 total = Vec3::Zero();
+  for (const Body& body : m_bodies)
+    if (!body.isStatic()) total += body.linearMomentum();
+  return total;
+}
+
+Vec3 World::totalAngularMomentum() const {
+  Vec3 total = Vec3::Zero();
+  for (const Body& body : m_bodies)
+    if (!body.isStatic()) total += body.angularMomentum() + body.position().cross(body.linearMomentum());
+  return total;
+}
+
+double World::totalKineticEnergy() const {
+  double total = 0.0;
+  for (const Body& body : m_bodies)
+    if (!body.isStatic()) total += body.kineticEnergy();
+  return total;
+}
+
+uint64_t World::stateHash() const {
+  uint64_t hash = 14695981039346656037ull;
+  const auto mix = [&hash](const void* data, size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) {
+      hash ^= bytes[i];
+      hash *= 1099511628211ull;
+    }
+  };
+  mix(&m_stepCount, sizeof m_stepCount);
+  for (const Body& body : m_bodies) {
+    const RigidState& s = body.state();
+    const double values[13] = {s.position.x(),       s.position.y(),       s.position.z(),
+                               s.orientation.w,      s.orientation.x,      s.orientation.y,
+                               s.orientation.z,      s.linearMomentum.x(), s.linearMomentum.y(),
+                               s.linearMomentum.z(), s.angularMomentum.x(), s.angularMomentum.y(),
+                               s.angularMomentum.z()};
+    mix(values, sizeof values);
+  }
+  return hash;
+}
+
+}  // namespace rbsim
