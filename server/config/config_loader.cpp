@@ -1,5 +1,7 @@
 #include "config/config_loader.h"
 
+#include "config/contact_config.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -37,16 +39,17 @@ constexpr double kMinNorm = 1e-9;            // below this a quaternion or norma
 constexpr std::size_t kMaxNameLength = 128;  // characters, body names
 
 constexpr std::array<std::string_view, 6> kTopLevelKeys = {
-    "world", "bodies",
-    // Reserved for the server's settings (later issues); accepted unchecked.
-    "lcm", "server", "contact", "limits"};
+    "world", "bodies", "contact",
+    // The server's settings, read by rbserver (daemon/server_settings.cpp).
+    "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
-constexpr std::array<std::string_view, 11> kBodyKeys = {
+constexpr std::array<std::string_view, 13> kBodyKeys = {
     "name",    "shape",           "mass",
     "density", "position",        "orientation",
     "rpy",     "linear_velocity", "angular_velocity",
-    "static",  "damping"};
+    "static",  "damping",         "material",
+    "ccd"};
 
 constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
@@ -101,6 +104,10 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
     Expected<WorldSettings> parsed = parseSettings(settings->value);
     if (!parsed) return parsed.error();
     world.settings = *parsed;
+  }
+  if (const YamlMap::Entry* contact = top->find("contact")) {
+    if (auto error = parseContactConfig(m_reader, contact->value, world.settings.contact))
+      return *error;
   }
 
   const YamlMap::Entry* bodies = top->find("bodies");
@@ -264,6 +271,14 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
       return *error;
     }
   }
+  if (const YamlMap::Entry* material = map->find("material")) {
+    Expected<MaterialSpec> spec = parseMaterial(m_reader, material->value);
+    if (!spec) return spec.error();
+    body.material = *spec;
+  }
+  Expected<bool> ccd = m_reader.boolean(*map, "ccd", false);
+  if (!ccd) return ccd.error();
+  body.continuousCollision = *ccd;
   return body;
 }
 

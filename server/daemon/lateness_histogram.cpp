@@ -20,8 +20,10 @@ Nanoseconds LatenessHistogram::percentile(double q) const {
   for (std::size_t bin = 0; bin < m_counts.size(); ++bin) {
     seen += m_counts[bin];
     if (seen >= std::max<int64_t>(rank, 1)) {
-      return bin == static_cast<std::size_t>(kBins) ? m_maximum
-                                                    : static_cast<Nanoseconds>(bin + 1) * 1000;
+      // The bin's upper edge, but never above the largest sample seen.
+      return bin == static_cast<std::size_t>(kBins)
+                 ? m_maximum
+                 : std::min(static_cast<Nanoseconds>(bin + 1) * 1000, m_maximum);
     }
   }
   return m_maximum;

@@ -16,7 +16,7 @@ class LatenessHistogram {
 
   void add(Nanoseconds lateness);
   int64_t count() const { return m_count; }
-  // Smallest lateness (ns, bin upper edge) at or below which a fraction q of
+  // Smallest lateness (ns, the bin's upper edge capped at the maximum) at or below which a fraction q of
   // the samples lie; nearest rank. 0 when empty.
   Nanoseconds percentile(double q) const;
   Nanoseconds maximum() const { return m_maximum; }

@@ -24,7 +24,7 @@ std::string usage() {
 
 Real-time rigid-body simulation server on LCM. Loads the world in FILE,
 steps it at its fixed dt paced to the wall clock, publishes RBSIM_STATE,
-RBSIM_STATUS, RBSIM_WORLD and RBSIM_ACK, and takes RBSIM_WRENCH and
+RBSIM_STATUS, RBSIM_WORLD, RBSIM_CONTACTS and RBSIM_ACK, and takes RBSIM_WRENCH and
 RBSIM_COMMAND from clients. SIGINT/SIGTERM stop it cleanly.
 
 options (each overrides the config file's key):

@@ -49,6 +49,11 @@ Server::Server(ServerSettings settings, World initialWorld, std::string configDi
 }
 
 Expected<bool> Server::open() {
+  const double dt = m_world.settings().dt;
+  m_contactsEverySteps =
+      m_settings.contactsRate <= 0.0
+          ? 0
+          : std::max<int64_t>(1, static_cast<int64_t>(std::llround(1.0 / (m_settings.contactsRate * dt))));
   m_lcm = std::make_unique<lcm::LCM>(m_settings.lcmUrl);
   if (!m_lcm->good())
     return Error{"cannot open LCM with URL '" + m_settings.lcmUrl +
@@ -81,6 +86,8 @@ int Server::run(SignalEvents& signals) {
   publishState();
   publishStatus(now);
   m_clock.anchor(now);
+  const Nanoseconds runStart = now;
+  const int64_t stepAtStart = m_world.stepCount();
   logInfo("stepping " + std::to_string(m_world.bodyCount()) + " bodies at dt = " +
           std::to_string(m_world.settings().dt) + " s, real-time factor " +
           std::to_string(m_settings.realTimeFactor) + (m_paused ? " (paused)" : ""));
@@ -103,9 +110,14 @@ int Server::run(SignalEvents& signals) {
     // Wait for the deadline, taking messages and signals as they come.
     const int64_t controlVersion = m_controlVersion;
     while (now < wakeAt && !m_stopRequested && controlVersion == m_controlVersion) {
+      // Sleep until `spin` before the deadline, then poll without sleeping:
+      // a timer wake-up on a virtual machine can come tens of µs late, a
+      // spin cannot. Messages and signals are still taken while spinning.
       const Nanoseconds remaining = wakeAt - now;
-      timespec timeout{static_cast<time_t>(remaining / kNanosecondsPerSecond),
-                       static_cast<long>(remaining % kNanosecondsPerSecond)};
+      const Nanoseconds spin = stepping ? m_settings.spinNanoseconds : 0;
+      const Nanoseconds sleep = remaining > spin ? remaining - spin : 0;
+      timespec timeout{static_cast<time_t>(sleep / kNanosecondsPerSecond),
+                       static_cast<long>(sleep % kNanosecondsPerSecond)};
       fds[0].revents = fds[1].revents = 0;
       if (ppoll(fds, 2, &timeout, nullptr) > 0) {
         if (fds[1].revents & POLLIN) {
@@ -141,13 +153,19 @@ int Server::run(SignalEvents& signals) {
   publishStatus(monotonicNow());
   m_recorder.close();
   const auto micros = [](Nanoseconds ns) { return std::to_string(static_cast<double>(ns) * 1e-3); };
+  const double wallSeconds = static_cast<double>(monotonicNow() - runStart) * 1e-9;
+  const double achievedFactor =
+      wallSeconds > 0.0
+          ? static_cast<double>(m_world.stepCount() - stepAtStart) * m_world.settings().dt / wallSeconds
+          : 0.0;
   logInfo("stopped at step " + std::to_string(m_world.stepCount()) + " (t = " +
           std::to_string(m_world.time()) + " s), " + std::to_string(m_clock.overruns()) +
           " overruns, " + std::to_string(m_clock.slips()) + " slips, worst step " +
           std::to_string(m_worstStepEver * 1e3) + " ms; step-start lateness over " +
           std::to_string(m_lateness.count()) + " paced steps: p50 " +
           micros(m_lateness.percentile(0.5)) + " us, p99 " + micros(m_lateness.percentile(0.99)) +
-          " us, max " + micros(m_lateness.maximum()) + " us");
+          " us, max " + micros(m_lateness.maximum()) + " us; achieved real-time factor " +
+          std::to_string(achievedFactor) + " over " + std::to_string(wallSeconds) + " s");
   return 0;
 }
 
@@ -177,6 +195,8 @@ void Server::stepOnce() {
 
   const bool lastRequested = requested && m_stepsRequested == 0;
   if (m_world.stepCount() % m_stateEverySteps == 0 || lastRequested) publishState();
+  if (m_contactsEverySteps > 0 && (m_world.stepCount() % m_contactsEverySteps == 0 || lastRequested))
+    publishContacts();
   if (!requested) m_clock.endStep(monotonicNow());
 }
 
@@ -260,13 +280,21 @@ void Server::onCommand(const lcm::ReceiveBuffer* buffer, const std::string& chan
       if (message.num_steps < 1 || message.num_steps > m_settings.maxStepsPerCommand)
         return reject("num_steps must be between 1 and " +
                       std::to_string(m_settings.maxStepsPerCommand));
-      accept();  // the first of the steps is the next one
+      // The first of these steps comes after the steps still pending from
+      // earlier STEP commands.
+      acknowledge(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command, true,
+                  "", m_world.stepCount() + 1 + m_stepsRequested);
       m_stepsRequested += message.num_steps;
       controlChanged();
       return;
     case rbsim::command_t::RESET:
       if (!message.path.empty()) return reject("reset from a checkpoint file is not supported yet");
-      m_world = m_initialWorld;
+      {
+        // Ids handed out to spawned bodies stay taken (body ids are never reused).
+        const int32_t lastSerial = m_world.lastSerial();
+        m_world = m_initialWorld;
+        m_world.continueSerialsAfter(lastSerial);
+      }
       m_wrenches.clearAll();
       m_stepsRequested = 0;
       ++m_worldRevision;
@@ -334,6 +362,10 @@ void Server::publishState() {
     publish(channel("STATE"), page);
 }
 
+void Server::publishContacts() {
+  for (const auto& page : contactPages(m_world, wallMicroseconds())) publish(channel("CONTACTS"), page);
+}
+
 void Server::publishWorld() {
   for (const auto& page : worldDescriptionPages(m_world, wallMicroseconds(), m_worldRevision))
     publish(channel("WORLD"), page);
@@ -362,7 +394,7 @@ void Server::publishStatus(Nanoseconds now) {
   status.num_bodies = m_world.bodyCount();
   status.num_frozen_bodies = 0;
   status.num_active_wrenches = m_wrenches.activeCount();
-  status.num_contacts = 0;
+  status.num_contacts = m_world.contactPointCount();
   publish(channel("STATUS"), status);
   m_recorder.flush();
   m_lastStatus = now;

@@ -59,6 +59,7 @@ class Server {
   void publishState();
   void publishStatus(Nanoseconds now);
   void publishWorld();
+  void publishContacts();
   template <class Message>
   void publish(const std::string& channelName, const Message& message);
   void record(const std::string& channelName, const void* data, std::size_t size, int64_t utime);
@@ -76,6 +77,7 @@ class Server {
   int64_t m_stepsRequested = 0;  // STEP while paused: steps still to take
   int64_t m_worldRevision = 1;
   int64_t m_stateEverySteps = 1;
+  int64_t m_contactsEverySteps = 0;  // 0: not published
   Counters m_counters;
   StepTimes m_stepTimes;
   Nanoseconds m_lastStatus = 0;

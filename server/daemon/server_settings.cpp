@@ -25,8 +25,8 @@ std::optional<Error> readSection(const YamlReader& reader, const YamlMap& root,
 }
 
 std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, ServerSettings& out) {
-  static constexpr std::array<std::string_view, 4> kKeys = {"url", "channel_prefix", "state_rate",
-                                                            "status_rate"};
+  static constexpr std::array<std::string_view, 5> kKeys = {"url", "channel_prefix", "state_rate",
+                                                            "status_rate", "contacts_rate"};
   if (auto error = reader.checkKeys(lcm, kKeys, "the lcm section")) return error;
   if (const auto* url = lcm.find("url")) {
     const auto text = reader.string(url->value);
@@ -41,6 +41,10 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
   const auto stateRate = reader.number(lcm, "state_rate", NumberRule::nonNegative(1e6), out.stateRate);
   if (!stateRate) return stateRate.error();
   out.stateRate = *stateRate;
+  const auto contactsRate =
+      reader.number(lcm, "contacts_rate", NumberRule::nonNegative(1e6), out.contactsRate);
+  if (!contactsRate) return contactsRate.error();
+  out.contactsRate = *contactsRate;
   if (const auto* entry = lcm.find("status_rate")) {
     const auto rate = reader.number(entry->value, NumberRule::positive(10.0));
     if (!rate) return rate.error();
@@ -52,8 +56,8 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 6> kKeys = {
-      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused"};
+  static constexpr std::array<std::string_view, 7> kKeys = {
+      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -84,6 +88,10 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
     if (!path) return path.error();
     out.recordPath = *path;
   }
+  const auto spin = reader.number(server, "spin_us", NumberRule::nonNegative(1e6),
+                                  static_cast<double>(out.spinNanoseconds) * 1e-3);
+  if (!spin) return spin.error();
+  out.spinNanoseconds = static_cast<int64_t>(*spin * 1e3);
   const auto paused = reader.boolean(server, "start_paused", out.startPaused);
   if (!paused) return paused.error();
   out.startPaused = *paused;

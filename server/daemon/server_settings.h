@@ -18,12 +18,16 @@ struct ServerSettings {
   std::string channelPrefix = "RBSIM_";
   double stateRate = 100.0;  // Hz of simulated time; 0 = every step
   double statusRate = 2.0;   // Hz of wall-clock time, 1..10
+  double contactsRate = 10.0;  // Hz of simulated time for RBSIM_CONTACTS; 0 = not published
 
   double realTimeFactor = 1.0;           // simulated s per wall s; 0 = as fast as possible
   std::optional<double> duration;        // s of simulated time, then a clean exit
   CatchUpPolicy catchUp = CatchUpPolicy::Burst;
   int maxBurst = 20;                     // steps, Burst policy only
   bool startPaused = false;
+  // The last part of the wait for a step deadline is spent polling instead
+  // of sleeping, for wake-ups on time (costs CPU: spin × step rate).
+  int64_t spinNanoseconds = 100000;
   std::string recordPath;                // empty: no recording
 
   WrenchLimits limits;

@@ -166,6 +166,68 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   return paginate(header, std::move(bodies));
 }
 
+std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
+  rbsim::contacts_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.page = 0;
+  header.num_pages = 1;
+  header.total_contacts = 0;
+  header.first_contact_index = 0;
+  header.num_contacts = 0;
+  const double epsilon = world.settings().contact.classificationEpsilon;
+  std::vector<rbsim::contacts_t> pages;
+  rbsim::contacts_t current = header;
+  const auto emptySize = static_cast<std::size_t>(header.getEncodedSize());
+  std::size_t size = emptySize;
+  int32_t index = 0;
+  for (const SolvedManifold& m : world.contacts()) {
+    for (int p = 0; p < m.pointCount; ++p) {
+      const SolvedContactPoint& point = m.points[p];
+      rbsim::contact_t c;
+      c.body_a = m.serialA;
+      c.body_b = m.serialB;
+      copyTo(c.position, point.point);
+      copyTo(c.normal, m.normal);
+      c.depth = point.depth;
+      c.normal_velocity = point.relativeNormalVelocity;
+      switch (classifyContact(point.relativeNormalVelocity, epsilon)) {
+        case ContactKind::Colliding:
+          c.classification = rbsim::contact_t::COLLIDING;
+          break;
+        case ContactKind::Resting:
+          c.classification = rbsim::contact_t::RESTING;
+          break;
+        case ContactKind::Separating:
+          c.classification = rbsim::contact_t::SEPARATING;
+          break;
+      }
+      c.normal_impulse = point.normalImpulse;
+      copyTo(c.friction_impulse, point.tangentImpulse);
+      const auto itemSize = static_cast<std::size_t>(c._getEncodedSizeNoHash());
+      if (!current.contacts.empty() && size + itemSize > kMaxPagePayloadBytes) {
+        current.num_contacts = static_cast<int32_t>(current.contacts.size());
+        pages.push_back(std::move(current));
+        current = header;
+        current.first_contact_index = index;
+        size = emptySize;
+      }
+      current.contacts.push_back(c);
+      size += itemSize;
+      ++index;
+    }
+  }
+  current.num_contacts = static_cast<int32_t>(current.contacts.size());
+  pages.push_back(std::move(current));
+  for (std::size_t i = 0; i < pages.size(); ++i) {
+    pages[i].page = static_cast<int32_t>(i);
+    pages[i].num_pages = static_cast<int32_t>(pages.size());
+    pages[i].total_contacts = index;
+  }
+  return pages;
+}
+
 Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
                                           int64_t nextStep, const WrenchLimits& limits) {
   WrenchRequest request;

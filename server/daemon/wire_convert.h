@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <rbsim/ack_t.hpp>
+#include <rbsim/contacts_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -31,6 +32,11 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
 // The world's description, paged the same way (meshes make bodies large).
 std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
                                                   int64_t revision);
+
+// The last step's contact points (positions, normals A→B, depths, solved
+// impulses, classification by relative normal velocity), paged like the
+// state. Bodies are named by their ids (serials).
+std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime);
 
 // What a server accepts in a wrench (configurable in the `limits:` section).
 struct WrenchLimits {

@@ -8,6 +8,7 @@
 #include "physics/body/body_def.h"
 #include "physics/body/external_load.h"
 #include "physics/body/rigid_state.h"
+#include "physics/collision/collider.h"
 #include "physics/geometry/shape.h"
 #include "physics/mass/mass_properties.h"
 #include "physics/math/quaternion.h"
@@ -28,6 +29,10 @@ struct BodyDescription {
   Vec3 shapeTranslation = Vec3::Zero();  // m
   // For mesh shapes: the mesh re-expressed in body space. Null otherwise.
   std::shared_ptr<const TriangleMesh> bodySpaceMesh;
+  // Collision geometry in body space (null until collision detection builds it).
+  std::shared_ptr<const Collider> collider;
+  Material material;                 // resolved against the world's defaults
+  bool continuousCollision = false;  // swept against fast motion (see BodyDef)
 };
 
 class Body {
@@ -84,6 +89,10 @@ class Body {
   const ExternalLoad& load() const { return m_load; }
   void clearLoad() { m_load.clear(); }
 
+  // Sleeping: a body at rest long enough (with its whole island) is not
+  // integrated until something touches or pushes it.
+  bool isSleeping() const { return m_sleeping; }
+
  private:
   void updateDerived();
 
@@ -96,6 +105,8 @@ class Body {
   Vec3 m_linearVelocity = Vec3::Zero();
   Vec3 m_angularVelocity = Vec3::Zero();
   int32_t m_serial = 0;
+  bool m_sleeping = false;
+  double m_restTime = 0.0;  // s spent below the sleep velocities
 
   friend class World;  // the stepping loop writes state and derived values in one pass
 };

@@ -7,6 +7,7 @@
 #include "physics/geometry/shape.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
+#include "physics/solver/material.h"
 
 namespace rbsim {
 
@@ -34,6 +35,13 @@ struct BodyDef {
   // Unset means the world's default.
   std::optional<double> linearDamping;   // 1/s
   std::optional<double> angularDamping;  // 1/s
+
+  // Restitution and friction; unset fields take the world's contact defaults.
+  MaterialSpec material;
+  // Continuous collision detection for this body: a fast body is stopped at
+  // its time of impact instead of passing through thin geometry (costs a
+  // sweep per step; for small fast bodies).
+  bool continuousCollision = false;
 
   static constexpr double kDefaultDensity = 1000.0;  // kg/m³, water
 };

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "physics/body/integrator.h"
+#include "physics/collision/collision_detector.h"
 
 namespace rbsim {
 
@@ -64,7 +65,15 @@ MassProperties scaled(const MassProperties& unit, double density) {
 
 }  // namespace
 
-World::World(const WorldSettings& settings) : m_settings(settings) {}
+World::World(const WorldSettings& settings)
+    : m_settings(settings),
+      m_detector(std::make_unique<CollisionDetector>(settings.contact.detection)) {}
+
+World::World(const World& other) = default;
+World::World(World&& other) noexcept = default;
+World& World::operator=(const World& other) = default;
+World& World::operator=(World&& other) noexcept = default;
+World::~World() = default;
 
 Expected<World> World::fromDef(const WorldDef& def) {
   World world(def.settings);
@@ -102,6 +111,12 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   description->name = def.name;
   description->shape = def.shape;
   description->isStatic = def.isStatic;
+  description->material = resolveMaterial(def.material, m_settings.contact.defaultMaterial);
+  description->continuousCollision = def.continuousCollision;
+  if (description->material.restitution > 1.0 || description->material.restitution < 0.0 ||
+      description->material.friction < 0.0 ||
+      description->material.staticCoefficient() < description->material.friction)
+    return Error{where + "restitution must be in [0, 1], friction >= 0 and static friction >= friction"};
 
   BodyDynamics dynamics;
   dynamics.linearDamping = linearDamping;
@@ -140,6 +155,10 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     description->bodySpaceMesh = std::make_shared<TriangleMesh>(
         transformed(*mesh->mesh, description->shapeRotation, description->shapeTranslation));
   }
+  auto collider = buildCollider(def.shape, Transform{description->shapeRotation, description->shapeTranslation},
+                                "body '" + def.name + "'");
+  if (!collider) return collider.error();
+  description->collider = std::make_shared<const Collider>(std::move(collider).value());
 
   const Quaternion shapeOrientation = def.orientation.normalized();
   RigidState state;
@@ -161,6 +180,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   const BodyId id{slot + 1, m_slots[static_cast<size_t>(slot)].generation};
   body.m_serial = ++m_lastSerial;
   m_idByName.emplace(def.name, id);
+  if (body.description().collider) ++m_collidingBodies;
   m_bodies.push_back(std::move(body));
   m_denseIds.push_back(id);
   return id;
@@ -171,6 +191,7 @@ bool World::removeBody(BodyId id) {
   Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
   const auto dense = static_cast<size_t>(slot.denseIndex);
   m_idByName.erase(m_bodies[dense].name());
+  if (m_bodies[dense].description().collider) --m_collidingBodies;
   m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
   m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (size_t i = dense; i < m_denseIds.size(); ++i)
@@ -203,19 +224,33 @@ Body& World::body(BodyId id) {
 }
 
 void World::step() {
-  const double dt = m_settings.dt;
+  const bool anyContact = m_settings.contact.enabled && m_collidingBodies > 0;
+  if (!anyContact) {
+    integrateFree(m_settings.dt, {});
+    m_contacts.clear();
+  } else if (m_settings.contact.model == ContactModel::Penalty) {
+    stepPenalty();
+  } else if (m_settings.contact.backtracking) {
+    stepBacktracking();
+  } else {
+    stepImpulse();
+  }
+  ++m_stepCount;
+}
+
+void World::integrateFree(double h, const std::vector<char>& skip) {
   const IntegratorKind integrator = m_settings.integrator;
-  for (Body& body : m_bodies) {
-    if (body.isStatic()) continue;
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    Body& body = m_bodies[i];
+    if (body.isStatic() || body.m_sleeping || (!skip.empty() && skip[i])) continue;
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
     inputs.load = body.m_load.active ? &body.m_load : nullptr;
     body.m_state =
-        integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, dt);
+        integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     body.updateDerived();
     if (body.m_load.active) body.m_load.clear();
   }
-  ++m_stepCount;
 }
 
 Vec3 World::totalLinearMomentum() const {

@@ -5,6 +5,7 @@
 // are stepped in creation order (kept across removals), no unordered
 // container decides an order, and no clock or random source is read here.
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -13,15 +14,25 @@
 
 #include "physics/body/body.h"
 #include "physics/body/body_def.h"
+#include "physics/common/deep_copy_ptr.h"
 #include "physics/common/expected.h"
+#include "physics/solver/contact_solver.h"
 #include "physics/world/body_id.h"
 #include "physics/world/world_settings.h"
 
 namespace rbsim {
 
+class CollisionDetector;
+
 class World {
  public:
   explicit World(const WorldSettings& settings = {});
+  // Copies are independent worlds (the collision caches are copied too).
+  World(const World& other);
+  World(World&& other) noexcept;
+  World& operator=(const World& other);
+  World& operator=(World&& other) noexcept;
+  ~World();
 
   // Builds a whole world; the first bad body stops it with its error.
   static Expected<World> fromDef(const WorldDef& def);
@@ -45,10 +56,25 @@ class World {
   const std::vector<Body>& bodies() const { return m_bodies; }
   int bodyCount() const { return static_cast<int>(m_bodies.size()); }
 
-  // Advances every dynamic body by dt with the world's integrator, applying
-  // gravity, damping and the external loads given since the last step, then
-  // clears those loads.
+  // Advances the world by dt: gravity, damping and the external loads given
+  // since the last step (then cleared), and contact as settings().contact
+  // says. Bodies that touch nothing are integrated with the world's
+  // integrator; with the impulse model, bodies in contact take the solver's
+  // semi-implicit Euler step (velocities, contact impulses, then positions).
   void step();
+
+  // The contacts of the last step (solved impulses included), sorted by
+  // (serial A, serial B, piece A, piece B).
+  const std::vector<SolvedManifold>& contacts() const { return m_contacts; }
+  int contactPointCount() const;
+  // Bodies asleep (at rest in an island that stopped being integrated).
+  int sleepingBodyCount() const;
+  void wakeUp(BodyId id);
+
+  // Body serials are never reused within a world's life. A world reset to a
+  // copy of its initial state continues after the serials it handed out.
+  int32_t lastSerial() const { return m_lastSerial; }
+  void continueSerialsAfter(int32_t serial) { m_lastSerial = std::max(m_lastSerial, serial); }
 
   const WorldSettings& settings() const { return m_settings; }
   void setGravity(const Vec3& gravity) { m_settings.gravity = gravity; }
@@ -72,7 +98,34 @@ class World {
     int32_t denseIndex = -1;  // -1: free
   };
 
+  // Integrates the awake dynamic bodies not marked in `skip` (all when it is
+  // empty) over h with the world's integrator, loads applied, and clears
+  // their loads.
+  void integrateFree(double h, const std::vector<char>& skip);
+  void stepImpulse();
+  void stepPenalty();
+  void stepBacktracking();
+  // Puts to sleep the islands (dense index -> island root) whose bodies all
+  // stayed below the sleep velocities for the sleep time.
+  void updateSleep(const std::vector<int>& islandOf);
+  void findContacts();
+  // Detects contacts and returns the deepest penetration (m; negative: the
+  // smallest gap within the margin; -inf without contacts).
+  double deepestPenetration();
+  // The impulse path's pieces, over the bodies marked in `solving`:
+  // velocities after the forces of h, contact impulses, momenta back into
+  // the state, positions advanced by h.
+  void loadSolverBodies(const std::vector<char>& solving, double h);
+  void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
+                     double h, std::vector<SolvedManifold>& solved);
+  void storeSolverVelocities(const std::vector<char>& solving);
+  void advanceSolverPositions(const std::vector<char>& solving, double h, bool withPseudo);
+
   WorldSettings m_settings;
+  DeepCopyPtr<CollisionDetector> m_detector;
+  ContactSolver m_solver;
+  std::vector<SolvedManifold> m_contacts;
+  std::vector<SolverBody> m_solverBodies;  // scratch, one per body
   std::vector<Body> m_bodies;      // dense, in creation order
   std::vector<BodyId> m_denseIds;  // parallel to m_bodies
   std::vector<Slot> m_slots;
@@ -81,6 +134,7 @@ class World {
   std::unordered_map<std::string, BodyId> m_idByName;
   int64_t m_stepCount = 0;
   int32_t m_lastSerial = 0;
+  int m_collidingBodies = 0;  // bodies with collision geometry
 };
 
 }  // namespace rbsim

@@ -21,4 +21,14 @@ std::optional<IntegratorKind> integratorFromName(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view contactModelName(ContactModel model) {
+  return model == ContactModel::Penalty ? "penalty" : "impulse";
+}
+
+std::optional<ContactModel> contactModelFromName(std::string_view name) {
+  if (name == "impulse") return ContactModel::Impulse;
+  if (name == "penalty") return ContactModel::Penalty;
+  return std::nullopt;
+}
+
 }  // namespace rbsim

@@ -7,7 +7,10 @@
 #include <vector>
 
 #include "physics/body/body_def.h"
+#include "physics/collision/contact_generation.h"
 #include "physics/math/types.h"
+#include "physics/solver/contact_solver_settings.h"
+#include "physics/solver/material.h"
 
 namespace rbsim {
 
@@ -20,12 +23,41 @@ enum class IntegratorKind {
 std::string_view integratorName(IntegratorKind kind);                   // "explicit_euler", ...
 std::optional<IntegratorKind> integratorFromName(std::string_view name);  // inverse of integratorName
 
+enum class ContactModel {
+  Impulse,  // velocity-level impulses with restitution and friction (the default)
+  Penalty,  // spring–damper forces from the penetration depth
+};
+
+std::string_view contactModelName(ContactModel model);                  // "impulse", "penalty"
+std::optional<ContactModel> contactModelFromName(std::string_view name);  // inverse
+
+// How bodies touch: the `contact:` section of a world file.
+struct ContactConfig {
+  bool enabled = true;                  // collision detection and response at all
+  ContactModel model = ContactModel::Impulse;
+  // The seed's backtracking: find the time of collision by bisection,
+  // advance to it, apply the collision impulses, go on with the rest of the step.
+  bool backtracking = false;
+  ContactSettings detection;            // contact margin
+  ContactSolverSettings solver;         // iterations, restitution threshold, slop, ...
+  Material defaultMaterial;             // for bodies that give none
+  double penaltyStiffness = 1e5;        // N/m per contact manifold (split over its points)
+  double penaltyDamping = 1e3;          // N·s/m per manifold, along the normal
+  double penaltyFrictionDamping = 1e4;  // N·s/m: tangential viscosity below the Coulomb limit
+  double classificationEpsilon = 1e-3;  // m/s: |v_rel| below it is resting contact
+  bool sleeping = true;                 // islands at rest stop being integrated
+  double sleepLinearVelocity = 0.01;    // m/s
+  double sleepAngularVelocity = 0.05;   // rad/s
+  double sleepTime = 0.5;               // s an island must stay below both to sleep
+};
+
 struct WorldSettings {
   double dt = 0.001;                       // s, fixed step
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);    // m/s²
   IntegratorKind integrator = IntegratorKind::SemiImplicitEuler;
   double linearDamping = 0.0;              // 1/s, default for bodies that set none
   double angularDamping = 0.0;             // 1/s, default for bodies that set none
+  ContactConfig contact;
 };
 
 // A whole world as loaded from a config file, before it is built.

@@ -74,6 +74,28 @@ TEST(ConfigLoader, FullWorldFieldByField) {
   EXPECT_DOUBLE_EQ(settings.linearDamping, 0.1);
   EXPECT_DOUBLE_EQ(settings.angularDamping, 0.2);
 
+  const ContactConfig& contact = settings.contact;
+  EXPECT_TRUE(contact.enabled);
+  EXPECT_EQ(contact.model, ContactModel::Penalty);
+  EXPECT_TRUE(contact.backtracking);
+  EXPECT_EQ(contact.solver.velocityIterations, 25);
+  EXPECT_EQ(contact.solver.positionIterations, 3);
+  EXPECT_DOUBLE_EQ(contact.penaltyStiffness, 2.0e4);
+  EXPECT_DOUBLE_EQ(contact.penaltyDamping, 150.0);
+  EXPECT_DOUBLE_EQ(contact.penaltyFrictionDamping, 900.0);
+  EXPECT_DOUBLE_EQ(contact.defaultMaterial.restitution, 0.25);
+  EXPECT_DOUBLE_EQ(contact.defaultMaterial.friction, 0.4);
+  EXPECT_DOUBLE_EQ(contact.defaultMaterial.staticCoefficient(), 0.7);
+  EXPECT_DOUBLE_EQ(contact.solver.restitutionThreshold, 0.3);
+  EXPECT_DOUBLE_EQ(contact.detection.margin, 0.01);
+  EXPECT_DOUBLE_EQ(contact.solver.linearSlop, 0.001);
+  EXPECT_DOUBLE_EQ(contact.solver.baumgarte, 0.3);
+  EXPECT_FALSE(contact.solver.warmStarting);
+  EXPECT_DOUBLE_EQ(contact.classificationEpsilon, 0.002);
+  EXPECT_FALSE(contact.sleeping);
+  EXPECT_DOUBLE_EQ(contact.sleepLinearVelocity, 0.02);
+  EXPECT_DOUBLE_EQ(contact.sleepTime, 1.5);
+
   ASSERT_EQ(world->bodies.size(), 6u);
   const BodyDef& floor = world->bodies[0];
   EXPECT_EQ(floor.name, "floor");
@@ -98,6 +120,14 @@ TEST(ConfigLoader, FullWorldFieldByField) {
   ASSERT_TRUE(ball.linearDamping.has_value());
   EXPECT_DOUBLE_EQ(*ball.linearDamping, 0.01);
   EXPECT_FALSE(ball.angularDamping.has_value());
+  EXPECT_EQ(ball.material.restitution, 0.9);
+  EXPECT_EQ(ball.material.friction, 0.2);
+  EXPECT_FALSE(ball.material.staticFriction.has_value());
+  EXPECT_TRUE(ball.continuousCollision);
+  // Resolved against the defaults: μs follows the body's μk when only μk is given.
+  const Material resolved = resolveMaterial(ball.material, contact.defaultMaterial);
+  EXPECT_DOUBLE_EQ(resolved.staticCoefficient(), 0.2);
+  EXPECT_FALSE(world->bodies[2].continuousCollision);
 
   const BodyDef& crate = world->bodies[2];
   EXPECT_EQ(crate.name, "crate");
@@ -295,8 +325,8 @@ world:
 
 TEST(ConfigLoaderErrors, UnknownKeys) {
   EXPECT_EQ(errorOf("world: {dt: 0.01}\ncolour: red\n"),
-            "test.yaml:2:1: colour: unknown key; the top level has: world, bodies, lcm, server, "
-            "contact, limits");
+            "test.yaml:2:1: colour: unknown key; the top level has: world, bodies, contact, lcm, "
+            "server, limits");
   EXPECT_EQ(errorOf("world: {dt: 0.01, gravty: [0, 0, -1]}\n"),
             "test.yaml:1:19: world.gravty: unknown key; the world has: dt, gravity, integrator, "
             "damping");
@@ -310,7 +340,7 @@ bodies:
 )"),
             "test.yaml:4:5: bodies[0].colour: unknown key; a body has: name, shape, mass, "
             "density, position, orientation, rpy, linear_velocity, angular_velocity, static, "
-            "damping");
+            "damping, material, ccd");
   // Keys of another shape type are unknown too.
   EXPECT_EQ(errorOf(R"(
 bodies:
@@ -321,14 +351,31 @@ bodies:
             "radius");
 }
 
-TEST(ConfigLoaderErrors, ReservedTopLevelKeysAreAccepted) {
+TEST(ConfigLoaderErrors, ServerSectionsAreLeftToTheServer) {
+  // lcm, server and limits belong to rbserver, which checks them itself.
   const Expected<WorldDef> world = parse(R"(
 lcm: {url: "udpm://239.255.76.67:7667?ttl=0", anything: [1, 2]}
 server:
-contact: 3
 limits: {max_bodies: 10}
 )");
   EXPECT_TRUE(world.ok()) << world.error().message;
+}
+
+TEST(ConfigLoaderErrors, BadContactSettings) {
+  EXPECT_EQ(errorOf("contact: 3\n"), "test.yaml:1:10: contact: expected a mapping, got \"3\"");
+  EXPECT_EQ(errorOf("contact: {model: springs}\n"),
+            "test.yaml:1:18: contact.model: expected impulse or penalty, got \"springs\"");
+  EXPECT_EQ(errorOf("contact: {friction: 0.5, static_friction: 0.2}\n"),
+            "test.yaml:1:43: contact.static_friction: static_friction must not be below friction");
+  EXPECT_NE(errorOf("contact: {restitution: 1.5}\n").find("contact.restitution"), std::string::npos);
+  EXPECT_NE(errorOf("contact: {iterations: 2.5}\n").find("whole number"), std::string::npos);
+  EXPECT_NE(errorOf(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 1}
+    material: {bounce: 1}
+)").find("bodies[0].material.bounce: unknown key"),
+            std::string::npos);
 }
 
 TEST(ConfigLoaderErrors, DuplicateBodyName) {

@@ -1,0 +1,79 @@
+// rbsim as an engine of the shared anchors harness (../shared/anchors), so
+// that it runs the very same scenes, timing loop and statistics as Bullet,
+// ODE and MuJoCo, in the same session:
+//   taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3
+// One timed step = World::step() (dynamics only until contact response exists).
+#include "scene.hpp"
+
+#include "physics/world/world.h"
+
+namespace {
+
+rbsim::Vec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
+
+struct RbsimEngine : anchors::Engine {
+  std::optional<rbsim::World> world;
+
+  void build(const anchors::Scene& scene, const anchors::Options&) override {
+    rbsim::WorldSettings settings;
+    settings.dt = scene.dt;
+    settings.gravity = rbsim::Vec3(0, 0, scene.gravity);
+    settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
+    world.emplace(settings);
+    int index = 0;
+    for (const anchors::BodyDef& b : scene.bodies) {
+      rbsim::BodyDef def;
+      def.name = "b" + std::to_string(index++);
+      if (b.shape == anchors::Shape::Box) {
+        def.shape = rbsim::BoxShape{rbsim::Vec3::Constant(b.size)};
+      } else {
+        def.shape = rbsim::SphereShape{b.size};
+      }
+      def.mass = b.mass;
+      def.position = vec(b.p);
+      def.orientation = rbsim::Quaternion{b.q[0], b.q[1], b.q[2], b.q[3]};
+      def.linearVelocity = vec(b.v);
+      def.angularVelocity = vec(b.w);
+      if (!world->createBody(def).ok()) std::abort();
+    }
+    if (scene.ground) {
+      rbsim::BodyDef ground;
+      ground.name = "ground";
+      ground.shape = rbsim::PlaneShape{};
+      ground.isStatic = true;
+      if (!world->createBody(ground).ok()) std::abort();
+    }
+    int wall = 0;
+    for (const anchors::StaticBox& box : scene.statics) {
+      rbsim::BodyDef def;
+      def.name = "wall" + std::to_string(wall++);
+      def.shape = rbsim::BoxShape{vec(box.he)};
+      def.position = vec(box.p);
+      def.isStatic = true;
+      if (!world->createBody(def).ok()) std::abort();
+    }
+  }
+
+  void step() override { world->step(); }
+
+  void state(int i, double p[3], double v[3], double w[3]) const override {
+    const rbsim::Body& body = world->bodies()[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = body.position()[k];
+      v[k] = body.linearVelocity()[k];
+      w[k] = body.angularVelocity()[k];
+    }
+  }
+
+  long contacts() const override { return -1; }
+  std::string settings() const override {
+    return "rbsim World::step, semi-implicit Euler, double; no contact response yet";
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return anchors::run_main(argc, argv, "rbsim", "0.1.0",
+                           [] { return std::make_unique<RbsimEngine>(); });
+}

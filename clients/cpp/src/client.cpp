@@ -1,0 +1,263 @@
+#include "rbsim/client/client.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <rbsim/command_t.hpp>
+#include <rbsim/wrench_t.hpp>
+#include <string_view>
+
+namespace rbsim::client {
+
+static_assert(static_cast<int8_t>(Frame::World) == rbsim::wrench_t::FRAME_WORLD);
+static_assert(static_cast<int8_t>(Frame::Body) == rbsim::wrench_t::FRAME_BODY);
+static_assert(static_cast<int8_t>(WrenchMode::OneStep) == rbsim::wrench_t::MODE_ONE_STEP);
+static_assert(static_cast<int8_t>(WrenchMode::Duration) == rbsim::wrench_t::MODE_DURATION);
+static_assert(static_cast<int8_t>(WrenchMode::Persistent) == rbsim::wrench_t::MODE_PERSISTENT);
+static_assert(static_cast<int8_t>(WrenchMode::Clear) == rbsim::wrench_t::MODE_CLEAR);
+static_assert(static_cast<int8_t>(AckKind::Wrench) == rbsim::ack_t::KIND_WRENCH);
+static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAND);
+
+namespace {
+
+// LCM's default per-subscription queue holds 30 messages and drops the rest
+// silently (LCM_NOTES.md §3); a burst of STEPs at state rate 0 publishes far
+// more before the caller gets to handle them.
+constexpr int kQueueCapacity = 10000;
+// Acks kept for waitForAck, per client.
+constexpr std::size_t kMaxKeptAcks = 4096;
+// handle() stops draining after this many messages so that a fast publisher
+// cannot keep it from returning.
+constexpr int kMaxBatch = 100000;
+// spinUntil() checks its predicate at least this often even when no message
+// comes, for predicates that watch something other than LCM (a child
+// process, a signal flag).
+constexpr Client::Timeout kMaxWaitSlice{50};
+
+int64_t wallMicroseconds() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// LCM subscribes to a POSIX extended regex anchored at both ends
+// (LCM_NOTES.md §3): a prefix such as "A.B_" must match itself only.
+std::string regexEscaped(const std::string& channel) {
+  std::string out;
+  for (const char c : channel) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+void copyVec3(double (&out)[3], const Vec3& in) {
+  std::copy(in.begin(), in.end(), out);
+}
+
+template <class Callbacks, class Message>
+void notify(const Callbacks& callbacks, const Message& message) {
+  // A copy, so that a callback may add or remove callbacks.
+  const Callbacks snapshot = callbacks;
+  for (const auto& registered : snapshot) registered.callback(message);
+}
+
+}  // namespace
+
+Client::Client(ClientOptions options)
+    : m_url(resolveLcmUrl(options.url)),
+      m_prefix(std::move(options.channelPrefix)),
+      m_clientId(options.clientId.empty() ? makeDefaultClientId() : std::move(options.clientId)),
+      m_lcm(std::make_unique<lcm::LCM>(m_url)) {
+  if (!m_lcm->good()) return;
+  m_lcm->subscribe(regexEscaped(channel("STATE")), &Client::onStateMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("WORLD")), &Client::onWorldMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("STATUS")), &Client::onStatusMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("ACK")), &Client::onAckMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
+}
+
+Client::~Client() = default;
+
+bool Client::good() const {
+  return m_lcm->good();
+}
+
+int Client::handle(Timeout timeout) {
+  if (!good()) return -1;
+  const auto millis = std::clamp<Timeout::rep>(timeout.count(), 0, INT_MAX);
+  errno = 0;
+  int status = m_lcm->handleTimeout(static_cast<int>(millis));
+  // A signal that interrupted the wait is no LCM error: report "nothing yet"
+  // so that spinUntil() goes on (and sees a flag the handler may have set).
+  if (status < 0 && errno == EINTR) return 0;
+  if (status <= 0) return status < 0 ? -1 : 0;
+  int handled = 1;
+  while (handled < kMaxBatch && (status = m_lcm->handleTimeout(0)) > 0) ++handled;
+  return status < 0 ? -1 : handled;
+}
+
+bool Client::spinUntil(const std::function<bool()>& done, Timeout timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline || !good()) return false;
+    const auto slice = std::min(std::chrono::ceil<Timeout>(deadline - now), kMaxWaitSlice);
+    if (handle(slice) < 0) return done();
+  }
+  return true;
+}
+
+Client::CallbackId Client::onState(StateCallback callback) {
+  m_stateCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
+Client::CallbackId Client::onWorld(WorldCallback callback) {
+  m_worldCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
+Client::CallbackId Client::onStatus(StatusCallback callback) {
+  m_statusCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
+Client::CallbackId Client::onAck(AckCallback callback) {
+  m_ackCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
+void Client::removeCallback(CallbackId id) {
+  const auto hasId = [id](const auto& registered) { return registered.id == id; };
+  std::erase_if(m_stateCallbacks, hasId);
+  std::erase_if(m_worldCallbacks, hasId);
+  std::erase_if(m_statusCallbacks, hasId);
+  std::erase_if(m_ackCallbacks, hasId);
+}
+
+void Client::onStateMessage(const lcm::ReceiveBuffer*, const std::string&,
+                            const rbsim::world_state_t* page) {
+  auto whole = m_statePages.add(*page);
+  if (!whole) return;
+  m_state = std::move(*whole);
+  ++m_stateCount;
+  notify(m_stateCallbacks, *m_state);
+}
+
+void Client::onWorldMessage(const lcm::ReceiveBuffer*, const std::string&,
+                            const rbsim::world_t* page) {
+  auto whole = m_worldPages.add(*page);
+  if (!whole) return;
+  m_world = std::move(*whole);
+  ++m_worldCount;
+  notify(m_worldCallbacks, *m_world);
+}
+
+void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
+                             const rbsim::status_t* status) {
+  m_status = *status;
+  ++m_statusCount;
+  notify(m_statusCallbacks, *m_status);
+}
+
+void Client::onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
+  if (ack->client == m_clientId) {
+    m_acks[{ack->kind, ack->seq}] = *ack;
+    if (m_acks.size() > kMaxKeptAcks) m_acks.erase(m_acks.begin());
+  }
+  notify(m_ackCallbacks, *ack);
+}
+
+template <class Message>
+bool Client::publish(const std::string& suffix, const Message& message) {
+  return good() && m_lcm->publish(channel(suffix), &message) == 0;
+}
+
+Request Client::applyWrench(const Wrench& wrench) {
+  rbsim::wrench_t message;
+  message.utime = wallMicroseconds();
+  message.client = m_clientId;
+  message.seq = m_nextSeq++;
+  message.body = wrench.body;
+  message.frame = static_cast<int8_t>(wrench.frame);
+  copyVec3(message.force, wrench.force);
+  copyVec3(message.torque, wrench.torque);
+  copyVec3(message.point, wrench.point);
+  message.mode = static_cast<int8_t>(wrench.mode);
+  message.duration = wrench.duration;
+  message.apply_at_step = wrench.applyAtStep;
+  return {message.seq, AckKind::Wrench, publish("WRENCH", message)};
+}
+
+Request Client::clearWrenches(const std::string& body, int64_t applyAtStep) {
+  Wrench clear;
+  clear.body = body;
+  clear.mode = WrenchMode::Clear;
+  clear.applyAtStep = applyAtStep;
+  return applyWrench(clear);
+}
+
+Request Client::sendCommand(int8_t command, const std::function<void(rbsim::command_t&)>& fill) {
+  rbsim::command_t message;
+  message.utime = wallMicroseconds();
+  message.client = m_clientId;
+  message.seq = m_nextSeq++;
+  message.command = command;
+  message.num_steps = 0;
+  message.real_time_factor = 0.0;
+  if (fill) fill(message);
+  return {message.seq, AckKind::Command, publish("COMMAND", message)};
+}
+
+Request Client::pause() {
+  return sendCommand(rbsim::command_t::PAUSE, {});
+}
+
+Request Client::resume() {
+  return sendCommand(rbsim::command_t::RESUME, {});
+}
+
+Request Client::step(int64_t numSteps) {
+  return sendCommand(rbsim::command_t::STEP, [&](rbsim::command_t& m) { m.num_steps = numSteps; });
+}
+
+Request Client::reset() {
+  return sendCommand(rbsim::command_t::RESET, {});
+}
+
+Request Client::setRealTimeFactor(double factor) {
+  return sendCommand(rbsim::command_t::SET_REAL_TIME_FACTOR,
+                     [&](rbsim::command_t& m) { m.real_time_factor = factor; });
+}
+
+Request Client::spawn(const std::string& bodyYaml) {
+  return sendCommand(rbsim::command_t::SPAWN,
+                     [&](rbsim::command_t& m) { m.spawn_yaml = bodyYaml; });
+}
+
+Request Client::remove(const std::string& body) {
+  return sendCommand(rbsim::command_t::REMOVE, [&](rbsim::command_t& m) { m.body = body; });
+}
+
+Request Client::publishWorld() {
+  return sendCommand(rbsim::command_t::PUBLISH_WORLD, {});
+}
+
+std::optional<rbsim::ack_t> Client::waitForAck(int64_t seq, AckKind kind, Timeout timeout) {
+  const std::pair<int8_t, int64_t> key{static_cast<int8_t>(kind), seq};
+  spinUntil([&] { return m_acks.count(key) > 0; }, timeout);
+  const auto found = m_acks.find(key);
+  if (found == m_acks.end()) return std::nullopt;
+  return found->second;
+}
+
+std::optional<rbsim::ack_t> Client::waitForAck(const Request& request, Timeout timeout) {
+  if (!request.sent) return std::nullopt;
+  return waitForAck(request.seq, request.kind, timeout);
+}
+
+}  // namespace rbsim::client

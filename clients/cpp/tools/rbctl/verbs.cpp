@@ -1,0 +1,319 @@
+#include "verbs.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+
+#include "printing.h"
+#include "rbsim/client/lookup.h"
+
+namespace rbsim::rbctl {
+
+namespace {
+
+using client::Client;
+
+double seconds(Client::Timeout timeout) {
+  return static_cast<double>(timeout.count()) * 1e-3;
+}
+
+int noAnswer(const Context& context, const std::string& what) {
+  std::fprintf(stderr,
+               "rbctl: no %s within %.3g s (is rbserver running on URL '%s' with channel prefix "
+               "'%s'?)\n",
+               what.c_str(), seconds(context.timeout), context.client.url().c_str(),
+               context.client.channelPrefix().c_str());
+  return kExitNoAnswer;
+}
+
+// Waits for the ack of `request` and reports it; `what` names the request.
+int report(Context& context, const client::Request& request, const std::string& what,
+           std::optional<rbsim::ack_t>* ackOut = nullptr) {
+  const auto ack = context.client.waitForAck(request, context.timeout);
+  if (ackOut != nullptr) *ackOut = ack;
+  if (!ack) return noAnswer(context, "acknowledgement of " + what);
+  if (!ack->accepted) {
+    std::fprintf(stderr, "rbctl: %s rejected: %s\n", what.c_str(), ack->reason.c_str());
+    return kExitRejected;
+  }
+  std::printf("%s accepted: effective_step %lld%s%s\n", what.c_str(),
+              static_cast<long long>(ack->effective_step), ack->reason.empty() ? "" : " note ",
+              ack->reason.c_str());
+  return kExitOk;
+}
+
+std::string readAll(std::FILE* file) {
+  std::string text;
+  char buffer[4096];
+  std::size_t read;
+  while ((read = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, read);
+  return text;
+}
+
+bool waitForState(Context& context) {
+  return context.client.spinUntil([&] { return context.client.latestState().has_value(); },
+                                  context.timeout);
+}
+
+int runState(Context& context, Arguments& arguments) {
+  std::string body;
+  while (!arguments.empty()) {
+    const std::string option = arguments.next("state", "an option");
+    if (option == "--body") {
+      body = arguments.next(option, "a body name");
+    } else {
+      throw UsageError("state: unknown option '" + option + "'");
+    }
+  }
+  if (!waitForState(context))
+    return noAnswer(context, "state on " + context.client.channel("STATE"));
+  const auto& state = *context.client.latestState();
+  if (!body.empty() && client::findBody(state, body) == nullptr) {
+    std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
+                 static_cast<long long>(state.step));
+    return kExitRejected;
+  }
+  printState(stdout, state, body);
+  return kExitOk;
+}
+
+int runStatus(Context& context, Arguments& arguments) {
+  arguments.expectEnd();
+  if (!context.client.spinUntil([&] { return context.client.latestStatus().has_value(); },
+                                context.timeout))
+    return noAnswer(context, "status on " + context.client.channel("STATUS"));
+  printStatus(stdout, *context.client.latestStatus());
+  return kExitOk;
+}
+
+int runBodies(Context& context, Arguments& arguments) {
+  arguments.expectEnd();
+  // Ask for a fresh description rather than wait for the next change.
+  context.client.publishWorld();
+  if (!context.client.spinUntil([&] { return context.client.world().has_value(); },
+                                context.timeout))
+    return noAnswer(context, "world description on " + context.client.channel("WORLD"));
+  printWorld(stdout, *context.client.world());
+  return kExitOk;
+}
+
+client::WrenchMode parseMode(const std::string& text) {
+  if (text == "one-step") return client::WrenchMode::OneStep;
+  if (text == "duration") return client::WrenchMode::Duration;
+  if (text == "persistent") return client::WrenchMode::Persistent;
+  if (text == "clear") return client::WrenchMode::Clear;
+  throw UsageError("--mode: expected one-step, duration, persistent or clear, got '" + text + "'");
+}
+
+int runWrench(Context& context, Arguments& arguments) {
+  client::Wrench wrench;
+  bool hasBody = false;
+  bool hasPoint = false;
+  bool hasMode = false;
+  bool hasDuration = false;
+  while (!arguments.empty()) {
+    const std::string option = arguments.next("wrench", "an option");
+    if (option == "--force") {
+      wrench.force = arguments.nextVec3(option);
+    } else if (option == "--torque") {
+      wrench.torque = arguments.nextVec3(option);
+    } else if (option == "--point") {
+      wrench.point = arguments.nextVec3(option);
+      hasPoint = true;
+    } else if (option == "--frame") {
+      const std::string frame = arguments.next(option, "world or body");
+      if (frame == "world") {
+        wrench.frame = client::Frame::World;
+      } else if (frame == "body") {
+        wrench.frame = client::Frame::Body;
+      } else {
+        throw UsageError("--frame: expected world or body, got '" + frame + "'");
+      }
+    } else if (option == "--mode") {
+      wrench.mode = parseMode(arguments.next(option, "a mode"));
+      hasMode = true;
+    } else if (option == "--duration") {
+      wrench.duration = arguments.nextNumber(option);
+      hasDuration = true;
+    } else if (option == "--at-step") {
+      wrench.applyAtStep = arguments.nextInteger(option);
+    } else if (option.rfind("--", 0) == 0) {
+      throw UsageError("wrench: unknown option '" + option + "'");
+    } else if (!hasBody) {
+      wrench.body = option;
+      hasBody = true;
+    } else {
+      throw UsageError("wrench: unexpected argument '" + option + "'");
+    }
+  }
+  if (hasDuration && !hasMode) wrench.mode = client::WrenchMode::Duration;
+  if (wrench.mode == client::WrenchMode::Duration && !hasDuration)
+    throw UsageError("wrench: --mode duration needs --duration S");
+  if (!hasBody && wrench.mode != client::WrenchMode::Clear)
+    throw UsageError("wrench: missing BODY (only --mode clear may leave it out, for every body)");
+
+  // A world-frame force with no point acts through the centre of mass: the
+  // one the latest state shows (the server checks the body exists).
+  if (wrench.frame == client::Frame::World && !hasPoint &&
+      wrench.mode != client::WrenchMode::Clear) {
+    if (!waitForState(context))
+      return noAnswer(context, "state on " + context.client.channel("STATE") +
+                                   " (needed for the default --point)");
+    if (const auto* body = client::findBody(*context.client.latestState(), wrench.body)) {
+      std::copy(std::begin(body->position), std::end(body->position), wrench.point.begin());
+      std::printf("point %.10g %.10g %.10g (centre of mass at step %lld)\n", wrench.point[0],
+                  wrench.point[1], wrench.point[2],
+                  static_cast<long long>(context.client.latestState()->step));
+    }
+  }
+  const auto request = context.client.applyWrench(wrench);
+  return report(context, request, "wrench seq " + std::to_string(request.seq));
+}
+
+int runSimpleCommand(Context& context, Arguments& arguments, client::Request (Client::*send)(),
+                     const std::string& what) {
+  arguments.expectEnd();
+  return report(context, (context.client.*send)(), what);
+}
+
+int runPause(Context& context, Arguments& arguments) {
+  return runSimpleCommand(context, arguments, &Client::pause, "pause");
+}
+
+int runResume(Context& context, Arguments& arguments) {
+  return runSimpleCommand(context, arguments, &Client::resume, "resume");
+}
+
+int runReset(Context& context, Arguments& arguments) {
+  return runSimpleCommand(context, arguments, &Client::reset, "reset");
+}
+
+int runStep(Context& context, Arguments& arguments) {
+  int64_t count = 1;
+  bool wait = true;
+  bool hasCount = false;
+  while (!arguments.empty()) {
+    const std::string argument = arguments.next("step", "an argument");
+    if (argument == "--no-wait") {
+      wait = false;
+    } else if (!hasCount) {
+      count = parseInteger(argument, "step N");
+      if (count < 1) throw UsageError("step N: expected N >= 1, got " + argument);
+      hasCount = true;
+    } else {
+      throw UsageError("step: unexpected argument '" + argument + "'");
+    }
+  }
+  std::optional<rbsim::ack_t> ack;
+  const int code =
+      report(context, context.client.step(count), "step " + std::to_string(count), &ack);
+  if (code != kExitOk || !wait) return code;
+  // The server publishes the state after the last requested step.
+  const int64_t last = ack->effective_step + count - 1;
+  const auto reached = [&] {
+    const auto& state = context.client.latestState();
+    return state && state->step >= last;
+  };
+  if (!context.client.spinUntil(reached, context.timeout))
+    return noAnswer(context, "state of step " + std::to_string(last));
+  std::printf("step %lld\n", static_cast<long long>(context.client.latestState()->step));
+  return kExitOk;
+}
+
+int runRealTimeFactor(Context& context, Arguments& arguments) {
+  const double factor = parseNumber(arguments.next("rtf", "a factor X"), "rtf X");
+  arguments.expectEnd();
+  return report(context, context.client.setRealTimeFactor(factor), "rtf");
+}
+
+int runSpawn(Context& context, Arguments& arguments) {
+  std::string yaml;
+  const std::string source = arguments.next("spawn", "FILE, - or --yaml TEXT");
+  if (source == "--yaml") {
+    yaml = arguments.next("--yaml", "the body's YAML");
+  } else if (source == "-") {
+    yaml = readAll(stdin);
+  } else {
+    std::FILE* file = std::fopen(source.c_str(), "rb");
+    if (file == nullptr) throw UsageError("spawn: cannot read '" + source + "'");
+    yaml = readAll(file);
+    std::fclose(file);
+  }
+  arguments.expectEnd();
+  return report(context, context.client.spawn(yaml), "spawn");
+}
+
+int runRemove(Context& context, Arguments& arguments) {
+  const std::string body = arguments.next("remove", "a body name");
+  arguments.expectEnd();
+  return report(context, context.client.remove(body), "remove " + body);
+}
+
+}  // namespace
+
+const std::vector<Verb>& verbs() {
+  static const std::vector<Verb> kVerbs = {
+      {"state", "print the latest complete state",
+       "usage: rbctl state [--body NAME]\n\n"
+       "Waits for a complete state on <prefix>STATE and prints it: a line\n"
+       "\"step S sim_time T world_revision R bodies N\", then per body \"body NAME id I\n"
+       "position X Y Z orientation W X Y Z linear_velocity ... angular_velocity ...\"\n"
+       "(m, unit quaternion body->world, m/s and rad/s in the world frame).\n"
+       "  --body NAME   only that body (exit 1 if there is none)\n",
+       runState},
+      {"status", "print the latest heartbeat",
+       "usage: rbctl status\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields.\n",
+       runStatus},
+      {"bodies", "print the world description (bodies, shapes, masses)",
+       "usage: rbctl bodies\n\n"
+       "Asks the server to publish the world description (PUBLISH_WORLD) and prints\n"
+       "the world settings and every body's id, shape, mass (kg) and principal\n"
+       "moments of inertia (kg m^2).\n",
+       runBodies},
+      {"wrench", "apply a force and torque to a body",
+       "usage: rbctl wrench BODY [--force FX FY FZ] [--torque TX TY TZ] [--point X Y Z]\n"
+       "                    [--frame world|body] [--mode one-step|duration|persistent|clear]\n"
+       "                    [--duration S] [--at-step K]\n"
+       "       rbctl wrench --mode clear      (clear this client's wrenches on every body)\n\n"
+       "  --force       N, in the frame (default 0 0 0)\n"
+       "  --torque      N m, in the frame: a pure couple (default 0 0 0)\n"
+       "  --point       m, where the force acts: a world position (world frame) or an\n"
+       "                offset from the centre of mass (body frame). Default: the\n"
+       "                centre of mass (from the latest state, in the world frame)\n"
+       "  --frame       world (default) or body (turns with the body)\n"
+       "  --mode        one-step (default), duration, persistent or clear\n"
+       "  --duration    s of simulated time (implies --mode duration)\n"
+       "  --at-step K   the step during which it first acts (default: the next)\n\n"
+       "Note: CLEAR and persistent replacement work per client id, and every rbctl run\n"
+       "is a new client unless --client-id names one: to clear a persistent wrench later,\n"
+       "  rbctl --client-id me wrench ball --force 0 0 5 --mode persistent\n"
+       "  rbctl --client-id me wrench ball --mode clear\n",
+       runWrench},
+      {"pause", "stop stepping", "usage: rbctl pause\n\nSends PAUSE and waits for its ack.\n",
+       runPause},
+      {"resume", "step again at the target real-time factor",
+       "usage: rbctl resume\n\nSends RESUME and waits for its ack.\n", runResume},
+      {"step", "take N steps while paused",
+       "usage: rbctl step [N] [--no-wait]\n\n"
+       "Sends STEP N (default 1; the server must be paused), waits for its ack and,\n"
+       "unless --no-wait, for the state after the last of the steps.\n",
+       runStep},
+      {"reset", "go back to the initial world, step 0",
+       "usage: rbctl reset\n\nSends RESET and waits for its ack.\n", runReset},
+      {"rtf", "set the real-time factor",
+       "usage: rbctl rtf X\n\nSimulated s per wall-clock s, > 0; 0 = as fast as possible.\n",
+       runRealTimeFactor},
+      {"spawn", "add a body",
+       "usage: rbctl spawn FILE | - | --yaml TEXT\n\n"
+       "Sends SPAWN with one body in the YAML schema of a `bodies:` entry of the\n"
+       "config file, read from FILE, from standard input (-) or given inline, e.g.\n"
+       "  rbctl spawn --yaml '{name: probe, shape: {type: sphere, radius: 0.1}, mass: 1,\n"
+       "                      position: [0, 0, 2]}'\n",
+       runSpawn},
+      {"remove", "remove a body",
+       "usage: rbctl remove NAME\n\nSends REMOVE and waits for its ack.\n", runRemove},
+  };
+  return kVerbs;
+}
+
+}  // namespace rbsim::rbctl

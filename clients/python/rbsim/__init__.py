@@ -1,0 +1,96 @@
+"""rbsim: Python client for the rbsim rigid-body simulation server (LCM).
+
+This package also serves the lcm-gen message types, which are a build output
+(``build/lcmtypes/python/rbsim/``) and share the package name ``rbsim``: their
+directory is appended to this package's ``__path__`` so that
+``rbsim.world_state_t``, ``rbsim.wrench_t`` ... are importable next to the
+hand-written modules. As in lcm-gen's own ``__init__.py``, the package
+attribute ``rbsim.<type>`` is the message class (the generated code relies on
+that: it calls ``rbsim.body_state_t._decode_one``).
+
+The generated directory is looked up, in order, from
+  1. ``$RBSIM_LCMTYPES_PYTHON_DIR`` (a directory holding the generated ``rbsim/``),
+  2. ``$RBSIM_BUILD_DIR/lcmtypes/python``,
+  3. ``<repository>/build/lcmtypes/python``.
+
+Hand-written modules:
+  ``rbsim.lcm_ctypes``  ctypes wrapper over liblcm.so.1 (transport, event logs)
+  ``rbsim.client``      :class:`Client`: state, status, world, wrenches, commands, acks
+  ``rbsim.log``         :func:`load_log`: LCM logs as numpy arrays
+  ``rbsim.cli``         the ``python3 -m rbsim`` command line
+"""
+
+import importlib as _importlib
+import os as _os
+
+__version__ = "0.1.0"
+
+# The lcm-gen message types of package rbsim (lcmtypes/rbsim/*.lcm).
+_GENERATED_TYPES = (
+    "ack_t",
+    "body_description_t",
+    "body_state_t",
+    "command_t",
+    "contact_t",
+    "contacts_t",
+    "status_t",
+    "world_state_t",
+    "world_t",
+    "wrench_t",
+)
+
+
+def _generated_dir_candidates():
+    """The directories (each holding a generated ``rbsim/``) to look in, in order."""
+    explicit = _os.environ.get("RBSIM_LCMTYPES_PYTHON_DIR")
+    if explicit:
+        return [explicit]
+    build = _os.environ.get("RBSIM_BUILD_DIR")
+    if build:
+        return [_os.path.join(build, "lcmtypes", "python")]
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    repo = _os.path.dirname(_os.path.dirname(_os.path.dirname(here)))
+    return [_os.path.join(repo, "build", "lcmtypes", "python")]
+
+
+def _find_generated_package():
+    """Returns the generated ``rbsim`` directory, or raises ImportError."""
+    candidates = _generated_dir_candidates()
+    for base in candidates:
+        package = _os.path.join(base, "rbsim")
+        if _os.path.isfile(_os.path.join(package, "world_state_t.py")):
+            return package
+    raise ImportError(
+        "rbsim: the generated LCM Python types were not found in "
+        + ", ".join(repr(_os.path.join(c, "rbsim")) for c in candidates)
+        + ". Build the project first: cmake --build build "
+        "(or set RBSIM_BUILD_DIR / RBSIM_LCMTYPES_PYTHON_DIR)"
+    )
+
+
+_generated = _find_generated_package()
+if _generated not in __path__:
+    __path__.append(_generated)
+
+# Import every type module first, then bind the classes: importing a module
+# binds `rbsim.<name>` to the module, the generated code needs the class.
+_modules = {name: _importlib.import_module(__name__ + "." + name) for name in _GENERATED_TYPES}
+for _name, _module in _modules.items():
+    globals()[_name] = getattr(_module, _name)
+del _name, _module, _modules
+
+
+def __getattr__(name):
+    """Lazy access to the main entry points: rbsim.Client, rbsim.load_log."""
+    if name == "Client":
+        from .client import Client
+
+        return Client
+    if name == "load_log":
+        from .log import load_log
+
+        return load_log
+    raise AttributeError("module 'rbsim' has no attribute %r" % name)
+
+
+__all__ = list(_GENERATED_TYPES) + ["Client", "load_log"]

@@ -1,0 +1,343 @@
+"""``python3 -m rbsim``: command line for an rbsim server.
+
+    python3 -m rbsim state [--body NAME]        print the next complete state
+    python3 -m rbsim status                     print the next heartbeat
+    python3 -m rbsim bodies                     print the world description
+    python3 -m rbsim wrench BODY --force FX FY FZ [--torque ...] [--point ...]
+                            [--frame world|body] [--mode one_step|duration|persistent|clear]
+                            [--duration S] [--at-step K]
+    python3 -m rbsim pause | resume | reset
+    python3 -m rbsim step [N] [--sync]
+    python3 -m rbsim rtf FACTOR
+    python3 -m rbsim spawn FILE_OR_YAML
+    python3 -m rbsim remove NAME
+    python3 -m rbsim plot LOG -o OUT.png [--bodies NAME ...]
+
+Global options (before or after the verb): --url, --prefix, --timeout,
+--client-id. Exit status: 0 done/accepted, 1 rejected by the server (or
+nothing to plot), 2 usage error, 3 timeout (no server answering), 4 other
+errors (e.g. LCM could not be opened).
+"""
+
+import argparse
+import json
+import os
+import sys
+
+EXIT_OK, EXIT_REJECTED, EXIT_USAGE, EXIT_TIMEOUT, EXIT_ERROR = 0, 1, 2, 3, 4
+
+
+class CliError(Exception):
+    """A failure to report as one line on stderr, with an exit status."""
+
+    def __init__(self, message, status):
+        super().__init__(message)
+        self.status = status
+
+
+def _vec(values):
+    return "[" + ", ".join("%.6g" % v for v in values) + "]"
+
+
+def _client(args):
+    from .client import Client
+
+    return Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
+
+
+def _check(ack, what):
+    """Prints an accepted ack's summary or raises CliError for a rejection."""
+    if not ack.accepted:
+        raise CliError("%s rejected: %s" % (what, ack.reason or "no reason given"), EXIT_REJECTED)
+    return ack
+
+
+# -- verbs -----------------------------------------------------------------------------
+
+
+def _state_dict(state, names):
+    return {
+        "step": state.step,
+        "sim_time": state.sim_time,
+        "world_revision": state.world_revision,
+        "bodies": [
+            {
+                "id": b.id,
+                "name": b.name,
+                "position": b.position.tolist(),
+                "orientation": b.orientation.tolist(),
+                "linear_velocity": b.linear_velocity.tolist(),
+                "angular_velocity": b.angular_velocity.tolist(),
+            }
+            for b in state.bodies
+            if not names or b.name in names
+        ],
+    }
+
+
+def cmd_state(args):
+    with _client(args) as sim:
+        state = sim.wait_state(args.timeout)
+    unknown = [n for n in args.body or [] if n not in state]
+    if unknown:
+        raise CliError("no body named %s in the state (bodies: %s)"
+                       % (", ".join(map(repr, unknown)), ", ".join(state.names())), EXIT_REJECTED)
+    if args.json:
+        print(json.dumps(_state_dict(state, args.body)))
+        return
+    print("step %d  sim_time %.6f s  world_revision %d  bodies %d"
+          % (state.step, state.sim_time, state.world_revision, len(state.bodies)))
+    for b in state.bodies:
+        if args.body and b.name not in args.body:
+            continue
+        print("  %-16s id %-4d position %s m  orientation (w,x,y,z) %s  velocity %s m/s  "
+              "angular_velocity %s rad/s"
+              % (b.name, b.id, _vec(b.position), _vec(b.orientation), _vec(b.linear_velocity),
+                 _vec(b.angular_velocity)))
+
+
+def cmd_status(args):
+    with _client(args) as sim:
+        status = sim.wait_status(args.timeout)
+    fields = [
+        ("step", status.step), ("sim_time_s", status.sim_time),
+        ("paused", bool(status.paused)), ("world_revision", status.world_revision),
+        ("dt_s", status.dt), ("target_real_time_factor", status.target_real_time_factor),
+        ("measured_real_time_factor", status.measured_real_time_factor),
+        ("step_time_mean_s", status.step_time_mean), ("step_time_worst_s", status.step_time_worst),
+        ("overruns", status.overruns), ("commands_accepted", status.commands_accepted),
+        ("commands_rejected", status.commands_rejected), ("num_bodies", status.num_bodies),
+        ("num_frozen_bodies", status.num_frozen_bodies),
+        ("num_active_wrenches", status.num_active_wrenches), ("num_contacts", status.num_contacts),
+    ]
+    if args.json:
+        print(json.dumps(dict(fields)))
+        return
+    for name, value in fields:
+        print("%-26s %s" % (name, value))
+
+
+def cmd_bodies(args):
+    with _client(args) as sim:
+        sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
+        world = sim.request_world(args.timeout)
+    if args.json:
+        print(json.dumps({
+            "world_revision": world.world_revision, "dt": world.dt,
+            "gravity": world.gravity.tolist(), "integrator": world.integrator,
+            "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
+                        "mass": b.mass, "inertia": list(b.inertia)} for b in world.bodies],
+        }))
+        return
+    print("world_revision %d  dt %g s  gravity %s m/s^2  integrator %s  bodies %d"
+          % (world.world_revision, world.dt, _vec(world.gravity), world.integrator, len(world.bodies)))
+    for b in world.bodies:
+        print("  %-16s id %-4d %-8s %s mass %.6g kg  inertia %s kg*m^2"
+              % (b.name, b.id, b.shape_type, "static" if b.is_static else "free  ", b.mass,
+                 _vec(b.inertia)))
+
+
+def cmd_wrench(args):
+    with _client(args) as sim:
+        ack = sim.apply_wrench(
+            args.body, args.force, torque=args.torque, point=args.point, frame=args.frame,
+            mode=args.mode, duration=args.duration, apply_at_step=args.at_step, wait=True,
+            timeout=args.timeout,
+        )
+    _check(ack, "wrench on %r" % args.body)
+    print("wrench seq %d accepted: %s from step %d" % (ack.seq, args.mode, ack.effective_step))
+
+
+def _simple_command(name):
+    def run(args):
+        with _client(args) as sim:
+            ack = getattr(sim, name)(timeout=args.timeout)
+        _check(ack, name)
+        print("%s accepted (effective from step %d)" % (name, ack.effective_step))
+
+    run.__name__ = "cmd_" + name
+    return run
+
+
+def cmd_step(args):
+    with _client(args) as sim:
+        ack = sim.step(args.n, sync=args.sync, timeout=args.timeout)
+        _check(ack, "step")
+        last = ack.effective_step + args.n - 1
+        print("step accepted: steps %d..%d" % (ack.effective_step, last))
+        if args.sync:
+            state = sim.state
+            print("now at step %d, sim_time %.6f s" % (state.step, state.sim_time))
+
+
+def cmd_rtf(args):
+    with _client(args) as sim:
+        ack = sim.set_real_time_factor(args.factor, timeout=args.timeout)
+    _check(ack, "set_real_time_factor")
+    print("real-time factor %g accepted" % args.factor)
+
+
+def cmd_spawn(args):
+    source = args.body
+    if source == "-":
+        text = sys.stdin.read()
+    elif os.path.isfile(source):
+        with open(source, encoding="utf-8") as f:
+            text = f.read()
+    else:
+        text = source
+    with _client(args) as sim:
+        ack = sim.spawn(text, timeout=args.timeout)
+    _check(ack, "spawn")
+    print("spawn accepted (in the world from step %d)" % ack.effective_step)
+
+
+def cmd_remove(args):
+    with _client(args) as sim:
+        ack = sim.remove(args.name, timeout=args.timeout)
+    _check(ack, "remove %r" % args.name)
+    print("remove %r accepted" % args.name)
+
+
+def cmd_plot(args):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .log import load_log
+
+    try:
+        log = load_log(args.log, prefix=args.prefix)
+    except OSError as exc:
+        raise CliError(str(exc), EXIT_ERROR)
+    states = log.states
+    names = args.bodies or states.names
+    unknown = [n for n in names if n not in states]
+    if unknown:
+        raise CliError("no body named %s in %s (bodies: %s)" % (
+            ", ".join(map(repr, unknown)), args.log, ", ".join(states.names) or "none"), EXIT_REJECTED)
+    if len(states) == 0 or not names:
+        raise CliError("no %sSTATE messages with bodies in %s" % (args.prefix, args.log), EXIT_REJECTED)
+    figure, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7))
+    for axis, label in zip(axes, "xyz"):
+        for name in names:
+            axis.plot(states.sim_time, states[name].position[:, "xyz".index(label)], label=name)
+        axis.set_ylabel("%s [m]" % label)
+        axis.grid(True, alpha=0.3)
+    axes[-1].set_xlabel("simulated time [s]")
+    axes[0].legend(loc="best", fontsize="small")
+    axes[0].set_title("centre-of-mass position (world frame): %s" % os.path.basename(args.log))
+    figure.tight_layout()
+    figure.savefig(args.output, dpi=args.dpi)
+    plt.close(figure)
+    print("wrote %s (%d states, %d bodies%s)" % (
+        args.output, len(states), len(names),
+        ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
+
+
+# -- parser ------------------------------------------------------------------------------
+
+
+def _global_options(parser, suppress):
+    """--url, --prefix, --timeout, --client-id; on sub-parsers they default to
+    SUPPRESS so that a value given before the verb survives."""
+
+    def default(value):
+        return argparse.SUPPRESS if suppress else value
+
+    parser.add_argument("--url", default=default(None),
+                        help="LCM URL (default: $LCM_DEFAULT_URL, else "
+                             "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152)")
+    parser.add_argument("--prefix", default=default("RBSIM_"),
+                        help="channel prefix (default RBSIM_)")
+    parser.add_argument("--timeout", type=float, default=default(2.0),
+                        help="seconds to wait for the server's answer (default 2)")
+    parser.add_argument("--client-id", default=default(None),
+                        help="client id echoed in acks (default py-<host>-<pid>)")
+
+
+def build_parser():
+    parser = argparse.ArgumentParser(
+        prog="python3 -m rbsim",
+        description="Command line for an rbsim server over LCM (SI units; world frame "
+                    "right-handed, z up; quaternions w, x, y, z).",
+        epilog="exit status: 0 ok, 1 rejected, 2 usage, 3 timeout, 4 other error",
+    )
+    _global_options(parser, suppress=False)
+    verbs = parser.add_subparsers(dest="verb", metavar="VERB")
+    verbs.required = True
+
+    def verb(name, function, help_text):
+        sub = verbs.add_parser(name, help=help_text, description=help_text)
+        _global_options(sub, suppress=True)
+        sub.set_defaults(function=function)
+        return sub
+
+    sub = verb("state", cmd_state, "print the next complete world state")
+    sub.add_argument("--body", action="append", metavar="NAME", help="only this body (repeatable)")
+    sub.add_argument("--json", action="store_true", help="print JSON")
+
+    sub = verb("status", cmd_status, "print the next status heartbeat")
+    sub.add_argument("--json", action="store_true", help="print JSON")
+
+    sub = verb("bodies", cmd_bodies, "print the world description (asks the server to publish it)")
+    sub.add_argument("--json", action="store_true", help="print JSON")
+
+    sub = verb("wrench", cmd_wrench, "apply a force and torque to a body")
+    sub.add_argument("body", help="body name ('' with --mode clear: every body)")
+    sub.add_argument("--force", nargs=3, type=float, default=[0.0, 0.0, 0.0],
+                     metavar=("FX", "FY", "FZ"), help="N, in --frame (default 0 0 0)")
+    sub.add_argument("--torque", nargs=3, type=float, default=[0.0, 0.0, 0.0],
+                     metavar=("TX", "TY", "TZ"), help="N*m, pure couple, in --frame (default 0 0 0)")
+    sub.add_argument("--point", nargs=3, type=float, default=None, metavar=("PX", "PY", "PZ"),
+                     help="m, where the force acts, in --frame (default: the centre of mass)")
+    sub.add_argument("--frame", choices=["world", "body"], default="world",
+                     help="frame of force, torque and point (default world)")
+    sub.add_argument("--mode", choices=["one_step", "duration", "persistent", "clear"],
+                     default="one_step", help="how long it acts (default one_step)")
+    sub.add_argument("--duration", type=float, default=0.0,
+                     help="s of simulated time, for --mode duration")
+    sub.add_argument("--at-step", type=int, default=-1, metavar="K",
+                     help="the step during which it first acts (default -1: the next)")
+
+    for name, help_text in (("pause", "stop stepping"), ("resume", "step again"),
+                            ("reset", "return to the initial world (step 0)")):
+        verb(name, _simple_command(name), help_text)
+
+    sub = verb("step", cmd_step, "take N steps while paused (send pause first)")
+    sub.add_argument("n", type=int, nargs="?", default=1, help="number of steps (default 1)")
+    sub.add_argument("--sync", action="store_true", help="wait for the state after the last step")
+
+    sub = verb("rtf", cmd_rtf, "set the real-time factor")
+    sub.add_argument("factor", type=float, help="simulated s per wall s; 0 = as fast as possible")
+
+    sub = verb("spawn", cmd_spawn, "add a body described in YAML (a bodies: entry of a world file)")
+    sub.add_argument("body", metavar="FILE_OR_YAML",
+                     help="a YAML file, '-' for stdin, or the YAML text itself")
+
+    sub = verb("remove", cmd_remove, "remove a body")
+    sub.add_argument("name", help="body name")
+
+    sub = verb("plot", cmd_plot, "plot centre-of-mass positions (x, y, z vs simulated time) from an LCM log")
+    sub.add_argument("log", help="LCM log (lcm-logger or rbserver --record)")
+    sub.add_argument("-o", "--output", required=True, help="output image (PNG)")
+    sub.add_argument("--bodies", nargs="+", metavar="NAME", help="bodies to plot (default: all)")
+    sub.add_argument("--dpi", type=int, default=100, help="image resolution (default 100)")
+    return parser
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
+    try:
+        args.function(args)
+    except CliError as exc:
+        print("rbsim %s: %s" % (args.verb, exc), file=sys.stderr)
+        return exc.status
+    except TimeoutError as exc:
+        print("rbsim %s: timeout: %s" % (args.verb, exc), file=sys.stderr)
+        return EXIT_TIMEOUT
+    except (OSError, RuntimeError, ValueError) as exc:
+        print("rbsim %s: error: %s" % (args.verb, exc), file=sys.stderr)
+        return EXIT_ERROR
+    return EXIT_OK

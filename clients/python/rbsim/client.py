@@ -1,0 +1,767 @@
+"""The rbsim Python client: follow the simulation and push on it over LCM.
+
+    from rbsim.client import Client
+    with Client() as sim:
+        state = sim.wait_state()                     # the next complete state
+        print(state.step, state["ball"].position)    # m, world frame
+        sim.apply_wrench("ball", force=(0, 0, 5), mode="duration", duration=0.5)
+        sim.pause(); sim.step(10, sync=True); sim.resume()
+
+Channels are ``prefix + STATE, STATUS, WORLD, ACK`` (received) and
+``prefix + WRENCH, COMMAND`` (sent); see lcmtypes/rbsim/*.lcm for the fields.
+
+Units and frames (as on the wire): SI units (m, kg, s, rad, N, N*m); the world
+frame is right-handed with z up; positions and velocities are those of the
+centre of mass, velocities in the world frame; quaternions are (w, x, y, z),
+rotating body-frame vectors into the world frame. The body frame has its
+origin at the centre of mass and its axes along the principal axes of inertia.
+
+Threading: the client runs one background thread that receives messages;
+state callbacks run on it. Every public method may be called from any other
+thread. Waiting methods raise :class:`TimeoutError` when nothing suitable
+arrives within their ``timeout`` (s; None = the client's ``timeout``).
+
+Acknowledgements: the server answers every wrench and command with one
+``ack_t`` echoing the client id and sequence number. ``ack.effective_step`` is
+the step during which the request takes effect; step k is the step taken from
+the state whose ``step`` is k-1, so the state with ``step == k`` is the first
+one that shows it.
+"""
+
+import itertools
+import os
+import re
+import socket
+import threading
+import time
+from collections import deque
+
+import numpy as np
+
+from . import ack_t, command_t, status_t, world_state_t, world_t, wrench_t
+from .lcm_ctypes import Lcm
+
+__all__ = [
+    "Client",
+    "Rejected",
+    "BodyState",
+    "WorldState",
+    "WorldDescription",
+    "PageAssembler",
+    "DEFAULT_URL",
+    "default_url",
+    "FRAMES",
+    "MODES",
+    "ACK_KINDS",
+]
+
+#: The server's default bus with a 2 MiB kernel receive buffer, so that bursts
+#: of states (e.g. after ``step(n)``) are not dropped by the kernel.
+DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
+
+#: wrench_t.frame by name.
+FRAMES = {"world": wrench_t.FRAME_WORLD, "body": wrench_t.FRAME_BODY}
+#: wrench_t.mode by name.
+MODES = {
+    "one_step": wrench_t.MODE_ONE_STEP,
+    "duration": wrench_t.MODE_DURATION,
+    "persistent": wrench_t.MODE_PERSISTENT,
+    "clear": wrench_t.MODE_CLEAR,
+}
+#: ack_t.kind by name.
+ACK_KINDS = {"wrench": ack_t.KIND_WRENCH, "command": ack_t.KIND_COMMAND}
+#: command_t.command by name (for messages).
+COMMAND_NAMES = {
+    command_t.PAUSE: "pause",
+    command_t.RESUME: "resume",
+    command_t.STEP: "step",
+    command_t.RESET: "reset",
+    command_t.SET_REAL_TIME_FACTOR: "set_real_time_factor",
+    command_t.SPAWN: "spawn",
+    command_t.REMOVE: "remove",
+    command_t.PUBLISH_WORLD: "publish_world",
+    command_t.SAVE_CHECKPOINT: "save_checkpoint",
+}
+
+_PREFIX_PATTERN = re.compile(r"^[A-Za-z0-9_]{0,40}$")
+
+
+def default_url():
+    """``$LCM_DEFAULT_URL`` if set and not empty, else :data:`DEFAULT_URL`."""
+    return os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
+
+
+def _wall_utime():
+    """Wall-clock time in microseconds since the Unix epoch (the LCM convention)."""
+    return int(time.time() * 1e6)
+
+
+def _vector(values, length, what):
+    """``values`` as a tuple of ``length`` floats (NaN and inf pass: the server judges)."""
+    try:
+        out = tuple(float(v) for v in values)
+    except TypeError:
+        raise TypeError("%s must be a sequence of %d numbers, got %r" % (what, length, values))
+    if len(out) != length:
+        raise ValueError("%s must have %d components, got %d" % (what, length, len(out)))
+    return out
+
+
+def quaternion_to_matrix(q):
+    """Rotation matrix (3x3 numpy array) of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = (float(v) for v in q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+class Rejected(RuntimeError):
+    """The server rejected a wrench or command; ``.ack`` is its ``ack_t``."""
+
+    def __init__(self, ack, what=None):
+        self.ack = ack
+        super().__init__(
+            "%s (seq %d) rejected: %s" % (what or "request", ack.seq, ack.reason or "no reason given")
+        )
+
+
+class BodyState:
+    """The state of one body after a step (from ``body_state_t``).
+
+    Attributes: ``id`` (int, never reused), ``name``, ``position`` (m, world,
+    centre of mass; numpy (3,)), ``orientation`` (unit quaternion w, x, y, z,
+    body -> world; (4,)), ``linear_velocity`` (m/s, world; (3,)),
+    ``angular_velocity`` (rad/s, world; (3,)).
+    """
+
+    __slots__ = ("id", "name", "position", "orientation", "linear_velocity", "angular_velocity")
+
+    def __init__(self, message):
+        self.id = message.id
+        self.name = message.name
+        self.position = np.array(message.position, dtype=float)
+        self.orientation = np.array(message.orientation, dtype=float)
+        self.linear_velocity = np.array(message.linear_velocity, dtype=float)
+        self.angular_velocity = np.array(message.angular_velocity, dtype=float)
+
+    def rotation(self):
+        """Rotation matrix R (body -> world) of :attr:`orientation`."""
+        return quaternion_to_matrix(self.orientation)
+
+    def __repr__(self):
+        return "BodyState(%r, id=%d, position=%s)" % (self.name, self.id, self.position.tolist())
+
+
+class WorldState:
+    """One step's complete state, reassembled from its pages.
+
+    Attributes: ``utime`` (us, wall clock at publication), ``step`` (steps
+    taken since load/reset), ``sim_time`` (s), ``world_revision``, ``bodies``
+    (list of :class:`BodyState`, ascending id), ``recv_utime`` (us, when the
+    last page arrived). ``state["name"]`` gives a body by name.
+    """
+
+    __slots__ = ("utime", "step", "sim_time", "world_revision", "bodies", "by_name", "recv_utime")
+
+    def __init__(self, pages, recv_utime=0):
+        first = pages[0]
+        self.utime = first.utime
+        self.step = first.step
+        self.sim_time = first.sim_time
+        self.world_revision = first.world_revision
+        self.bodies = [BodyState(b) for page in pages for b in page.bodies]
+        self.by_name = {b.name: b for b in self.bodies}
+        self.recv_utime = recv_utime
+
+    def __getitem__(self, name):
+        return self.by_name[name]
+
+    def __contains__(self, name):
+        return name in self.by_name
+
+    def names(self):
+        return [b.name for b in self.bodies]
+
+    def __repr__(self):
+        return "WorldState(step=%d, sim_time=%g, revision=%d, bodies=%r)" % (
+            self.step,
+            self.sim_time,
+            self.world_revision,
+            self.names(),
+        )
+
+
+class WorldDescription:
+    """The world's description (``world_t`` pages merged).
+
+    Attributes: ``utime``, ``step``, ``sim_time``, ``world_revision``, ``dt``
+    (s), ``gravity`` (m/s^2, world; numpy (3,)), ``integrator``,
+    ``linear_damping``/``angular_damping`` (1/s), ``bodies`` (list of
+    ``body_description_t``: mass in kg, principal ``inertia`` in kg*m^2 about
+    the body axes, shape fields in m). ``world["name"]`` gives a body.
+    """
+
+    __slots__ = (
+        "utime",
+        "step",
+        "sim_time",
+        "world_revision",
+        "dt",
+        "gravity",
+        "integrator",
+        "linear_damping",
+        "angular_damping",
+        "bodies",
+        "by_name",
+    )
+
+    def __init__(self, pages):
+        first = pages[0]
+        self.utime = first.utime
+        self.step = first.step
+        self.sim_time = first.sim_time
+        self.world_revision = first.world_revision
+        self.dt = first.dt
+        self.gravity = np.array(first.gravity, dtype=float)
+        self.integrator = first.integrator
+        self.linear_damping = first.linear_damping
+        self.angular_damping = first.angular_damping
+        self.bodies = [b for page in pages for b in page.bodies]
+        self.by_name = {b.name: b for b in self.bodies}
+
+    def __getitem__(self, name):
+        return self.by_name[name]
+
+    def __contains__(self, name):
+        return name in self.by_name
+
+    def inertia_world(self, name, orientation):
+        """Inertia tensor (kg*m^2, 3x3, world frame, about the centre of mass)
+        of body ``name`` at ``orientation`` (w, x, y, z): R diag(I) R^T."""
+        rotation = quaternion_to_matrix(orientation)
+        return rotation @ np.diag(self.by_name[name].inertia) @ rotation.T
+
+    def __repr__(self):
+        return "WorldDescription(revision=%d, dt=%g, bodies=%r)" % (
+            self.world_revision,
+            self.dt,
+            [b.name for b in self.bodies],
+        )
+
+
+class PageAssembler:
+    """Collects the pages of paged messages (``world_state_t``, ``world_t``).
+
+    Pages belong together when they share ``(utime, step, world_revision)``
+    (the server gives all pages of one publication the same values); a group
+    is complete when pages ``0 .. num_pages-1`` are all there and their body
+    slices tile ``0 .. total_bodies-1``. Incomplete groups are dropped once a
+    newer group completes or when more than ``max_pending`` are open.
+    """
+
+    def __init__(self, max_pending=16):
+        self.max_pending = max_pending
+        self._pending = {}  # key -> {page: message}, in insertion order
+        self.dropped = 0  # incomplete groups given up
+        self.invalid = 0  # pages or groups with inconsistent paging fields
+
+    def add(self, message):
+        """Adds one page; returns the list of pages (by page index) when complete."""
+        if message.num_pages < 1 or not 0 <= message.page < message.num_pages:
+            self.invalid += 1
+            return None
+        if message.num_pages == 1:
+            return [message] if self._consistent([message]) else None
+        key = (message.utime, message.step, message.world_revision)
+        group = self._pending.setdefault(key, {})
+        group[message.page] = message
+        if len(group) < message.num_pages:
+            while len(self._pending) > self.max_pending:
+                self._pending.pop(next(iter(self._pending)))
+                self.dropped += 1
+            return None
+        del self._pending[key]
+        # Anything still open from before this group is not coming any more
+        # (state is published in order); keep only groups that started later.
+        for older in [k for k in self._pending if k[0] <= key[0]]:
+            del self._pending[older]
+            self.dropped += 1
+        pages = [group[i] for i in range(message.num_pages)]
+        return pages if self._consistent(pages) else None
+
+    def _consistent(self, pages):
+        total = pages[0].total_bodies
+        expected = 0
+        for page in pages:
+            if (
+                page.num_pages != pages[0].num_pages
+                or page.total_bodies != total
+                or page.first_body_index != expected
+                or page.num_bodies != len(page.bodies)
+            ):
+                self.invalid += 1
+                return False
+            expected += page.num_bodies
+        if expected != total:
+            self.invalid += 1
+            return False
+        return True
+
+
+class Client:
+    """A connection to one rbsim server (one channel prefix on one LCM bus).
+
+    ``url``: LCM URL; None -> ``$LCM_DEFAULT_URL`` or :data:`DEFAULT_URL`.
+    ``prefix``: channel prefix (letters, digits, '_'), default ``RBSIM_``.
+    ``client_id``: echoed in acks, default ``py-<hostname>-<pid>``; wrench
+    replacement and CLEAR work per client id.
+    ``history``: how many complete states to keep (see :meth:`states`).
+    ``timeout``: s, the default of every ``timeout`` argument (None there).
+    """
+
+    def __init__(self, url=None, prefix="RBSIM_", client_id=None, history=2000, timeout=2.0):
+        if not _PREFIX_PATTERN.match(prefix):
+            raise ValueError("channel prefix %r: use at most 40 letters, digits and '_'" % prefix)
+        self.url = url if url is not None else default_url()
+        self.prefix = prefix
+        self.client_id = client_id or "py-%s-%d" % (socket.gethostname(), os.getpid())
+        self.timeout = float(timeout)
+        self._cond = threading.Condition()
+        self._seq = itertools.count(1)
+        self._seq_lock = threading.Lock()
+
+        self._state = None
+        self._state_count = 0
+        self._history = deque(maxlen=max(1, int(history)))
+        self._state_callbacks = []
+        self._status = None
+        self._status_count = 0
+        self._world = None
+        self._world_count = 0
+        self._acks = {}  # (kind, seq) -> ack_t, this client's
+        self._ack_order = deque()
+        self._all_acks = deque(maxlen=1000)  # every ack seen (any client)
+        self._ack_count = 0
+        self.decode_errors = 0
+        self._state_pages = PageAssembler()
+        self._world_pages = PageAssembler()
+
+        self.lcm = Lcm(self.url)
+        try:
+            for suffix, handler in (
+                ("STATE", self._on_state),
+                ("STATUS", self._on_status),
+                ("WORLD", self._on_world),
+                ("ACK", self._on_ack),
+            ):
+                self.lcm.subscribe(self.channel(suffix), handler, queue_capacity=10000)
+            self.lcm.start()
+        except BaseException:
+            self.lcm.close()
+            raise
+
+    def channel(self, suffix):
+        """The full channel name, e.g. ``channel("STATE") == "RBSIM_STATE"``."""
+        return self.prefix + suffix
+
+    def close(self):
+        """Stops receiving and releases the LCM instance."""
+        self.lcm.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # -- receiving (on the LCM thread) ----------------------------------------------------
+
+    def _decode(self, message_type, data):
+        try:
+            return message_type.decode(data)
+        except Exception:
+            with self._cond:
+                self.decode_errors += 1
+            return None
+
+    def _on_state(self, _channel, data, recv_utime):
+        message = self._decode(world_state_t, data)
+        if message is None:
+            return
+        pages = self._state_pages.add(message)
+        if pages is None:
+            return
+        state = WorldState(pages, recv_utime)
+        with self._cond:
+            self._state = state
+            self._state_count += 1
+            self._history.append(state)
+            callbacks = list(self._state_callbacks)
+            self._cond.notify_all()
+        for callback in callbacks:
+            callback(state)
+
+    def _on_status(self, _channel, data, _recv_utime):
+        message = self._decode(status_t, data)
+        if message is None:
+            return
+        with self._cond:
+            self._status = message
+            self._status_count += 1
+            self._cond.notify_all()
+
+    def _on_world(self, _channel, data, _recv_utime):
+        message = self._decode(world_t, data)
+        if message is None:
+            return
+        pages = self._world_pages.add(message)
+        if pages is None:
+            return
+        world = WorldDescription(pages)
+        with self._cond:
+            self._world = world
+            self._world_count += 1
+            self._cond.notify_all()
+
+    def _on_ack(self, _channel, data, _recv_utime):
+        message = self._decode(ack_t, data)
+        if message is None:
+            return
+        with self._cond:
+            self._all_acks.append(message)
+            self._ack_count += 1
+            if message.client == self.client_id:
+                key = (message.kind, message.seq)
+                self._acks[key] = message
+                self._ack_order.append(key)
+                while len(self._ack_order) > 10000:
+                    self._acks.pop(self._ack_order.popleft(), None)
+            self._cond.notify_all()
+
+    def _timeout(self, timeout):
+        return self.timeout if timeout is None else float(timeout)
+
+    def _wait(self, ready, timeout, what):
+        """Waits until ``ready()`` returns non-None (called under the lock)."""
+        timeout = self._timeout(timeout)
+        deadline = time.monotonic() + timeout
+        with self._cond:
+            while True:
+                result = ready()
+                if result is not None:
+                    return result
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise TimeoutError("no %s within %.3g s (is rbserver running on %s with prefix %s?)"
+                                       % (what, timeout, self.url, self.prefix))
+                self._cond.wait(remaining)
+
+    # -- state -----------------------------------------------------------------------
+
+    @property
+    def state(self):
+        """The latest complete :class:`WorldState`, or None before the first."""
+        return self._state
+
+    def states(self):
+        """The recent complete states, oldest first (a copy; at most ``history``)."""
+        with self._cond:
+            return list(self._history)
+
+    def clear_history(self):
+        """Forgets the kept states (the latest stays available as :attr:`state`)."""
+        with self._cond:
+            self._history.clear()
+
+    def wait_state(self, timeout=None, predicate=None, new=True):
+        """The next complete state (``new=True``), or the latest if ``new`` is
+        False and one is there; with ``predicate``, the first of those states
+        (in arrival order) for which ``predicate(state)`` is true. States that
+        have already left the history (``history`` newest) are not examined."""
+        with self._cond:
+            start = self._state_count if new else self._state_count - (self._state is not None)
+
+        examined = [start]  # state count up to which states were looked at
+
+        def ready():
+            unseen = min(self._state_count - examined[0], len(self._history))
+            examined[0] = self._state_count
+            if unseen <= 0:
+                return None
+            if predicate is None:
+                return self._state
+            for i in range(len(self._history) - unseen, len(self._history)):
+                if predicate(self._history[i]):
+                    return self._history[i]
+            return None
+
+        return self._wait(ready, timeout, "state")
+
+    def state_at(self, step, revision=None):
+        """The most recent kept state with this ``step`` (and ``world_revision``), or None."""
+        with self._cond:
+            for state in reversed(self._history):
+                if state.step == step and (revision is None or state.world_revision == revision):
+                    return state
+        return None
+
+    def wait_for_step(self, step, timeout=None, revision=None):
+        """Waits until a state at or after ``step`` arrived (of ``world_revision``
+        ``revision`` if given) and returns the state of exactly that step if it
+        was received, else the latest."""
+
+        def ready():
+            state = self._state
+            if state is None or state.step < step:
+                return None
+            if revision is not None and state.world_revision != revision:
+                return None
+            return state
+
+        latest = self._wait(ready, timeout, "state of step %d" % step)
+        return self.state_at(step, latest.world_revision) or latest
+
+    def on_state(self, callback):
+        """Calls ``callback(state)`` (on the receiving thread) for every complete
+        state; returns ``callback`` (so it can decorate). Keep it short."""
+        with self._cond:
+            self._state_callbacks.append(callback)
+        return callback
+
+    def remove_state_callback(self, callback):
+        with self._cond:
+            self._state_callbacks.remove(callback)
+
+    # -- status and world ------------------------------------------------------------
+
+    @property
+    def status(self):
+        """The latest ``status_t`` heartbeat, or None."""
+        return self._status
+
+    def wait_status(self, timeout=None, new=True, predicate=None):
+        """The next ``status_t`` (or the latest if ``new`` is False and one is there)."""
+        with self._cond:
+            start = self._status_count if new else self._status_count - (self._status is not None)
+
+        def ready():
+            if self._status_count > start and (predicate is None or predicate(self._status)):
+                return self._status
+            return None
+
+        return self._wait(ready, timeout, "status")
+
+    @property
+    def world(self):
+        """The latest complete :class:`WorldDescription`, or None."""
+        return self._world
+
+    def wait_world(self, timeout=None, new=False):
+        """The next world description (or the latest if ``new`` is False and one is there)."""
+        with self._cond:
+            start = self._world_count if new else self._world_count - (self._world is not None)
+        return self._wait(
+            lambda: self._world if self._world_count > start else None, timeout, "world description"
+        )
+
+    def request_world(self, timeout=None):
+        """Asks the server to publish its world description and returns it."""
+        with self._cond:
+            start = self._world_count
+        self.publish_world(timeout=timeout, check=True)
+        return self._wait(
+            lambda: self._world if self._world_count > start else None, timeout, "world description"
+        )
+
+    # -- acks -------------------------------------------------------------------------
+
+    def wait_ack(self, seq, kind="command", timeout=None):
+        """The ``ack_t`` answering this client's request ``seq`` of ``kind``
+        ("wrench" or "command", or ack_t.KIND_*). Raises TimeoutError."""
+        kind = ACK_KINDS.get(kind, kind)
+        key = (kind, int(seq))
+        return self._wait(lambda: self._acks.get(key), timeout, "ack for seq %d" % seq)
+
+    def acks(self):
+        """Every ack seen recently, any client (``ack_t``, oldest first)."""
+        with self._cond:
+            return list(self._all_acks)
+
+    @property
+    def ack_count(self):
+        """How many acks (any client) were received so far: a marker for
+        :meth:`wait_any_ack`'s ``since``."""
+        return self._ack_count
+
+    def wait_any_ack(self, predicate, timeout=None, since=None):
+        """The first ack (of any client) satisfying ``predicate(ack)`` among the
+        acks received after the first ``since`` (an :attr:`ack_count` taken
+        before sending the request, so that a quick answer is not missed;
+        None = from now on). Only the last 1000 acks are kept."""
+        with self._cond:
+            skip = self._ack_count if since is None else int(since)
+
+        def ready():
+            first_kept = self._ack_count - len(self._all_acks)
+            for i, ack in enumerate(self._all_acks):
+                if first_kept + i >= skip and predicate(ack):
+                    return ack
+            return None
+
+        return self._wait(ready, timeout, "matching ack")
+
+    def _next_seq(self):
+        with self._seq_lock:
+            return next(self._seq)
+
+    def _finish(self, seq, kind, wait, timeout, check, what):
+        if not wait:
+            return seq
+        ack = self.wait_ack(seq, kind, timeout)
+        if check and not ack.accepted:
+            raise Rejected(ack, what)
+        return ack
+
+    # -- wrenches ---------------------------------------------------------------------
+
+    def apply_wrench(
+        self,
+        body,
+        force,
+        torque=(0.0, 0.0, 0.0),
+        point=None,
+        frame="world",
+        mode="one_step",
+        duration=0.0,
+        apply_at_step=-1,
+        wait=False,
+        timeout=None,
+        check=False,
+    ):
+        """Sends a ``wrench_t`` on ``prefix + WRENCH``.
+
+        ``force`` (N) and ``torque`` (N*m, a pure couple) are 3-vectors in
+        ``frame``: "world" (fixed in the world while the wrench lasts) or
+        "body" (principal axes, turning with the body). ``point`` (m, in
+        ``frame``) is where the force acts; None means the centre of mass: the
+        body-frame origin, or for the world frame the body's position in the
+        latest received state (waited for if there is none yet), which is
+        exact while the server is paused and lags by the state latency
+        otherwise.
+
+        ``mode``: "one_step" (acts during one step), "duration" (during
+        ``duration`` s of simulated time, rounded to whole steps, >= 1),
+        "persistent" (until cleared; replaces this client's previous
+        persistent wrench on ``body``), "clear" (removes this client's
+        duration and persistent wrenches on ``body``, or on every body if
+        ``body`` is ""). ``apply_at_step``: the step during which it first acts,
+        -1 = the next one.
+
+        Returns the sequence number; with ``wait=True`` waits for and returns
+        the ``ack_t`` instead (``check=True`` raises :class:`Rejected` if it was
+        rejected). Values are not range-checked here: the server judges them.
+        """
+        frame_code = FRAMES.get(frame, frame)
+        mode_code = MODES.get(mode, mode)
+        if frame_code not in FRAMES.values():
+            raise ValueError("frame must be one of %s, not %r" % (sorted(FRAMES), frame))
+        if mode_code not in MODES.values():
+            raise ValueError("mode must be one of %s, not %r" % (sorted(MODES), mode))
+        message = wrench_t()
+        message.body = body
+        message.frame = frame_code
+        message.mode = mode_code
+        if mode_code == wrench_t.MODE_CLEAR:
+            force, torque, point = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        message.force = _vector(force, 3, "force")
+        message.torque = _vector(torque, 3, "torque")
+        if point is None:
+            point = (0.0, 0.0, 0.0)
+            if frame_code == wrench_t.FRAME_WORLD:
+                state = self._state or self.wait_state(timeout)
+                if body in state:
+                    point = state[body].position
+        message.point = _vector(point, 3, "point")
+        message.duration = float(duration)
+        message.apply_at_step = int(apply_at_step)
+        message.client = self.client_id
+        message.seq = self._next_seq()
+        message.utime = _wall_utime()
+        self.lcm.publish(self.channel("WRENCH"), message.encode())
+        return self._finish(message.seq, "wrench", wait, timeout, check, "wrench on %r" % body)
+
+    def clear_wrenches(self, body="", wait=True, timeout=None, check=False):
+        """Removes this client's duration and persistent wrenches on ``body``
+        (every body if ""); returns the ack (or the seq with ``wait=False``)."""
+        return self.apply_wrench(
+            body, (0, 0, 0), mode="clear", wait=wait, timeout=timeout, check=check
+        )
+
+    # -- commands ---------------------------------------------------------------------
+
+    def send_command(self, command, wait=True, timeout=None, check=False, **fields):
+        """Sends a ``command_t`` (``command`` = command_t.PAUSE, ...; other fields
+        by keyword: num_steps, real_time_factor, body, spawn_yaml, path).
+
+        Returns the ``ack_t`` (``wait=True``) or the sequence number;
+        ``check=True`` raises :class:`Rejected` on rejection.
+        """
+        message = command_t()
+        message.command = int(command)
+        for name, value in fields.items():
+            setattr(message, name, value)
+        message.client = self.client_id
+        message.seq = self._next_seq()
+        message.utime = _wall_utime()
+        self.lcm.publish(self.channel("COMMAND"), message.encode())
+        return self._finish(
+            message.seq, "command", wait, timeout, check, COMMAND_NAMES.get(command, "command")
+        )
+
+    def pause(self, **kw):
+        """Stops stepping (state and status keep coming). Keywords as :meth:`send_command`."""
+        return self.send_command(command_t.PAUSE, **kw)
+
+    def resume(self, **kw):
+        """Steps again at the target real-time factor."""
+        return self.send_command(command_t.RESUME, **kw)
+
+    def step(self, n=1, sync=False, wait=True, timeout=None, check=False):
+        """Takes ``n`` steps, then stays paused (the server must be paused).
+
+        The ack's ``effective_step`` is the first of the steps. ``sync=True``
+        also waits until the state after the last step has arrived (allowing
+        ``timeout`` plus 1 ms per step).
+        """
+        ack = self.send_command(command_t.STEP, wait=wait or sync, timeout=timeout, check=check,
+                                num_steps=int(n))
+        if sync and ack.accepted:
+            # No revision filter: a SPAWN just before may not have shown in a
+            # state yet, and a RESET's state precedes this ack, so no older,
+            # higher step can be the latest state here.
+            self.wait_for_step(ack.effective_step + int(n) - 1, self._timeout(timeout) + 1e-3 * n)
+        return ack
+
+    def reset(self, **kw):
+        """Returns to the world loaded at start: step and sim_time restart at 0."""
+        return self.send_command(command_t.RESET, **kw)
+
+    def set_real_time_factor(self, factor, **kw):
+        """Paces at ``factor`` simulated s per wall s; 0 = as fast as possible."""
+        return self.send_command(command_t.SET_REAL_TIME_FACTOR, real_time_factor=float(factor), **kw)
+
+    def spawn(self, yaml_text, **kw):
+        """Adds one body described in YAML like a ``bodies:`` entry of a world file."""
+        return self.send_command(command_t.SPAWN, spawn_yaml=str(yaml_text), **kw)
+
+    def remove(self, name, **kw):
+        """Removes the body called ``name``."""
+        return self.send_command(command_t.REMOVE, body=str(name), **kw)
+
+    def publish_world(self, **kw):
+        """Asks for a ``world_t`` now (see :meth:`request_world` to also wait for it)."""
+        return self.send_command(command_t.PUBLISH_WORLD, **kw)

@@ -1,0 +1,48 @@
+#pragma once
+// The collision geometry of one body, in body space: convex pieces (one for
+// a primitive, several for a compound or a multi-part mesh), or a half-space.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/collision/aabb.h"
+#include "physics/collision/convex_geometry.h"
+#include "physics/common/expected.h"
+#include "physics/geometry/shape.h"
+#include "physics/math/transform.h"
+
+namespace rbsim {
+
+struct ConvexPiece {
+  ConvexGeometry geometry;
+  Transform placement;  // geometry frame -> body frame
+  Aabb bounds;          // in the body frame
+};
+
+struct Collider {
+  std::vector<ConvexPiece> pieces;  // empty for a plane
+  std::optional<PlaneShape> plane;  // a half-space, in the body frame
+  Aabb bounds = Aabb::empty();      // body frame; everything for a plane
+};
+
+// Builds the collider of `shape`, whose frame sits at `shapeToBody` in body
+// space. Meshes become the convex hulls of their connected components
+// (triangles sharing a vertex index or a vertex position), in the order of
+// their first vertex. Errors (bad sizes, a component without volume) name
+// `sourceName` and, for meshes, the file and the component.
+Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBody,
+                                 const std::string& sourceName);
+
+// A convex piece placed in the world: what the narrow phase works on.
+struct PlacedConvex {
+  const ConvexGeometry* geometry = nullptr;
+  Transform pose;  // geometry frame -> world
+
+  Vec3 support(const Vec3& worldDirection) const {
+    return pose.apply(supportPoint(*geometry, pose.inverseRotate(worldDirection)));
+  }
+};
+
+}  // namespace rbsim

@@ -1,0 +1,132 @@
+#include "physics/collision/collision_detector.h"
+
+#include <cstddef>
+#include <utility>
+
+namespace rbsim {
+
+namespace {
+
+constexpr std::size_t at(int index) {
+  return static_cast<std::size_t>(index);
+}
+
+Transform poseOf(const Body& body) {
+  return {body.rotation(), body.position()};
+}
+
+// Swaps the roles of A and B in a manifold: the normal turns round.
+void flip(ContactManifold& manifold) {
+  manifold.normal = -manifold.normal;
+  for (int i = 0; i < manifold.pointCount; ++i) {
+    ContactPoint& point = manifold.points[at(i)];
+    std::swap(point.pointA, point.pointB);
+  }
+}
+
+}  // namespace
+
+CollisionDetector::CollisionDetector(const ContactSettings& settings, double fatMargin)
+    : m_settings(settings), m_broadPhase(fatMargin, settings.margin) {}
+
+void CollisionDetector::detect(const World& world) {
+  // One pass in body order gathers what the broad phase and the pairs need
+  // into a compact array. Each body's collider is looked up only when the
+  // body at that index changes: its description (which the entry keeps
+  // alive, so the address cannot be reused) is immutable.
+  const std::vector<Body>& bodies = world.bodies();
+  m_geometry.resize(bodies.size());
+  m_broadPhaseInputs.clear();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    BodyGeometry& geometry = m_geometry[i];
+    if (geometry.description.get() != &body.description()) {
+      geometry.description = body.sharedDescription();
+      geometry.collider = geometry.description->collider.get();
+      geometry.shape = BroadPhaseShape::of(body);
+    }
+    geometry.pose = poseOf(body);
+    if (geometry.shape.hasGeometry()) {
+      m_broadPhaseInputs.push_back(
+          geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
+    }
+  }
+  m_broadPhase.update(m_broadPhaseInputs);
+  m_contacts.clear();
+  for (const BodyPair& pair : m_broadPhase.pairs()) collidePair(pair.a, pair.b);
+}
+
+void CollisionDetector::collidePair(int indexA, int indexB) {
+  const BodyGeometry& a = m_geometry[at(indexA)];
+  const BodyGeometry& b = m_geometry[at(indexB)];
+  // The broad phase only pairs bodies that have colliders.
+  const Collider& colliderA = *a.collider;
+  const Collider& colliderB = *b.collider;
+  const Transform& poseA = a.pose;
+  const Transform& poseB = b.pose;
+  const double halfMargin = 0.5 * m_settings.margin;
+  // With at most one piece a side, the broad phase has compared these very
+  // boxes already (a collider's bounds are its piece's).
+  const bool checkBoxes = colliderA.pieces.size() > 1 || colliderB.pieces.size() > 1;
+  const auto grownBox = [&](const ConvexPiece& piece, const Transform& pose) {
+    return checkBoxes ? transformedAabb(piece.bounds, pose).fattened(halfMargin)
+                      : Aabb::everything();
+  };
+  const auto reaches = [&](const Aabb& box, const HalfSpace& plane) {
+    return !checkBoxes || lowestAlong(box, plane.normal) <= plane.offset + halfMargin;
+  };
+
+  // Pieces of B placed in the world, with their boxes grown by half the margin.
+  m_placedB.clear();
+  for (const ConvexPiece& piece : colliderB.pieces)
+    m_placedB.push_back(
+        {PlacedConvex{&piece.geometry, poseB * piece.placement}, grownBox(piece, poseB)});
+
+  BodyContact contact;
+  contact.bodyA = indexA;
+  contact.bodyB = indexB;
+  if (colliderA.plane) {
+    const HalfSpace plane = worldHalfSpace(*colliderA.plane, poseA);
+    for (std::size_t j = 0; j < m_placedB.size(); ++j) {
+      if (!reaches(m_placedB[j].box, plane)) continue;
+      contact.pieceA = 0;
+      contact.pieceB = static_cast<int>(j);
+      contact.manifold = {};
+      collidePlaneConvex(plane.normal, plane.offset, m_placedB[j].convex, m_settings,
+                         contact.manifold);
+      if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+    }
+  }
+  for (std::size_t i = 0; i < colliderA.pieces.size(); ++i) {
+    const ConvexPiece& piece = colliderA.pieces[i];
+    const PlacedConvex placedA{&piece.geometry, poseA * piece.placement};
+    const Aabb boxA = grownBox(piece, poseA);
+    contact.pieceA = static_cast<int>(i);
+    if (colliderB.plane) {
+      const HalfSpace plane = worldHalfSpace(*colliderB.plane, poseB);
+      if (reaches(boxA, plane)) {
+        contact.pieceB = 0;
+        contact.manifold = {};
+        // The narrow phase puts the plane first; A is the convex here.
+        collidePlaneConvex(plane.normal, plane.offset, placedA, m_settings, contact.manifold);
+        flip(contact.manifold);
+        if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+      }
+    }
+    for (std::size_t j = 0; j < m_placedB.size(); ++j) {
+      if (!boxA.overlaps(m_placedB[j].box)) continue;
+      contact.pieceB = static_cast<int>(j);
+      contact.manifold = {};
+      collideConvex(placedA, m_placedB[j].convex, m_settings, contact.manifold);
+      if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+    }
+  }
+}
+
+int CollisionDetector::contactPointCount() const {
+  int count = 0;
+  for (const BodyContact& contact : m_contacts) count += contact.manifold.pointCount;
+  return count;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,54 @@
+#pragma once
+// The whole collision pipeline for one world state: broad phase, then the
+// narrow phase on every candidate pair's convex pieces, giving manifolds.
+// Piece pairs are skipped when their boxes (grown by half the contact margin
+// each) do not overlap; manifolds without points are dropped.
+
+#include <memory>
+#include <vector>
+
+#include "physics/collision/body_contact.h"
+#include "physics/collision/broad_phase.h"
+#include "physics/collision/contact_generation.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+class CollisionDetector {
+ public:
+  // fatMargin (m): the broad phase's fat-box margin. The broad phase pairs
+  // bodies within settings.margin of each other.
+  explicit CollisionDetector(const ContactSettings& settings = {}, double fatMargin = 0.05);
+
+  // Finds every contact of the world's current state. Deterministic: the
+  // contacts come sorted by (serial A, serial B, piece A, piece B).
+  void detect(const World& world);
+
+  const std::vector<BodyContact>& contacts() const { return m_contacts; }
+  int contactPointCount() const;
+  const BroadPhase& broadPhase() const { return m_broadPhase; }
+
+ private:
+  struct PlacedPiece {
+    PlacedConvex convex;
+    Aabb box;  // world, grown by half the contact margin
+  };
+
+  struct BodyGeometry {
+    std::shared_ptr<const BodyDescription> description;  // whose collider this is
+    const Collider* collider = nullptr;                  // null: no collision geometry
+    BroadPhaseShape shape;
+    Transform pose;  // body -> world
+  };
+
+  void collidePair(int indexA, int indexB);
+
+  ContactSettings m_settings;
+  BroadPhase m_broadPhase;
+  std::vector<BodyContact> m_contacts;
+  std::vector<BroadPhaseBody> m_broadPhaseInputs;
+  std::vector<BodyGeometry> m_geometry;  // by dense body index, for the current detect()
+  std::vector<PlacedPiece> m_placedB;    // scratch
+};
+
+}  // namespace rbsim

@@ -1,0 +1,35 @@
+#pragma once
+// Narrow phase: the contact manifold between two convex pieces, or a convex
+// piece and a half-space. Dedicated routines where they pay in speed or
+// quality (sphere–sphere, sphere–plane, box–plane, sphere–box, capsule pairs,
+// box–box by separating axes and face clipping, convex–plane, hull–hull by
+// SAT and clipping); general pairs by signed distance plus face clipping so
+// that a face resting on a face gets more than one point.
+
+#include "physics/collision/collider.h"
+#include "physics/collision/contact_manifold.h"
+
+namespace rbsim {
+
+struct ContactSettings {
+  // Points closer than this (m) count as contacts even before they touch,
+  // so that resting contact does not flicker on and off.
+  double margin = 0.005;
+};
+
+// Returns false (and leaves out.pointCount = 0) when the pieces are farther
+// apart than the margin. The normal points from a to b. Swapping a and b
+// flips the normal and keeps the depths, except where two faces are within
+// the reference-face hysteresis of each other (about 2% of the depth plus
+// 0.5 mm): there the first piece's face is preferred, so that the manifold
+// of a pair passed in a fixed order does not flicker between the two.
+// Feature ids stay the same while the same features touch.
+bool collideConvex(const PlacedConvex& a, const PlacedConvex& b, const ContactSettings& settings,
+                   ContactManifold& out);
+
+// `plane` is the half-space of body A (world-frame normal and offset:
+// normal · p <= offset is solid); the normal of the manifold is the plane's.
+bool collidePlaneConvex(const Vec3& planeNormal, double planeOffset, const PlacedConvex& b,
+                        const ContactSettings& settings, ContactManifold& out);
+
+}  // namespace rbsim

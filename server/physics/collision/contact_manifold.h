@@ -1,0 +1,42 @@
+#pragma once
+// Contacts(A, B) of the seed: where two bodies touch, as a manifold of up to
+// four points sharing one normal.
+
+#include <array>
+#include <cstdint>
+
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+struct ContactPoint {
+  Vec3 pointA = Vec3::Zero();  // m, world, on A's surface
+  Vec3 pointB = Vec3::Zero();  // m, world, on B's surface
+  double depth = 0.0;          // m: > 0 penetrating, <= 0 a gap (within the contact margin)
+  // Identifies the pair of features that made the point (e.g. a box vertex
+  // and a face), stable while they keep touching: the solver matches points
+  // across steps by it for warm starting.
+  uint32_t featureId = 0;
+};
+
+struct ContactManifold {
+  Vec3 normal = Vec3::UnitZ();  // unit, world, from A to B; face–vertex: the face's normal,
+                                // edge–edge: the cross product of the edges (the seed's rule)
+  std::array<ContactPoint, 4> points{};
+  int pointCount = 0;
+
+  void add(const ContactPoint& point) {
+    if (pointCount < 4) points[static_cast<std::size_t>(pointCount++)] = point;
+  }
+};
+
+// Contact classification by the relative normal velocity at a point
+// (v_rel = n · (vB(p) − vA(p)), negative when closing).
+enum class ContactKind { Colliding, Resting, Separating };
+inline ContactKind classifyContact(double relativeNormalVelocity, double epsilon) {
+  if (relativeNormalVelocity < -epsilon) return ContactKind::Colliding;
+  if (relativeNormalVelocity > epsilon) return ContactKind::Separating;
+  return ContactKind::Resting;
+}
+
+}  // namespace rbsim

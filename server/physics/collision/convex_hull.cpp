@@ -1,0 +1,232 @@
+#include "physics/collision/convex_hull.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <utility>
+
+// qhull's headers are C: their macros use C casts and they declare names
+// such as `True`; keep both out of every other file.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wpedantic"
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+#pragma GCC diagnostic pop
+
+namespace rbsim {
+
+namespace {
+
+// Relative to the point set's size: below this the set has no volume for
+// our purposes (a slab 1e-9 thick on a 1 m body is a polygon).
+constexpr double kFlatTolerance = 1e-9;
+
+// Captures whatever qhull writes to its error stream (it never gets stdout:
+// outfile is null) and frees qhull's memory on every path out.
+class QhullRun {
+ public:
+  QhullRun() {
+    m_errors = open_memstream(&m_buffer, &m_bufferSize);
+    qh_zero(&m_qh, m_errors);
+  }
+  ~QhullRun() {
+    int curlong = 0;
+    int totlong = 0;
+    qh_freeqhull(&m_qh, !qh_ALL);
+    qh_memfreeshort(&m_qh, &curlong, &totlong);
+    if (m_errors) std::fclose(m_errors);
+    std::free(m_buffer);
+  }
+  QhullRun(const QhullRun&) = delete;
+  QhullRun& operator=(const QhullRun&) = delete;
+
+  // Default options: in 3-d qhull merges coplanar facets ('C-0'), so a
+  // cube's face comes back as one facet of four vertices.
+  int run(std::vector<double>& coordinates) {
+    char command[] = "qhull";
+    return qh_new_qhull(&m_qh, 3, static_cast<int>(coordinates.size() / 3), coordinates.data(),
+                        False, command, nullptr, m_errors);
+  }
+  qhT* qh() { return &m_qh; }
+
+  // The first line of qhull's error report, e.g. "QH6154 qhull precision
+  // error: initial simplex is flat".
+  std::string firstErrorLine() {
+    if (!m_errors) return "no error text";
+    std::fflush(m_errors);
+    const std::string text = m_buffer ? std::string(m_buffer, m_bufferSize) : std::string();
+    const std::size_t start = text.find("QH");
+    const std::string from = start == std::string::npos ? text : text.substr(start);
+    const std::string line = from.substr(0, from.find('\n'));
+    return line.empty() ? "no error text" : line;
+  }
+
+ private:
+  qhT m_qh;
+  FILE* m_errors = nullptr;
+  char* m_buffer = nullptr;
+  std::size_t m_bufferSize = 0;
+};
+
+// Rejects what qhull cannot build a solid from, with a message a user can act
+// on (qhull's own text for these cases is long and cryptic).
+Expected<bool> checkVolume(const std::vector<Vec3>& points, const std::string& sourceName) {
+  for (const Vec3& p : points) {
+    if (!p.allFinite()) return Error{sourceName + ": convex hull input has a non-finite point"};
+  }
+  std::vector<Vec3> distinct = points;
+  const auto lexLess = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(distinct.begin(), distinct.end(), lexLess);
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  if (distinct.size() < 4) {
+    return Error{sourceName + ": a convex hull needs at least 4 distinct points, got " +
+                 std::to_string(distinct.size())};
+  }
+  // Affine rank by farthest points: p1 farthest from p0, p2 farthest from the
+  // line p0p1, p3 farthest from the plane p0p1p2.
+  const Vec3& p0 = distinct[0];
+  const auto farthest = [&](auto&& measure) {
+    std::size_t best = 0;
+    double bestValue = -1.0;
+    for (std::size_t i = 0; i < distinct.size(); ++i) {
+      const double value = measure(distinct[i]);
+      if (value > bestValue) {
+        bestValue = value;
+        best = i;
+      }
+    }
+    return std::pair{best, bestValue};
+  };
+  const auto [i1, span] = farthest([&](const Vec3& p) { return (p - p0).norm(); });
+  const Vec3 axis = (distinct[i1] - p0) / span;
+  const auto [i2, lineDistance] =
+      farthest([&](const Vec3& p) { return (p - p0 - (p - p0).dot(axis) * axis).norm(); });
+  if (lineDistance <= kFlatTolerance * span) {
+    return Error{sourceName + ": the points are collinear, so their convex hull has no volume"};
+  }
+  const Vec3 normal = axis.cross(distinct[i2] - p0).normalized();
+  const auto [i3, planeDistance] =
+      farthest([&](const Vec3& p) { return std::abs((p - p0).dot(normal)); });
+  (void)i3;
+  if (planeDistance <= kFlatTolerance * span) {
+    return Error{sourceName + ": the points are coplanar, so their convex hull has no volume"};
+  }
+  return true;
+}
+
+std::vector<vertexT*> facetVertices(const facetT* facet) {
+  std::vector<vertexT*> result;
+  if (!facet->vertices) return result;
+  for (void* const* element = &facet->vertices->e[0].p; *element; ++element) {
+    result.push_back(static_cast<vertexT*>(*element));
+  }
+  return result;
+}
+
+// Orders a convex polygon's vertices counter-clockwise seen from outside
+// (from the tip of `normal`): increasing angle in the basis (u, normal × u).
+void orderCounterClockwise(std::vector<int>& polygon, const std::vector<Vec3>& vertices,
+                           const Vec3& normal) {
+  Vec3 center = Vec3::Zero();
+  for (int v : polygon) center += vertices[static_cast<std::size_t>(v)];
+  center /= static_cast<double>(polygon.size());
+  Vec3 u = vertices[static_cast<std::size_t>(polygon[0])] - center;
+  u = (u - u.dot(normal) * normal).normalized();
+  const Vec3 w = normal.cross(u);
+  std::vector<std::pair<double, int>> byAngle;
+  for (int v : polygon) {
+    const Vec3 r = vertices[static_cast<std::size_t>(v)] - center;
+    byAngle.emplace_back(std::atan2(r.dot(w), r.dot(u)), v);
+  }
+  std::sort(byAngle.begin(), byAngle.end());
+  for (std::size_t i = 0; i < polygon.size(); ++i) polygon[i] = byAngle[i].second;
+}
+
+}  // namespace
+
+Expected<ConvexHull> buildConvexHull(const std::vector<Vec3>& points,
+                                     const std::string& sourceName) {
+  const auto volume = checkVolume(points, sourceName);
+  if (!volume) return volume.error();
+
+  std::vector<double> coordinates;
+  coordinates.reserve(points.size() * 3);
+  for (const Vec3& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+
+  QhullRun run;
+  if (run.run(coordinates) != qh_ERRnone) {
+    return Error{sourceName + ": convex hull failed (" + run.firstErrorLine() + ")"};
+  }
+  qhT* qh = run.qh();
+
+  // Hull vertices renumbered in input order, so that the result does not
+  // depend on qhull's internal ids.
+  std::map<int, int> indexOfInput;
+  for (const facetT* facet = qh->facet_list; facet && facet->next; facet = facet->next) {
+    for (vertexT* vertex : facetVertices(facet))
+      indexOfInput.emplace(qh_pointid(qh, vertex->point), 0);
+  }
+  ConvexHull hull;
+  for (auto& [input, index] : indexOfInput) {
+    index = static_cast<int>(hull.vertices.size());
+    hull.vertices.push_back(points[static_cast<std::size_t>(input)]);
+  }
+
+  std::set<std::array<int, 2>> edges;
+  for (const facetT* facet = qh->facet_list; facet && facet->next; facet = facet->next) {
+    ConvexHull::Face face;
+    for (vertexT* vertex : facetVertices(facet))
+      face.vertices.push_back(indexOfInput.at(qh_pointid(qh, vertex->point)));
+    if (face.vertices.size() < 3) return Error{sourceName + ": convex hull has a degenerate face"};
+    const Vec3 qhullNormal(facet->normal[0], facet->normal[1], facet->normal[2]);
+    orderCounterClockwise(face.vertices, hull.vertices, qhullNormal);
+    // Newell's normal (the area vector Σ a × b of the ordered polygon, taken
+    // about its centre to avoid cancellation far from the origin): exact for
+    // a planar polygon, a best fit for a merged, nearly planar one.
+    Vec3 center = Vec3::Zero();
+    for (int v : face.vertices) center += hull.vertices[static_cast<std::size_t>(v)];
+    center /= static_cast<double>(face.vertices.size());
+    Vec3 normal = Vec3::Zero();
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const Vec3 a = hull.vertices[static_cast<std::size_t>(face.vertices[i])] - center;
+      const Vec3 b =
+          hull.vertices[static_cast<std::size_t>(face.vertices[(i + 1) % face.vertices.size()])] -
+          center;
+      normal += a.cross(b);
+    }
+    face.normal = normal.normalized();
+    if (!face.normal.allFinite() || face.normal.dot(qhullNormal) <= 0.0) {
+      return Error{sourceName + ": convex hull has a degenerate face"};
+    }
+    double offset = 0.0;
+    for (int v : face.vertices)
+      offset += face.normal.dot(hull.vertices[static_cast<std::size_t>(v)]);
+    face.offset = offset / static_cast<double>(face.vertices.size());
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const int a = face.vertices[i];
+      const int b = face.vertices[(i + 1) % face.vertices.size()];
+      edges.insert({std::min(a, b), std::max(a, b)});
+    }
+    hull.faces.push_back(std::move(face));
+  }
+  hull.edges.assign(edges.begin(), edges.end());
+  // Faces in a fixed order too: by their smallest vertex, then their normal.
+  std::sort(hull.faces.begin(), hull.faces.end(),
+            [](const ConvexHull::Face& a, const ConvexHull::Face& b) {
+              const int minA = *std::min_element(a.vertices.begin(), a.vertices.end());
+              const int minB = *std::min_element(b.vertices.begin(), b.vertices.end());
+              if (minA != minB) return minA < minB;
+              return std::lexicographical_compare(a.normal.data(), a.normal.data() + 3,
+                                                  b.normal.data(), b.normal.data() + 3);
+            });
+  return hull;
+}
+
+}  // namespace rbsim

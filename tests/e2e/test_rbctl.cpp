@@ -1,0 +1,213 @@
+// rbctl, the command-line client, run as a separate process against a server
+// while the test's own client watches what the server does.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "e2e_paths.h"
+#include "rbsim/client/lookup.h"
+#include "rigid_body_math.h"
+#include "server_test.h"
+
+namespace rbsim::e2e {
+namespace {
+
+class Rbctl : public ServerTest {
+ protected:
+  ProcessResult rbctl(std::vector<std::string> arguments) {
+    std::vector<std::string> argv = {kRbctl, "--url", kUrl, "--timeout", "5"};
+    argv.insert(argv.end(), arguments.begin(), arguments.end());
+    return runProcess(argv, scratchPath("rbctl.log"), 30s);
+  }
+  // rbctl without the global options (for usage errors and --help).
+  ProcessResult rbctlBare(std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), kRbctl);
+    return runProcess(arguments, scratchPath("rbctl.log"), 30s);
+  }
+
+  static int64_t integerAfter(const std::string& text, const std::string& key) {
+    std::smatch match;
+    if (!std::regex_search(text, match, std::regex("(^|\\s)" + key + " (-?[0-9]+)")))
+      throw std::runtime_error("no '" + key + " N' in:\n" + text);
+    return std::stoll(match[2]);
+  }
+  static Vec3 vectorAfter(const std::string& text, const std::string& key) {
+    const auto at = text.find(" " + key + " ");
+    if (at == std::string::npos) throw std::runtime_error("no '" + key + "' in:\n" + text);
+    std::istringstream in(text.substr(at + key.size() + 2));
+    Vec3 v{};
+    in >> v[0] >> v[1] >> v[2];
+    return v;
+  }
+};
+
+void expectExitStatus(const ProcessResult& run, int expected) {
+  ASSERT_TRUE(run.status.has_value()) << "did not end:\n" << run.output;
+  EXPECT_EQ(*run.status, expected) << run.output;
+}
+
+TEST_F(Rbctl, PauseStepStateAndWrench) {
+  startServer("free_bodies.yaml", {"--state-rate", "0"});
+  waitFor("the server to step", [&] { return currentStep() >= 10; });
+
+  const ProcessResult pause = rbctl({"pause"});
+  expectExitStatus(pause, 0);
+  const int64_t pausedAt = integerAfter(pause.output, "effective_step") - 1;
+  client().spinUntil([] { return false; }, 100ms);
+  EXPECT_EQ(currentStep(), pausedAt) << "rbctl pause paused the server";
+
+  const ProcessResult step = rbctl({"step", "5"});
+  expectExitStatus(step, 0);
+  EXPECT_EQ(integerAfter(step.output, "effective_step"), pausedAt + 1);
+  waitForStep(pausedAt + 5);
+
+  const ProcessResult state = rbctl({"state"});
+  expectExitStatus(state, 0);
+  EXPECT_EQ(integerAfter(state.output, "step"), pausedAt + 5) << state.output;
+  EXPECT_NE(state.output.find("body puck id"), std::string::npos) << state.output;
+  EXPECT_NE(state.output.find("body ball id"), std::string::npos) << state.output;
+
+  // A one-step push through the centre of mass (rbctl's default point).
+  const ProcessResult wrench = rbctl({"wrench", "puck", "--force", "3", "0", "0"});
+  expectExitStatus(wrench, 0);
+  EXPECT_EQ(integerAfter(wrench.output, "effective_step"), pausedAt + 6);
+  expectExitStatus(rbctl({"step"}), 0);  // N defaults to 1
+  const ProcessResult puck = rbctl({"state", "--body", "puck"});
+  expectExitStatus(puck, 0);
+  EXPECT_EQ(puck.output.find("body ball"), std::string::npos) << "--body prints only that body";
+  const double dt = client().world()->dt;
+  const double mass = description("puck").mass;
+  const Vec3 expected{0.2 + 3.0 * dt / mass, -0.1, 0.05};
+  EXPECT_LT(relativeError(vectorAfter(puck.output, "linear_velocity"), expected), 1e-8)
+      << puck.output;
+  waitForStep(pausedAt + 6);
+  EXPECT_LT(relativeError(toVec3(history().body(pausedAt + 6, "puck").linear_velocity), expected),
+            1e-12);
+
+  // Duration, body frame, scheduled: accepted with the requested step.
+  const ProcessResult scheduled =
+      rbctl({"wrench", "tilted", "--frame", "body", "--force", "0", "1", "0", "--duration", "0.01",
+             "--at-step", std::to_string(pausedAt + 20)});
+  expectExitStatus(scheduled, 0);
+  EXPECT_EQ(integerAfter(scheduled.output, "effective_step"), pausedAt + 20);
+}
+
+TEST_F(Rbctl, OtherVerbs) {
+  startServer("free_bodies.yaml", {"--paused"});
+
+  const ProcessResult status = rbctl({"status"});
+  expectExitStatus(status, 0);
+  EXPECT_NE(status.output.find("paused true"), std::string::npos) << status.output;
+  EXPECT_EQ(integerAfter(status.output, "num_bodies"), 4);
+
+  const ProcessResult bodies = rbctl({"bodies"});
+  expectExitStatus(bodies, 0);
+  EXPECT_NE(bodies.output.find("body puck id 1 shape box static false mass 1.5"), std::string::npos)
+      << bodies.output;
+  EXPECT_NE(bodies.output.find("body ball id 4 shape sphere"), std::string::npos) << bodies.output;
+
+  const ProcessResult spawn =
+      rbctl({"spawn", "--yaml",
+             "{name: probe, shape: {type: sphere, radius: 0.1}, mass: 1, position: [0, 0, 5]}"});
+  expectExitStatus(spawn, 0);
+  waitFor("the probe", [&] { return client::findBody(*client().world(), "probe") != nullptr; });
+
+  const std::string file = scratchPath("body.yaml");
+  std::ofstream(file)
+      << "name: cube\nshape: {type: box, half_extents: [0.1, 0.1, 0.1]}\nposition: [3, 3, 3]\n";
+  expectExitStatus(rbctl({"spawn", file}), 0);
+  waitFor("the cube", [&] { return client::findBody(*client().world(), "cube") != nullptr; });
+
+  expectExitStatus(rbctl({"remove", "probe"}), 0);
+  waitFor("the probe to go",
+          [&] { return client::findBody(*client().world(), "probe") == nullptr; });
+
+  expectExitStatus(rbctl({"rtf", "3"}), 0);
+  expectExitStatus(rbctl({"resume"}), 0);
+  waitFor("steps after rbctl resume", [&] { return currentStep() >= 30; });
+  expectExitStatus(rbctl({"pause"}), 0);
+
+  expectExitStatus(rbctl({"reset"}), 0);
+  waitFor("step 0 after rbctl reset", [&] {
+    return currentStep() == 0 && client::findBody(*client().latestState(), "cube") == nullptr;
+  });
+
+  // A persistent push set by one rbctl run and cleared by another under the same id.
+  const double dt = client().world()->dt;
+  const double mass = description("ball").mass;
+  expectExitStatus(rbctl({"--client-id", "e2e-rbctl", "wrench", "ball", "--force", "0", "0", "2",
+                          "--mode", "persistent"}),
+                   0);
+  expectExitStatus(rbctl({"step", "2"}), 0);
+  expectExitStatus(rbctl({"--client-id", "e2e-rbctl", "wrench", "--mode", "clear"}), 0);
+  const ProcessResult stepped = rbctl({"step", "3"});
+  expectExitStatus(stepped, 0);
+  const int64_t last = integerAfter(stepped.output, "effective_step") + 2;
+  waitForStep(last);
+  EXPECT_NEAR(history().body(last, "ball").linear_velocity[2], 2.0 * 2.0 * dt / mass, 1e-12)
+      << "two steps of 2 N, then cleared";
+}
+
+TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
+  startServer("free_bodies.yaml", {});  // running
+
+  // Rejected by the server: exit 1 with the server's reason.
+  const ProcessResult unknown = rbctl({"wrench", "no_such_body", "--force", "1", "0", "0"});
+  expectExitStatus(unknown, 1);
+  EXPECT_NE(unknown.output.find("unknown body 'no_such_body'"), std::string::npos)
+      << unknown.output;
+  const ProcessResult running = rbctl({"step", "3"});
+  expectExitStatus(running, 1);
+  EXPECT_NE(running.output.find("paused"), std::string::npos) << running.output;
+  expectExitStatus(rbctl({"state", "--body", "no_such_body"}), 1);
+
+  // Nobody answers on another prefix: exit 3, and it says what it waited for.
+  const ProcessResult silent = rbctl({"--prefix", "NOBODY_", "--timeout", "0.3", "pause"});
+  expectExitStatus(silent, 3);
+  EXPECT_NE(silent.output.find("no acknowledgement"), std::string::npos) << silent.output;
+  expectExitStatus(rbctl({"--prefix", "NOBODY_", "--timeout", "0.3", "state"}), 3);
+
+  // Bad arguments: exit 2 with the offending argument named.
+  for (const auto& arguments : std::vector<std::vector<std::string>>{
+           {"step", "abc"},
+           {"step", "0"},
+           {"frobnicate"},
+           {"wrench", "puck", "--frame", "sideways"},
+           {"wrench", "puck", "--force", "1", "nan", "0"},
+           {"wrench", "puck", "--mode", "duration"},
+           {"wrench", "--force", "1", "0", "0"},
+           {"rtf"},
+           {"remove"},
+           {"pause", "now"},
+           {"--timeout"},
+       }) {
+    const ProcessResult bad = rbctl(arguments);
+    expectExitStatus(bad, 2);
+    EXPECT_NE(bad.output.find("rbctl"), std::string::npos) << bad.output;
+  }
+  // No LCM at all: exit 4.
+  expectExitStatus(rbctlBare({"--url", "nosuch://x", "status"}), 4);
+
+  // Help: the verb list, and each verb's usage.
+  const ProcessResult help = rbctlBare({"--help"});
+  expectExitStatus(help, 0);
+  for (const char* verb : {"state", "status", "bodies", "wrench", "pause", "resume", "step",
+                           "reset", "spawn", "remove"}) {
+    EXPECT_NE(help.output.find(std::string("  ") + verb + " "), std::string::npos) << verb;
+    const ProcessResult usage = rbctlBare({verb, "--help"});
+    expectExitStatus(usage, 0);
+    EXPECT_NE(usage.output.find(std::string("usage: rbctl ") + verb), std::string::npos)
+        << usage.output;
+  }
+  expectExitStatus(rbctlBare({}), 2);
+
+  // None of it disturbed the server.
+  const int64_t now = currentStep();
+  waitFor("the server to keep stepping", [&] { return currentStep() >= now + 30; });
+}
+
+}  // namespace
+}  // namespace rbsim::e2e

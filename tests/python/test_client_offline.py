@@ -1,0 +1,181 @@
+"""rbsim.client.Client without a server, on the in-process memq:// bus:
+page reassembly, ack matching, the messages it sends, defaults."""
+
+import os
+import random
+import socket
+import threading
+
+import numpy as np
+import pytest
+
+from rbsim import ack_t, body_state_t, command_t, world_state_t, wrench_t
+from rbsim.client import DEFAULT_URL, Client, PageAssembler, default_url
+
+
+def _pages(step, names, per_page, utime=None, revision=1):
+    """The pages of one state: bodies `names` (ids 1..n), `per_page` per page."""
+    utime = utime if utime is not None else 1_000_000 + step
+    bodies = []
+    for i, name in enumerate(names):
+        b = body_state_t()
+        b.id, b.name = i + 1, name
+        b.position = (float(i), float(step), 0.5)
+        b.orientation = (1.0, 0.0, 0.0, 0.0)
+        b.linear_velocity = (0.0, 1.0, 0.0)
+        b.angular_velocity = (0.0, 0.0, 0.0)
+        bodies.append(b)
+    chunks = [bodies[i:i + per_page] for i in range(0, len(bodies), per_page)] or [[]]
+    pages = []
+    for index, chunk in enumerate(chunks):
+        m = world_state_t()
+        m.utime, m.step, m.sim_time, m.world_revision = utime, step, step * 1e-3, revision
+        m.page, m.num_pages, m.total_bodies = index, len(chunks), len(bodies)
+        m.first_body_index, m.num_bodies, m.bodies = index * per_page, len(chunk), chunk
+        pages.append(m)
+    return pages
+
+
+@pytest.fixture
+def sim():
+    with Client(url="memq://", client_id="offline") as client:
+        yield client
+
+
+def _publish(sim, channel, messages):
+    for m in messages:
+        sim.lcm.publish(sim.channel(channel), m.encode())
+
+
+def test_assembler_pages_in_any_order():
+    names = ["b%d" % i for i in range(10)]
+    assembler = PageAssembler()
+    pages = _pages(5, names, 3)
+    random.Random(1).shuffle(pages)
+    results = [assembler.add(p) for p in pages]
+    assert results[:-1] == [None] * 3
+    assert [b.name for page in results[-1] for b in page.bodies] == names
+
+
+def test_assembler_drops_incomplete_and_inconsistent():
+    names = ["a", "b", "c", "d"]
+    assembler = PageAssembler()
+    lost = _pages(1, names, 2)
+    assert assembler.add(lost[0]) is None  # page 1 of step 1 never comes
+    complete = _pages(2, names, 2)
+    assert assembler.add(complete[1]) is None
+    assert assembler.add(complete[0]) is not None
+    assert assembler.dropped == 1  # step 1 was given up
+    bad = _pages(3, names, 4)[0]
+    bad.total_bodies = 5  # the slices do not cover the world
+    assert assembler.add(bad) is None and assembler.invalid == 1
+    bad = _pages(4, names, 4)[0]
+    bad.page = 2  # page index out of range
+    assert assembler.add(bad) is None and assembler.invalid == 2
+
+
+def test_client_reassembles_interleaved_pages(sim):
+    names = ["body%02d" % i for i in range(7)]
+    a, b = _pages(10, names, 3), _pages(11, names, 3)
+    lost = _pages(12, names, 3)[:2]  # its last page is lost
+    # Interleave the pages of steps 10 and 11, then the incomplete 12.
+    _publish(sim, "STATE", [a[2], b[0], a[0], b[2], a[1], b[1]] + lost)
+    state = sim.wait_state(timeout=2.0, new=False, predicate=lambda s: s.step == 11)
+    assert [s.step for s in sim.states()] == [10, 11]
+    assert state.names() == names
+    assert np.array_equal(state["body03"].position, [3.0, 11.0, 0.5])
+    assert state.sim_time == 11e-3 and state.world_revision == 1
+    assert sim.state_at(10).step == 10 and sim.state_at(12) is None
+
+
+def test_state_callbacks_and_wait_for_step(sim):
+    seen = []
+    sim.on_state(lambda s: seen.append(s.step))
+    result = {}
+    waiter = threading.Thread(target=lambda: result.setdefault("s", sim.wait_for_step(3, timeout=2.0)))
+    waiter.start()
+    for step in range(6):
+        _publish(sim, "STATE", _pages(step, ["x"], 1))
+    waiter.join()
+    assert result["s"].step == 3
+    sim.wait_state(timeout=2.0, new=False, predicate=lambda s: s.step == 5)
+    assert seen == list(range(6))
+
+
+def test_acks_are_matched_by_client_kind_and_seq(sim):
+    def ack(client, seq, kind, accepted=True):
+        m = ack_t()
+        m.client, m.seq, m.kind, m.accepted, m.effective_step = client, seq, kind, accepted, 7
+        m.reason = "" if accepted else "no"
+        return m
+
+    _publish(sim, "ACK", [ack("someone-else", 1, ack_t.KIND_COMMAND), ack("offline", 1, ack_t.KIND_WRENCH),
+                          ack("offline", 1, ack_t.KIND_COMMAND, accepted=False)])
+    got = sim.wait_ack(1, "command", timeout=2.0)
+    assert (got.client, got.kind, got.accepted) == ("offline", ack_t.KIND_COMMAND, False)
+    assert sim.wait_ack(1, "wrench", timeout=2.0).accepted
+    with pytest.raises(TimeoutError):
+        sim.wait_ack(2, "command", timeout=0.1)
+    assert [a.client for a in sim.acks()] == ["someone-else", "offline", "offline"]
+    other = sim.wait_any_ack(lambda a: a.client == "someone-else", timeout=1.0, since=0)
+    assert other.seq == 1
+
+
+def test_sent_wrenches_and_commands(sim):
+    sent = []
+    sim.lcm.subscribe("RBSIM_(WRENCH|COMMAND)", lambda c, d, u: sent.append((c, d)))
+    _publish(sim, "STATE", _pages(0, ["ball"], 1))
+    sim.wait_state(timeout=2.0, new=False)
+
+    s1 = sim.apply_wrench("ball", (1, 2, 3))  # world frame, point None: the centre of mass
+    s2 = sim.apply_wrench("ball", (0, 0, 1), torque=(0.5, 0, 0), point=(0.1, 0, 0), frame="body",
+                          mode="duration", duration=0.25, apply_at_step=99)
+    s3 = sim.clear_wrenches("", wait=False)
+    s4 = sim.step(7, wait=False)
+    s5 = sim.spawn("name: x", wait=False)
+    assert [s1, s2, s3, s4, s5] == [1, 2, 3, 4, 5]  # increasing per client
+    with pytest.raises(ValueError):
+        sim.apply_wrench("ball", (1, 2))  # not a 3-vector
+    with pytest.raises(ValueError):
+        sim.apply_wrench("ball", (1, 2, 3), mode="forever")
+
+    def wait_sent():
+        deadline = 200
+        while len(sent) < 5 and deadline:
+            threading.Event().wait(0.01)
+            deadline -= 1
+        return sent
+
+    (c1, d1), (c2, d2), (c3, d3), (c4, d4), (c5, d5) = wait_sent()
+    assert (c1, c2, c3, c4, c5) == ("RBSIM_WRENCH",) * 3 + ("RBSIM_COMMAND",) * 2
+    w1, w2, w3 = (wrench_t.decode(d) for d in (d1, d2, d3))
+    assert (w1.client, w1.seq, w1.body, w1.frame, w1.mode) == ("offline", 1, "ball", 0, 0)
+    assert w1.force == (1.0, 2.0, 3.0) and w1.point == (0.0, 0.0, 0.5)  # ball's position
+    assert w1.apply_at_step == -1 and w1.utime > 0
+    assert (w2.frame, w2.mode, w2.duration, w2.apply_at_step) == (1, 1, 0.25, 99)
+    assert w2.torque == (0.5, 0.0, 0.0) and w2.point == (0.1, 0.0, 0.0)
+    assert (w3.mode, w3.body, w3.seq) == (wrench_t.MODE_CLEAR, "", 3)
+    c4m, c5m = command_t.decode(d4), command_t.decode(d5)
+    assert (c4m.command, c4m.num_steps, c4m.seq) == (command_t.STEP, 7, 4)
+    assert (c5m.command, c5m.spawn_yaml) == (command_t.SPAWN, "name: x")
+
+
+def test_defaults(monkeypatch):
+    with Client(url="memq://") as client:
+        assert client.client_id == "py-%s-%d" % (socket.gethostname(), os.getpid())
+        assert client.channel("WORLD") == "RBSIM_WORLD"
+    monkeypatch.delenv("LCM_DEFAULT_URL", raising=False)
+    assert default_url() == DEFAULT_URL == "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
+    monkeypatch.setenv("LCM_DEFAULT_URL", "memq://")
+    assert default_url() == "memq://"
+    with Client(prefix="OTHER_") as client:
+        assert client.url == "memq://" and client.channel("ACK") == "OTHER_ACK"
+    with pytest.raises(ValueError):
+        Client(url="memq://", prefix="BAD.*")
+
+
+def test_waits_time_out(sim):
+    with pytest.raises(TimeoutError, match="state"):
+        sim.wait_state(timeout=0.05)
+    with pytest.raises(TimeoutError):
+        sim.pause(timeout=0.05)  # nobody answers on memq://

@@ -1,0 +1,19 @@
+"""Wrench modes, commands and rejections end to end (scenarios/wrench_modes.py,
+scenarios/commands.py, scenarios/rejections.py; see their docstrings), each in
+its own private network namespace."""
+
+import pytest
+
+
+@pytest.mark.parametrize("name", ["one_step_and_duration", "persistent_and_clear", "apply_at_step"])
+def test_wrench_modes(scenario, name):
+    scenario("wrench_modes.py", name)
+
+
+@pytest.mark.parametrize("name", ["pause_step_resume", "reset", "spawn_remove", "real_time_factor"])
+def test_commands(scenario, name):
+    scenario("commands.py", name)
+
+
+def test_rejections(scenario):
+    scenario("rejections.py", "rejections")

@@ -1,0 +1,9 @@
+"""clients/python/examples: the PD height controller converges under
+gravity; record_and_plot.sh records and plots (scenarios/examples.py)."""
+
+import pytest
+
+
+@pytest.mark.parametrize("name", ["pd_hold_height", "record_and_plot"])
+def test_example(scenario, name):
+    scenario("examples.py", name, timeout=90)

@@ -1,0 +1,153 @@
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <tuple>
+
+#include "physics/collision/collision_detector.h"
+#include "physics/world/world.h"
+#include "scenes/pile_scene.h"
+
+namespace rbsim {
+namespace {
+
+BodyDef groundDef() {
+  BodyDef ground;
+  ground.name = "ground";
+  ground.shape = PlaneShape{};
+  ground.isStatic = true;
+  return ground;
+}
+
+BodyDef boxDef(const std::string& name, const Vec3& position, bool isStatic = false) {
+  BodyDef box;
+  box.name = name;
+  box.shape = BoxShape{Vec3::Constant(0.5)};
+  box.position = position;
+  box.isStatic = isStatic;
+  return box;
+}
+
+// Two separate cubes of half-extent `half` centred at x = ±1 m: one mesh of
+// two connected components, so a collider of two convex pieces.
+MeshShape twinCubes(double half) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (const double cx : {-1.0, 1.0}) {
+    const int base = static_cast<int>(mesh->vertices.size());
+    for (int i = 0; i < 8; ++i)  // vertex i has (x, y, z) = bits (0, 1, 2) of i
+      mesh->vertices.emplace_back(cx + (i & 1 ? half : -half), i & 2 ? half : -half,
+                                  i & 4 ? half : -half);
+    const int faces[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                              {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (const auto& f : faces) mesh->triangles.push_back({base + f[0], base + f[1], base + f[2]});
+  }
+  return MeshShape{"twin cubes", mesh};
+}
+
+TEST(CollisionDetector, ABoxOnTheGroundGivesOneManifoldOfFourPoints) {
+  World world;
+  ASSERT_TRUE(world.createBody(groundDef()));
+  ASSERT_TRUE(world.createBody(boxDef("box", Vec3(0, 0, 0.499))));
+  CollisionDetector detector;
+  detector.detect(world);
+  ASSERT_EQ(detector.contacts().size(), 1u);
+  const BodyContact& contact = detector.contacts().front();
+  EXPECT_EQ(contact.bodyA, 0);
+  EXPECT_EQ(contact.bodyB, 1);
+  EXPECT_EQ(contact.manifold.pointCount, 4);
+  EXPECT_EQ(detector.contactPointCount(), 4);
+  EXPECT_TRUE(contact.manifold.normal.isApprox(Vec3::UnitZ(), 1e-9));  // ground -> box
+  for (int i = 0; i < contact.manifold.pointCount; ++i)
+    EXPECT_NEAR(contact.manifold.points[static_cast<std::size_t>(i)].depth, 0.001, 1e-9);
+}
+
+TEST(CollisionDetector, APlaneSecondInSerialOrderStillGivesANormalFromAToB) {
+  World world;
+  ASSERT_TRUE(world.createBody(boxDef("box", Vec3(0, 0, 0.499))));
+  ASSERT_TRUE(world.createBody(groundDef()));
+  CollisionDetector detector;
+  detector.detect(world);
+  ASSERT_EQ(detector.contacts().size(), 1u);
+  const BodyContact& contact = detector.contacts().front();
+  EXPECT_EQ(contact.bodyA, 0);  // the box
+  EXPECT_TRUE(contact.manifold.normal.isApprox(-Vec3::UnitZ(), 1e-9));
+  for (int i = 0; i < contact.manifold.pointCount; ++i) {
+    const ContactPoint& point = contact.manifold.points[static_cast<std::size_t>(i)];
+    EXPECT_GT(point.pointB.z(),
+              point.pointA.z());  // A (the box) reaches below the ground's surface
+  }
+}
+
+TEST(CollisionDetector, SkipsStaticPairsAndSeparatedBodies) {
+  World world;
+  ASSERT_TRUE(world.createBody(groundDef()));
+  ASSERT_TRUE(world.createBody(boxDef("fixed", Vec3(0, 0, 0.4), true)));  // static in the ground
+  ASSERT_TRUE(world.createBody(boxDef("flying", Vec3(3, 0, 2))));
+  CollisionDetector detector;
+  detector.detect(world);
+  EXPECT_TRUE(detector.contacts().empty());
+}
+
+TEST(CollisionDetector, TheSettledPileGivesOneFourPointManifoldPerRestingFaceInOrder) {
+  auto world = World::fromDef(scenes::makePileScene(300, scenes::PileVariant::Settled));
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  CollisionDetector detector;
+  detector.detect(*world);
+  // 100 cubes on the ground, 200 on other cubes.
+  ASSERT_EQ(detector.contacts().size(), 300u);
+  EXPECT_EQ(detector.contactPointCount(), 1200);
+  for (std::size_t k = 1; k < detector.contacts().size(); ++k) {
+    const BodyContact& p = detector.contacts()[k - 1];
+    const BodyContact& c = detector.contacts()[k];
+    EXPECT_LT(std::tuple(p.bodyA, p.bodyB, p.pieceA, p.pieceB),
+              std::tuple(c.bodyA, c.bodyB, c.pieceA, c.pieceB));
+  }
+  for (const BodyContact& contact : detector.contacts())
+    EXPECT_TRUE(contact.manifold.normal.isApprox(Vec3::UnitZ(), 1e-9));
+
+  // Detecting again on the same state gives the same contacts.
+  const std::vector<BodyContact> first = detector.contacts();
+  detector.detect(*world);
+  ASSERT_EQ(detector.contacts().size(), first.size());
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    EXPECT_EQ(detector.contacts()[k].bodyA, first[k].bodyA);
+    EXPECT_EQ(detector.contacts()[k].bodyB, first[k].bodyB);
+    EXPECT_EQ(detector.contacts()[k].manifold.normal, first[k].manifold.normal);
+  }
+}
+
+TEST(CollisionDetector, ComparesOnlyThePiecesOfCompoundsThatMeet) {
+  World world;
+  ASSERT_TRUE(world.createBody(groundDef()));
+  BodyDef twin;
+  twin.name = "twin";
+  twin.shape = twinCubes(0.25);
+  twin.position = Vec3(0, 0, 0.249);
+  const auto twinId = world.createBody(twin);
+  ASSERT_TRUE(twinId) << twinId.error().message;
+  ASSERT_EQ(world.body(*twinId).description().collider->pieces.size(), 2u);
+  BodyDef small = boxDef("small", Vec3(1, 0, 0.25 + 0.1 - 0.001));
+  small.shape = BoxShape{Vec3::Constant(0.1)};
+  ASSERT_TRUE(world.createBody(small));
+
+  CollisionDetector detector;
+  detector.detect(world);
+  // Both cubes of the twin on the ground; the small box on one of them only.
+  ASSERT_EQ(detector.contacts().size(), 3u);
+  const auto& contacts = detector.contacts();
+  EXPECT_EQ(
+      std::tuple(contacts[0].bodyA, contacts[0].bodyB, contacts[0].pieceA, contacts[0].pieceB),
+      std::tuple(0, 1, 0, 0));
+  EXPECT_EQ(
+      std::tuple(contacts[1].bodyA, contacts[1].bodyB, contacts[1].pieceA, contacts[1].pieceB),
+      std::tuple(0, 1, 0, 1));
+  EXPECT_EQ(std::tuple(contacts[2].bodyA, contacts[2].bodyB, contacts[2].pieceB),
+            std::tuple(1, 2, 0));
+  const Collider& collider = *world.body(*twinId).description().collider;
+  const int touched = contacts[2].pieceA;
+  EXPECT_GT(collider.pieces[static_cast<std::size_t>(touched)].bounds.center().x(), 0.0);
+  for (const BodyContact& contact : contacts) EXPECT_EQ(contact.manifold.pointCount, 4);
+}
+
+}  // namespace
+}  // namespace rbsim

@@ -1,0 +1,144 @@
+// Validation of wrench messages and paging of state messages.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "daemon/wire_convert.h"
+
+namespace rbsim {
+namespace {
+
+World makeWorld(int count) {
+  WorldSettings settings;
+  settings.dt = 0.001;
+  World world(settings);
+  for (int i = 0; i < count; ++i) {
+    BodyDef def;
+    def.name = "body_" + std::to_string(i);
+    def.shape = SphereShape{0.1};
+    def.position = Vec3(i, 0, 0);
+    EXPECT_TRUE(world.createBody(def).ok());
+  }
+  BodyDef ground;
+  ground.name = "ground";
+  ground.shape = PlaneShape{};
+  ground.isStatic = true;
+  EXPECT_TRUE(world.createBody(ground).ok());
+  return world;
+}
+
+rbsim::wrench_t goodWrench() {
+  rbsim::wrench_t w{};
+  w.client = "test";
+  w.seq = 7;
+  w.body = "body_0";
+  w.frame = rbsim::wrench_t::FRAME_WORLD;
+  w.mode = rbsim::wrench_t::MODE_DURATION;
+  w.force[0] = 1.0;
+  w.duration = 0.0104;
+  w.apply_at_step = -1;
+  return w;
+}
+
+TEST(WireConvert, AcceptsAGoodWrenchAndRoundsTheDuration) {
+  const World world = makeWorld(2);
+  const auto request = wrenchRequestFrom(goodWrench(), world, 11, WrenchLimits{});
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->firstStep, 11);
+  EXPECT_EQ(request->durationSteps, 10);
+  EXPECT_EQ(request->mode, WrenchMode::Duration);
+  EXPECT_EQ(request->force, Vec3(1, 0, 0));
+}
+
+TEST(WireConvert, RejectsBadWrenchesWithReasons) {
+  const World world = makeWorld(2);
+  const auto reason = [&](rbsim::wrench_t w) {
+    const auto r = wrenchRequestFrom(w, world, 11, WrenchLimits{});
+    return r.ok() ? std::string("accepted") : r.error().message;
+  };
+  auto w = goodWrench();
+  w.body = "nobody";
+  EXPECT_NE(reason(w).find("unknown body"), std::string::npos);
+  w = goodWrench();
+  w.force[1] = std::nan("");
+  EXPECT_NE(reason(w).find("finite"), std::string::npos);
+  w = goodWrench();
+  w.apply_at_step = 10;
+  EXPECT_NE(reason(w).find("in the past"), std::string::npos);
+  w = goodWrench();
+  w.force[0] = 2e6;
+  EXPECT_NE(reason(w).find("exceeds"), std::string::npos);
+  w = goodWrench();
+  w.mode = 9;
+  EXPECT_NE(reason(w).find("mode"), std::string::npos);
+  w = goodWrench();
+  w.frame = 5;
+  EXPECT_NE(reason(w).find("frame"), std::string::npos);
+  w = goodWrench();
+  w.duration = 0.0;
+  EXPECT_NE(reason(w).find("duration"), std::string::npos);
+  w = goodWrench();
+  w.body = "ground";
+  EXPECT_NE(reason(w).find("static"), std::string::npos);
+  w = goodWrench();
+  w.point[0] = 5000.0;
+  EXPECT_NE(reason(w).find("from the centre of mass"), std::string::npos);
+  // Clear with no body is fine, and ignores the (bad) force.
+  w = goodWrench();
+  w.mode = rbsim::wrench_t::MODE_CLEAR;
+  w.body = "";
+  w.force[0] = std::nan("");
+  EXPECT_EQ(reason(w), "accepted");
+}
+
+TEST(WireConvert, LargeStatesArePagedUnderOneDatagram) {
+  const World world = makeWorld(2000);
+  const auto pages = worldStatePages(world, 42, 3);
+  ASSERT_GT(pages.size(), 1u);
+  int32_t next = 0;
+  for (std::size_t i = 0; i < pages.size(); ++i) {
+    const auto& page = pages[i];
+    EXPECT_LE(static_cast<std::size_t>(page.getEncodedSize()), kMaxPagePayloadBytes);
+    EXPECT_EQ(page.page, static_cast<int32_t>(i));
+    EXPECT_EQ(page.num_pages, static_cast<int32_t>(pages.size()));
+    EXPECT_EQ(page.total_bodies, 2001);
+    EXPECT_EQ(page.first_body_index, next);
+    EXPECT_EQ(page.num_bodies, static_cast<int32_t>(page.bodies.size()));
+    EXPECT_EQ(page.world_revision, 3);
+    next += page.num_bodies;
+  }
+  EXPECT_EQ(next, 2001);
+  // Every body once, in creation order, with its serial id.
+  EXPECT_EQ(pages.front().bodies.front().name, "body_0");
+  EXPECT_EQ(pages.front().bodies.front().id, 1);
+  EXPECT_EQ(pages.back().bodies.back().name, "ground");
+  EXPECT_EQ(pages.back().bodies.back().id, 2001);
+  EXPECT_EQ(pages.front().bodies[5].position[0], 5.0);
+  EXPECT_EQ(pages.front().bodies[5].orientation[0], 1.0);  // w first
+}
+
+TEST(WireConvert, SmallStateIsOnePage) {
+  const World world = makeWorld(3);
+  const auto pages = worldStatePages(world, 0, 1);
+  ASSERT_EQ(pages.size(), 1u);
+  EXPECT_EQ(pages[0].num_pages, 1);
+  EXPECT_EQ(pages[0].num_bodies, 4);
+}
+
+TEST(WireConvert, WorldDescriptionCarriesShapesAndMasses) {
+  const World world = makeWorld(1);
+  const auto pages = worldDescriptionPages(world, 0, 1);
+  ASSERT_EQ(pages.size(), 1u);
+  const auto& sphere = pages[0].bodies[0];
+  EXPECT_EQ(sphere.shape_type, "sphere");
+  EXPECT_EQ(sphere.radius, 0.1);
+  EXPECT_NEAR(sphere.mass, 1000.0 * 4.0 / 3.0 * M_PI * 1e-3, 1e-12);
+  EXPECT_NEAR(sphere.inertia[0], 0.4 * sphere.mass * 0.01, 1e-15);
+  const auto& ground = pages[0].bodies[1];
+  EXPECT_EQ(ground.shape_type, "plane");
+  EXPECT_TRUE(ground.is_static);
+  EXPECT_EQ(ground.plane_normal[2], 1.0);
+}
+
+}  // namespace
+}  // namespace rbsim

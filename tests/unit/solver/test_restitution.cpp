@@ -1,0 +1,210 @@
+// Colliding contact: the seed's impulse with restitution, against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "unit/solver/contact_test_worlds.h"
+
+namespace rbsim {
+namespace {
+
+using testing::addBox;
+using testing::addGround;
+using testing::addSphere;
+using testing::contactSettings;
+
+constexpr double kG = 9.81;
+
+struct Apex {
+  double time;    // s
+  double height;  // m, of the sphere's bottom above the ground
+};
+
+// Drops a sphere from `height` and records the apexes of its bounces.
+std::vector<Apex> bounceApexes(WorldSettings settings, double height, int count) {
+  World world(settings);
+  addGround(world);
+  const double radius = 0.1;
+  const BodyId ball = addSphere(world, "ball", radius, Vec3(0, 0, radius + height));
+  std::vector<Apex> apexes;
+  double previous = 0.0;
+  for (int i = 0; i < 20000 && static_cast<int>(apexes.size()) < count; ++i) {
+    world.step();
+    const double v = world.body(ball).linearVelocity().z();
+    if (previous > 0.0 && v <= 0.0)
+      apexes.push_back({world.time(), world.body(ball).position().z() - radius});
+    previous = v;
+  }
+  return apexes;
+}
+
+TEST(Restitution, ApexHeightsFallByESquaredAndBounceTimesByE) {
+  for (double e : {0.8, 0.5}) {
+    const double h0 = 1.0;
+    const auto apexes = bounceApexes(contactSettings(e, 0.5), h0, 4);
+    ASSERT_EQ(apexes.size(), 4u) << "e = " << e;
+    // Tolerance: the bounce happens when the gap closes within the step, up
+    // to v·dt (≤ 4.5 mm at 1 m) above the ground, and the apex is sampled
+    // once per step: about 0.5% of the height at these heights.
+    std::vector<double> heights{h0};
+    for (const Apex& a : apexes) heights.push_back(a.height);
+    for (std::size_t k = 1; k < heights.size(); ++k) {
+      if (heights[k] < 0.05) break;  // below that, v·dt is no longer small against the height
+      EXPECT_NEAR(heights[k] / heights[k - 1], e * e, 0.01) << "e = " << e << " bounce " << k;
+    }
+    // Time between bounces: 2 v_k / g with v_k = e^k v_0, so consecutive
+    // apex-to-apex intervals shrink by e.
+    for (std::size_t k = 1; k + 1 < apexes.size(); ++k) {
+      const double first = apexes[k].time - apexes[k - 1].time;
+      const double second = apexes[k + 1].time - apexes[k].time;
+      if (heights[k + 1] < 0.05) break;
+      EXPECT_NEAR(second / first, e, 0.02) << "e = " << e;
+    }
+    // First flight: free fall from h0 then a bounce to e² h0; apex time is
+    // sqrt(2 h0 / g) + e sqrt(2 h0 / g).
+    EXPECT_NEAR(apexes[0].time, (1.0 + e) * std::sqrt(2.0 * h0 / kG), 0.01);
+  }
+}
+
+TEST(Restitution, ZeroRestitutionStaysDown) {
+  World world(contactSettings(0.0, 0.5));
+  addGround(world);
+  const BodyId ball = addSphere(world, "ball", 0.1, Vec3(0, 0, 1.1));
+  double highestAfterImpact = 0.0;
+  bool landed = false;
+  for (int i = 0; i < 3000; ++i) {
+    world.step();
+    const double bottom = world.body(ball).position().z() - 0.1;
+    if (bottom < 0.001) landed = true;
+    if (landed) highestAfterImpact = std::max(highestAfterImpact, bottom);
+  }
+  EXPECT_TRUE(landed);
+  EXPECT_LT(highestAfterImpact, 0.001);
+  EXPECT_LT(world.body(ball).linearVelocity().norm(), 1e-3);
+}
+
+// Two free spheres in zero gravity, frictionless.
+struct TwoSpheres {
+  Vec3 v1, v2;
+};
+TwoSpheres collide(double e, double m1, double m2, const Vec3& u1, const Vec3& u2,
+                   const Vec3& offset) {
+  WorldSettings settings = contactSettings(e, 0.0);
+  settings.gravity = Vec3::Zero();
+  settings.contact.sleeping = false;
+  World world(settings);
+  BodyDef a;
+  a.name = "a";
+  a.shape = SphereShape{0.1};
+  a.mass = m1;
+  a.position = Vec3::Zero();
+  a.linearVelocity = u1;
+  BodyDef b = a;
+  b.name = "b";
+  b.mass = m2;
+  b.position = offset;
+  b.linearVelocity = u2;
+  const BodyId ia = *world.createBody(a), ib = *world.createBody(b);
+  for (int i = 0; i < 400; ++i) world.step();
+  return {world.body(ia).linearVelocity(), world.body(ib).linearVelocity()};
+}
+
+TEST(Restitution, HeadOnSpheresMatchTheClosedForm) {
+  // Along the line of centres: v1' = ((m1 − e m2) u1 + (1 + e) m2 u2) / (m1 + m2), and symmetrically.
+  for (const auto& [e, m1, m2] : {std::tuple{1.0, 1.0, 1.0}, std::tuple{0.5, 1.0, 3.0},
+                                  std::tuple{0.0, 2.0, 1.0}, std::tuple{0.9, 5.0, 0.5}}) {
+    const double u1 = 1.5, u2 = -0.5;
+    const TwoSpheres r = collide(e, m1, m2, Vec3(u1, 0, 0), Vec3(u2, 0, 0), Vec3(0.3, 0, 0));
+    const double v1 = ((m1 - e * m2) * u1 + (1 + e) * m2 * u2) / (m1 + m2);
+    const double v2 = ((m2 - e * m1) * u2 + (1 + e) * m1 * u1) / (m1 + m2);
+    EXPECT_NEAR(r.v1.x(), v1, 1e-9) << "e " << e << " m1 " << m1 << " m2 " << m2;
+    EXPECT_NEAR(r.v2.x(), v2, 1e-9);
+    EXPECT_NEAR(r.v1.y(), 0.0, 1e-12);
+    // Momentum is conserved exactly.
+    EXPECT_NEAR(m1 * r.v1.x() + m2 * r.v2.x(), m1 * u1 + m2 * u2, 1e-12);
+  }
+}
+
+TEST(Restitution, ObliqueSpheresExchangeOnlyTheNormalComponent) {
+  // Frictionless: along the normal (the line of centres when the impulse
+  // acts) the closed form above; across it the velocities stay.
+  const double e = 0.7, m1 = 2.0, m2 = 1.0;
+  const Vec3 u1(2.0, 0, 0), u2(0, 0, 0);
+  WorldSettings settings = contactSettings(e, 0.0);
+  settings.gravity = Vec3::Zero();
+  World world(settings);
+  BodyDef a;
+  a.name = "a";
+  a.shape = SphereShape{0.1};
+  a.mass = m1;
+  a.linearVelocity = u1;
+  BodyDef b = a;
+  b.name = "b";
+  b.mass = m2;
+  b.position = Vec3(0.4, 0.1, 0);
+  b.linearVelocity = u2;
+  const BodyId ia = *world.createBody(a), ib = *world.createBody(b);
+  Vec3 normal = Vec3::Zero();
+  for (int i = 0; i < 400; ++i) {
+    world.step();
+    for (const SolvedManifold& m : world.contacts())
+      if (m.pointCount > 0 && m.points[0].normalImpulse > 0.0 && normal.isZero()) normal = m.normal;
+  }
+  ASSERT_FALSE(normal.isZero()) << "they collided";
+  // The impulse acts when the gap closes within a step (≤ |u| dt = 2 mm), so
+  // the normal is the line of centres then: within a few mrad of touching.
+  const Vec3 touching = Vec3(std::sqrt(0.2 * 0.2 - 0.1 * 0.1), 0.1, 0).normalized();
+  EXPECT_LT(std::acos(std::min(1.0, normal.dot(touching))), 0.02);
+  const double un1 = u1.dot(normal), un2 = u2.dot(normal);
+  const double vn1 = ((m1 - e * m2) * un1 + (1 + e) * m2 * un2) / (m1 + m2);
+  const double vn2 = ((m2 - e * m1) * un2 + (1 + e) * m1 * un1) / (m1 + m2);
+  EXPECT_LT((world.body(ia).linearVelocity() - (u1 + (vn1 - un1) * normal)).norm(), 1e-9);
+  EXPECT_LT((world.body(ib).linearVelocity() - (u2 + (vn2 - un2) * normal)).norm(), 1e-9);
+}
+
+TEST(Restitution, TiltedBoxLandingOnACornerGetsTheSeedsImpulse) {
+  // A frictionless box tilted so one corner is lowest, falling: the step
+  // that catches it applies j = −(1+e) v_rel / (1/M + n·(I⁻¹(r×n))×r) at the
+  // corner, along the ground normal.
+  const double e = 0.6;
+  WorldSettings settings = contactSettings(e, 0.0);
+  World world(settings);
+  addGround(world);
+  const Quaternion tilt = Quaternion::fromRollPitchYaw(0.3, 0.4, 0.0);
+  const BodyId box = addBox(world, "box", Vec3(0.1, 0.15, 0.2), Vec3(0, 0, 0.5), tilt);
+  for (int i = 0; i < 5000; ++i) {
+    const Body before = world.body(box);
+    world.step();
+    // Steps where the corner is within the contact margin but not yet
+    // reached get no impulse.
+    if (world.contacts().empty() || world.contacts()[0].points[0].normalImpulse == 0.0) continue;
+    const Body& after = world.body(box);
+    ASSERT_EQ(world.contacts().size(), 1u);
+    const SolvedManifold& m = world.contacts()[0];
+    ASSERT_EQ(m.pointCount, 1) << "one corner touches";
+    // Velocities just before the impulse: the step's gravity applied first.
+    const double dt = settings.dt;
+    const Vec3 v = before.linearVelocity() + settings.gravity * dt;
+    const Vec3 omega = before.angularVelocity();
+    const Vec3 n = Vec3::UnitZ();
+    const Vec3 r = m.points[0].point - before.position();
+    const double vRel = (v + omega.cross(r)).dot(n);
+    ASSERT_LT(vRel, -0.5);  // colliding
+    const Mat3 invI = before.inverseInertiaWorld();
+    const double k = before.inverseMass() + n.dot((invI * r.cross(n)).cross(r));
+    const double j = -(1.0 + e) * vRel / k;
+    EXPECT_NEAR(m.points[0].normalImpulse, j, 1e-9 * j);
+    EXPECT_LT((after.linearMomentum() - (before.mass() * v + j * n)).norm(), 1e-9);
+    // Angular: L' = L + r × (j n), and ω' = I⁻¹ L' with the inertia of the step start.
+    const Vec3 expectedL = before.angularMomentum() + r.cross(j * n);
+    EXPECT_LT((after.angularMomentum() - expectedL).norm(), 1e-9);
+    const Vec3 expectedOmega = invI * expectedL;
+    EXPECT_LT((before.inverseInertiaWorld() * after.angularMomentum() - expectedOmega).norm(), 1e-9);
+    return;
+  }
+  FAIL() << "the box never landed";
+}
+
+}  // namespace
+}  // namespace rbsim
