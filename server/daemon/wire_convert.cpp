@@ -86,35 +86,57 @@ rbsim::body_description_t bodyDescription(const Body& body) {
   return out;
 }
 
-// Splits items into pages whose encoded size stays under the budget.
-// `Page` has the world_state_t/world_t paging fields and a `bodies` vector.
-template <class Page, class Item>
+// Splits items into pages whose encoded size stays under the budget. The
+// Fields policy names the page type's list and counters (bodies for states
+// and world descriptions, contacts for contacts).
+struct BodyFields {
+  template <class Page>
+  static auto& items(Page& page) { return page.bodies; }
+  template <class Page>
+  static void setCounts(Page& page, int32_t first, int32_t count, int32_t total) {
+    page.first_body_index = first;
+    page.num_bodies = count;
+    page.total_bodies = total;
+  }
+};
+struct ContactFields {
+  template <class Page>
+  static auto& items(Page& page) { return page.contacts; }
+  template <class Page>
+  static void setCounts(Page& page, int32_t first, int32_t count, int32_t total) {
+    page.first_contact_index = first;
+    page.num_contacts = count;
+    page.total_contacts = total;
+  }
+};
+
+template <class Fields, class Page, class Item>
 std::vector<Page> paginate(const Page& header, std::vector<Item> items) {
   std::vector<Page> pages;
+  std::vector<int32_t> firstIndex;
   Page current = header;
   const auto emptySize = static_cast<std::size_t>(header.getEncodedSize());
   std::size_t size = emptySize;
   int32_t index = 0;
-  current.first_body_index = 0;
+  firstIndex.push_back(0);
   for (Item& item : items) {
     const auto itemSize = static_cast<std::size_t>(item._getEncodedSizeNoHash());
-    if (!current.bodies.empty() && size + itemSize > kMaxPagePayloadBytes) {
-      current.num_bodies = static_cast<int32_t>(current.bodies.size());
+    if (!Fields::items(current).empty() && size + itemSize > kMaxPagePayloadBytes) {
       pages.push_back(std::move(current));
       current = header;
-      current.first_body_index = index;
+      firstIndex.push_back(index);
       size = emptySize;
     }
-    current.bodies.push_back(std::move(item));
+    Fields::items(current).push_back(std::move(item));
     size += itemSize;
     ++index;
   }
-  current.num_bodies = static_cast<int32_t>(current.bodies.size());
   pages.push_back(std::move(current));
   for (std::size_t i = 0; i < pages.size(); ++i) {
     pages[i].page = static_cast<int32_t>(i);
     pages[i].num_pages = static_cast<int32_t>(pages.size());
-    pages[i].total_bodies = index;
+    Fields::setCounts(pages[i], firstIndex[i], static_cast<int32_t>(Fields::items(pages[i]).size()),
+                      index);
   }
   return pages;
 }
@@ -140,7 +162,7 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
   std::vector<rbsim::body_state_t> bodies;
   bodies.reserve(world.bodies().size());
   for (const Body& body : world.bodies()) bodies.push_back(bodyState(body));
-  return paginate(header, std::move(bodies));
+  return paginate<BodyFields>(header, std::move(bodies));
 }
 
 std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
@@ -163,7 +185,7 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   std::vector<rbsim::body_description_t> bodies;
   bodies.reserve(world.bodies().size());
   for (const Body& body : world.bodies()) bodies.push_back(bodyDescription(body));
-  return paginate(header, std::move(bodies));
+  return paginate<BodyFields>(header, std::move(bodies));
 }
 
 std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
@@ -177,11 +199,7 @@ std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
   header.first_contact_index = 0;
   header.num_contacts = 0;
   const double epsilon = world.settings().contact.classificationEpsilon;
-  std::vector<rbsim::contacts_t> pages;
-  rbsim::contacts_t current = header;
-  const auto emptySize = static_cast<std::size_t>(header.getEncodedSize());
-  std::size_t size = emptySize;
-  int32_t index = 0;
+  std::vector<rbsim::contact_t> contacts;
   for (const SolvedManifold& m : world.contacts()) {
     for (int p = 0; p < m.pointCount; ++p) {
       const SolvedContactPoint& point = m.points[p];
@@ -205,27 +223,10 @@ std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
       }
       c.normal_impulse = point.normalImpulse;
       copyTo(c.friction_impulse, point.tangentImpulse);
-      const auto itemSize = static_cast<std::size_t>(c._getEncodedSizeNoHash());
-      if (!current.contacts.empty() && size + itemSize > kMaxPagePayloadBytes) {
-        current.num_contacts = static_cast<int32_t>(current.contacts.size());
-        pages.push_back(std::move(current));
-        current = header;
-        current.first_contact_index = index;
-        size = emptySize;
-      }
-      current.contacts.push_back(c);
-      size += itemSize;
-      ++index;
+      contacts.push_back(c);
     }
   }
-  current.num_contacts = static_cast<int32_t>(current.contacts.size());
-  pages.push_back(std::move(current));
-  for (std::size_t i = 0; i < pages.size(); ++i) {
-    pages[i].page = static_cast<int32_t>(i);
-    pages[i].num_pages = static_cast<int32_t>(pages.size());
-    pages[i].total_contacts = index;
-  }
-  return pages;
+  return paginate<ContactFields>(header, std::move(contacts));
 }
 
 Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,

@@ -177,4 +177,15 @@ TriangleMesh transformed(const TriangleMesh& mesh, const Mat3& rotation, const V
   return result;
 }
 
+void usedVertexBounds(const TriangleMesh& mesh, Vec3& lower, Vec3& upper) {
+  lower = Vec3::Constant(std::numeric_limits<double>::infinity());
+  upper = -lower;
+  for (const auto& triangle : mesh.triangles) {
+    for (int index : triangle) {
+      lower = lower.cwiseMin(mesh.vertices[static_cast<std::size_t>(index)]);
+      upper = upper.cwiseMax(mesh.vertices[static_cast<std::size_t>(index)]);
+    }
+  }
+}
+
 }  // namespace rbsim

@@ -23,6 +23,9 @@ struct TriangleMesh {
 // and vertex numbers in messages count from 0.
 Expected<bool> validateClosedMesh(const TriangleMesh& mesh, const std::string& sourceName);
 
+// Corners of the axis-aligned box around the vertices the triangles use.
+void usedVertexBounds(const TriangleMesh& mesh, Vec3& lower, Vec3& upper);
+
 // The same mesh with every vertex mapped by p -> rotation * p + translation.
 // A reflection (det(rotation) < 0) turns the mesh inside out.
 TriangleMesh transformed(const TriangleMesh& mesh, const Mat3& rotation, const Vec3& translation);

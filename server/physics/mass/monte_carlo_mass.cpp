@@ -105,14 +105,8 @@ MonteCarloMassProperties monteCarloMassProperties(const TriangleMesh& mesh, doub
 
   // Work about the bounding-box centre, for the same precision reason as the
   // exact integrals.
-  Vec3 lower = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 upper = -lower;
-  for (const auto& triangle : mesh.triangles) {
-    for (int index : triangle) {
-      lower = lower.cwiseMin(mesh.vertices[static_cast<size_t>(index)]);
-      upper = upper.cwiseMax(mesh.vertices[static_cast<size_t>(index)]);
-    }
-  }
+  Vec3 lower, upper;
+  usedVertexBounds(mesh, lower, upper);
   const Vec3 reference = 0.5 * (lower + upper);
   const Vec3 halfSize = 0.5 * (upper - lower);
   const double boxVolume = (upper - lower).prod();

@@ -127,14 +127,8 @@ MassProperties polyhedronMassProperties(const TriangleMesh& mesh, double density
   // of order 1e18: all digits lost. Integrating about the bounding-box centre
   // keeps every term at the mesh's own scale; T1 and the parallel-axis step
   // below bring the results back to the mesh's frame.
-  Vec3 lower = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 upper = -lower;
-  for (const auto& triangle : mesh.triangles) {
-    for (int index : triangle) {
-      lower = lower.cwiseMin(mesh.vertices[static_cast<size_t>(index)]);
-      upper = upper.cwiseMax(mesh.vertices[static_cast<size_t>(index)]);
-    }
-  }
+  Vec3 lower, upper;
+  usedVertexBounds(mesh, lower, upper);
   const Vec3 reference = 0.5 * (lower + upper);
 
   double t0 = 0.0;

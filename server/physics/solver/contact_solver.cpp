@@ -184,7 +184,9 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       // than the threshold bounces with −e v_rel (the seed's law of
       // restitution); penetration itself is left to the position pass.
       const double vn = relativeVelocity(a, b, pc.rA, pc.rB).dot(c.normal);
-      pc.relativeNormalVelocity = vn;
+      pc.relativeNormalVelocity = (b.startLinearVelocity + b.startAngularVelocity.cross(pc.rB) -
+                                   a.startLinearVelocity - a.startAngularVelocity.cross(pc.rA))
+                                      .dot(c.normal);
       const double gap = -raw.depth;
       const bool hitsThisStep = gap <= 0.0 || vn * dt < -gap;
       if (vn < -settings.restitutionThreshold && hitsThisStep && material.restitution > 0.0) {

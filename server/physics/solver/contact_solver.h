@@ -43,6 +43,10 @@ namespace rbsim {
 struct SolverBody {
   Vec3 linearVelocity = Vec3::Zero();     // m/s, world
   Vec3 angularVelocity = Vec3::Zero();    // rad/s, world
+  // Velocities of the state the step starts from, before this step's forces:
+  // what classifies a contact as colliding, resting or separating.
+  Vec3 startLinearVelocity = Vec3::Zero();   // m/s
+  Vec3 startAngularVelocity = Vec3::Zero();  // rad/s
   Vec3 pseudoLinear = Vec3::Zero();       // m/s: split-impulse position correction
   Vec3 pseudoAngular = Vec3::Zero();      // rad/s
   Mat3 inverseInertia = Mat3::Zero();     // 1/(kg·m²), world
@@ -57,7 +61,7 @@ struct SolvedContactPoint {
   double depth = 0.0;                // m
   double normalImpulse = 0.0;        // N·s, accumulated this step
   Vec3 tangentImpulse = Vec3::Zero();  // N·s, world: the patch's friction shared by normal load
-  double relativeNormalVelocity = 0.0;  // m/s before the solve (negative: approaching)
+  double relativeNormalVelocity = 0.0;  // m/s at the step's start state (negative: approaching)
   bool sticking = false;
   uint32_t featureId = 0;
 };
@@ -100,7 +104,7 @@ class ContactSolver {
     double targetVelocity = 0.0;     // m/s: v_n the normal impulse aims for
     double pseudoImpulse = 0.0;      // N·s of the split-impulse solve
     double depth = 0.0;              // m
-    double relativeNormalVelocity = 0.0;  // m/s before the solve
+    double relativeNormalVelocity = 0.0;  // m/s at the step's start state (for classification)
     uint32_t featureId = 0;
   };
   enum class Frozen { None, A, B };  // which body a shock sweep holds still

@@ -181,6 +181,8 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     if (body.m_dynamics.angularDamping != 0.0) l /= 1.0 + h * body.m_dynamics.angularDamping;
     sb.inverseMass = body.m_dynamics.inverseMass;
     sb.inverseInertia = body.m_invInertiaWorld;
+    sb.startLinearVelocity = body.m_linearVelocity;
+    sb.startAngularVelocity = body.m_angularVelocity;
     sb.linearVelocity = p * sb.inverseMass;
     sb.angularVelocity = sb.inverseInertia * l;
   }

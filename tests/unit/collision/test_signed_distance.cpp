@@ -198,6 +198,21 @@ TEST(SignedDistance, OverlappingCylinders) {
   expectConsistent(side);
 }
 
+TEST(SignedDistance, LyingCylindersSideBySideOverlapByTheirGap) {
+  // Regression: libccd's EPA reported success with a depth of 1.199 m along
+  // -x for this pose; two parallel cylinders 0.599 m apart (radii 0.3)
+  // overlap by 0.001 m along the line joining their axes.
+  const Quaternion lying = Quaternion::fromAxisAngle(Vec3::UnitX(), M_PI / 2);  // axis along y
+  const Solid a = makeSolid(CylinderShape{0.3, 0.5}, Vec3::Zero(), lying);
+  const Solid b = makeSolid(CylinderShape{0.3, 0.5}, Vec3(0.599, 0.2, 0.0), lying);
+  const SignedDistance d = signedDistance(a.placed(), b.placed());
+  EXPECT_NEAR(d.distance, -0.001, 1e-6);
+  expectVecNear(d.normal, Vec3::UnitX(), 5e-3);
+  const SignedDistance reversed = signedDistance(b.placed(), a.placed());
+  EXPECT_NEAR(reversed.distance, -0.001, 1e-6);
+  expectVecNear(reversed.normal, -Vec3::UnitX(), 5e-3);
+}
+
 TEST(SignedDistance, TolerancesAtRoundingLevelStillTerminate) {
   // With EPA's tolerance at the level of rounding, libccd 2.1's EPA loop
   // never ends on two boxes face to face; the support budget must end it,

@@ -142,3 +142,41 @@ TEST(WireConvert, WorldDescriptionCarriesShapesAndMasses) {
 
 }  // namespace
 }  // namespace rbsim
+
+namespace rbsim {
+namespace {
+
+TEST(WireConvert, ContactsOfABoxRestingOnTheGround) {
+  World world;
+  BodyDef ground;
+  ground.name = "ground";
+  ground.shape = PlaneShape{};
+  ground.isStatic = true;
+  ASSERT_TRUE(world.createBody(ground).ok());
+  BodyDef box;
+  box.name = "box";
+  box.shape = BoxShape{Vec3::Constant(0.1)};
+  box.position = Vec3(0, 0, 0.1);
+  ASSERT_TRUE(world.createBody(box).ok());
+  for (int i = 0; i < 200; ++i) world.step();
+  const auto pages = contactPages(world, 7);
+  ASSERT_EQ(pages.size(), 1u);
+  EXPECT_EQ(pages[0].step, 200);
+  ASSERT_EQ(pages[0].num_contacts, 4);
+  EXPECT_EQ(pages[0].total_contacts, 4);
+  double totalImpulse = 0.0;
+  for (const auto& c : pages[0].contacts) {
+    EXPECT_EQ(c.body_a, 1);  // ground, then the box: normal from ground to box
+    EXPECT_EQ(c.body_b, 2);
+    EXPECT_EQ(c.normal[2], 1.0);
+    EXPECT_EQ(c.classification, rbsim::contact_t::RESTING);
+    EXPECT_NEAR(c.position[2], 0.0, 1e-3);
+    totalImpulse += c.normal_impulse;
+  }
+  // At rest the contacts carry the weight: Σ j = m g dt.
+  const double weight = world.body(world.findBody("box")).mass() * 9.81;
+  EXPECT_NEAR(totalImpulse, weight * world.settings().dt, 1e-6 * weight);
+}
+
+}  // namespace
+}  // namespace rbsim
