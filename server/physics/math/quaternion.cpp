@@ -39,24 +39,6 @@ Quaternion Quaternion::fromRollPitchYaw(double roll, double pitch, double yaw) {
   return qz * qy * qx;
 }
 
-double Quaternion::norm() const { return std::sqrt(squaredNorm()); }
-
-Quaternion Quaternion::normalized() const {
-  const double inv = 1.0 / norm();
-  return {w * inv, x * inv, y * inv, z * inv};
-}
-
-Mat3 Quaternion::toRotationMatrix() const {
-  const double xx = x * x, yy = y * y, zz = z * z;
-  const double xy = x * y, xz = x * z, yz = y * z;
-  const double wx = w * x, wy = w * y, wz = w * z;
-  Mat3 r;
-  r << 1.0 - 2.0 * (yy + zz), 2.0 * (xy - wz), 2.0 * (xz + wy),  //
-      2.0 * (xy + wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz - wx),   //
-      2.0 * (xz - wy), 2.0 * (yz + wx), 1.0 - 2.0 * (xx + yy);
-  return r;
-}
-
 Vec3 Quaternion::toRollPitchYaw() const {
   const Mat3 r = toRotationMatrix();
   // R = Rz(yaw) Ry(pitch) Rx(roll): r20 = -sin(pitch).
@@ -86,13 +68,6 @@ Vec3 Quaternion::inverseRotate(const Vec3& v) const { return conjugate().rotate(
 
 bool Quaternion::isFinite() const {
   return std::isfinite(w) && std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
-}
-
-Quaternion operator*(const Quaternion& a, const Quaternion& b) {
-  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-          a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
 }
 
 bool operator==(const Quaternion& a, const Quaternion& b) {

@@ -7,6 +7,7 @@
 // v = sin(θ/2) u rotates by θ about the unit axis u (the seed lecture).
 
 #include <array>
+#include <cmath>
 
 #include "physics/math/types.h"
 
@@ -50,5 +51,33 @@ struct Quaternion {
 // Hamilton product: (a b) rotates by b first, then by a.
 Quaternion operator*(const Quaternion& a, const Quaternion& b);
 bool operator==(const Quaternion& a, const Quaternion& b);
+
+// The operations of the stepping loop are inline: they run for every body
+// every step, and the library is built without link-time optimisation.
+
+inline double Quaternion::norm() const { return std::sqrt(squaredNorm()); }
+
+inline Quaternion Quaternion::normalized() const {
+  const double inv = 1.0 / norm();
+  return {w * inv, x * inv, y * inv, z * inv};
+}
+
+inline Mat3 Quaternion::toRotationMatrix() const {
+  const double xx = x * x, yy = y * y, zz = z * z;
+  const double xy = x * y, xz = x * z, yz = y * z;
+  const double wx = w * x, wy = w * y, wz = w * z;
+  Mat3 r;
+  r << 1.0 - 2.0 * (yy + zz), 2.0 * (xy - wz), 2.0 * (xz + wy),  //
+      2.0 * (xy + wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz - wx),   //
+      2.0 * (xz - wy), 2.0 * (yz + wx), 1.0 - 2.0 * (xx + yy);
+  return r;
+}
+
+inline Quaternion operator*(const Quaternion& a, const Quaternion& b) {
+  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+          a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
 
 }  // namespace rbsim

@@ -79,6 +79,24 @@ void World::stepImpulse() {
   const std::vector<BodyContact>& detected = m_detector->contacts();
   const std::size_t n = m_bodies.size();
 
+  if (detected.empty()) {
+    // Nothing touches: every body flies free, each its own island.
+    for (Body& body : m_bodies) {
+      if (body.m_sleeping && body.m_load.active) {
+        body.m_sleeping = false;
+        body.m_restTime = 0.0;
+      }
+    }
+    integrateFree(dt, {});
+    m_contacts.clear();
+    if (config.sleeping) {
+      std::vector<int> islandOf(n);
+      std::iota(islandOf.begin(), islandOf.end(), 0);
+      updateSleep(islandOf);
+    }
+    return;
+  }
+
   // Islands: dynamic bodies joined by contacts. A pushed body, or one that
   // touches an awake body, wakes its whole island.
   DisjointSets islands(n);
