@@ -2,7 +2,7 @@
 // that it runs the very same scenes, timing loop and statistics as Bullet,
 // ODE and MuJoCo, in the same session:
 //   taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3
-// One timed step = World::step() (dynamics only until contact response exists).
+// One timed step = World::step(): collision detection, contact response, integration.
 #include "scene.hpp"
 
 #include "physics/world/world.h"
@@ -13,9 +13,13 @@ rbsim::Vec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
 
 struct RbsimEngine : anchors::Engine {
   std::optional<rbsim::World> world;
+  bool sleeping = true;
 
-  void build(const anchors::Scene& scene, const anchors::Options&) override {
+  void build(const anchors::Scene& scene, const anchors::Options& options) override {
     rbsim::WorldSettings settings;
+    settings.contact.sleeping = options.sleep != 0;
+    if (options.iters > 0) settings.contact.solver.velocityIterations = options.iters;
+    sleeping = settings.contact.sleeping;
     settings.dt = scene.dt;
     settings.gravity = rbsim::Vec3(0, 0, scene.gravity);
     settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
@@ -65,9 +69,15 @@ struct RbsimEngine : anchors::Engine {
     }
   }
 
-  long contacts() const override { return -1; }
+  long contacts() const override { return world->contactPointCount(); }
+  std::string notes() const override {
+    return sleeping ? "sleeping bodies at end: " + std::to_string(world->sleepingBodyCount()) : "";
+  }
   std::string settings() const override {
-    return "rbsim World::step, semi-implicit Euler, double; no contact response yet";
+    return std::string("rbsim World::step: semi-implicit Euler, double; sequential impulses, ") +
+           std::to_string(world->settings().contact.solver.velocityIterations) +
+           " iterations, patch friction 0.5, split impulses, shock propagation; sleeping " +
+           (sleeping ? "on" : "off");
   }
 };
 

@@ -26,8 +26,10 @@ struct ServerSettings {
   int maxBurst = 20;                     // steps, Burst policy only
   bool startPaused = false;
   // The last part of the wait for a step deadline is spent polling instead
-  // of sleeping, for wake-ups on time (costs CPU: spin × step rate).
-  int64_t spinNanoseconds = 100000;
+  // of sleeping, for wake-ups on time: a timer wake-up on a virtual machine
+  // is often 50-150 µs late. Costs CPU: spin × step rate (25% of a core at
+  // 1 kHz); `server.spin_us: 0` turns it off.
+  int64_t spinNanoseconds = 250000;
   std::string recordPath;                // empty: no recording
 
   WrenchLimits limits;
