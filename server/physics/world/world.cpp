@@ -181,6 +181,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   body.m_serial = ++m_lastSerial;
   m_idByName.emplace(def.name, id);
   if (body.description().collider) ++m_collidingBodies;
+  if (def.continuousCollision && !def.isStatic) ++m_continuousBodies;
   m_bodies.push_back(std::move(body));
   m_denseIds.push_back(id);
   return id;
@@ -192,6 +193,8 @@ bool World::removeBody(BodyId id) {
   const auto dense = static_cast<size_t>(slot.denseIndex);
   m_idByName.erase(m_bodies[dense].name());
   if (m_bodies[dense].description().collider) --m_collidingBodies;
+  if (m_bodies[dense].description().continuousCollision && !m_bodies[dense].isStatic())
+    --m_continuousBodies;
   m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
   m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (size_t i = dense; i < m_denseIds.size(); ++i)
@@ -225,6 +228,11 @@ Body& World::body(BodyId id) {
 
 void World::step() {
   const bool anyContact = m_settings.contact.enabled && m_collidingBodies > 0;
+  std::vector<RigidState> starts;
+  if (anyContact && m_continuousBodies > 0) {
+    starts.reserve(m_bodies.size());
+    for (const Body& body : m_bodies) starts.push_back(body.m_state);
+  }
   if (!anyContact) {
     integrateFree(m_settings.dt, {});
     m_contacts.clear();
@@ -235,6 +243,7 @@ void World::step() {
   } else {
     stepImpulse();
   }
+  if (!starts.empty()) applyContinuousCollision(starts);
   ++m_stepCount;
 }
 

@@ -109,6 +109,11 @@ class World {
   // stayed below the sleep velocities for the sleep time.
   void updateSleep(const std::vector<int>& islandOf);
   void findContacts();
+  // Continuous collision for bodies flagged `continuousCollision`: a body
+  // whose motion over the step (from `starts`) would pass through another
+  // body is stopped at its time of impact, velocity kept, so the next step's
+  // contact stops it (no tunnelling through thin geometry).
+  void applyContinuousCollision(const std::vector<RigidState>& starts);
   // Detects contacts and returns the deepest penetration (m; negative: the
   // smallest gap within the margin; -inf without contacts).
   double deepestPenetration();
@@ -135,6 +140,7 @@ class World {
   int64_t m_stepCount = 0;
   int32_t m_lastSerial = 0;
   int m_collidingBodies = 0;  // bodies with collision geometry
+  int m_continuousBodies = 0; // dynamic bodies flagged for continuous collision
 };
 
 }  // namespace rbsim

@@ -1,0 +1,58 @@
+// Continuous collision in the world step: a small fast sphere and a thin wall.
+#include <gtest/gtest.h>
+
+#include "unit/solver/contact_test_worlds.h"
+
+namespace rbsim {
+namespace {
+
+// A 1 cm sphere at 500 m/s (0.5 m per 1 ms step) towards a static wall
+// 5 mm thick at x = 0.5 m, no gravity. Returns the largest x the sphere's
+// centre reached and its final x velocity.
+struct Shot {
+  double farthest;
+  double finalVelocity;
+};
+Shot shoot(bool continuous) {
+  WorldSettings settings = testing::contactSettings(0.0, 0.0);
+  settings.gravity = Vec3::Zero();
+  World world(settings);
+  BodyDef wall;
+  wall.name = "wall";
+  wall.shape = BoxShape{Vec3(0.0025, 1.0, 1.0)};
+  wall.position = Vec3(0.5, 0, 0);
+  wall.isStatic = true;
+  EXPECT_TRUE(world.createBody(wall).ok());
+  BodyDef bullet;
+  bullet.name = "bullet";
+  bullet.shape = SphereShape{0.01};
+  bullet.position = Vec3(0.2, 0, 0);
+  bullet.linearVelocity = Vec3(500.0, 0, 0);
+  bullet.continuousCollision = continuous;
+  const BodyId id = *world.createBody(bullet);
+  Shot shot{0.0, 0.0};
+  for (int i = 0; i < 10; ++i) {
+    world.step();
+    shot.farthest = std::max(shot.farthest, world.body(id).position().x());
+  }
+  shot.finalVelocity = world.body(id).linearVelocity().x();
+  return shot;
+}
+
+TEST(ContinuousCollision, AFastSphereTunnelsThroughAThinWallWithoutIt) {
+  const Shot shot = shoot(false);
+  EXPECT_GT(shot.farthest, 0.6);  // it went through
+  EXPECT_NEAR(shot.finalVelocity, 500.0, 1e-9);
+}
+
+TEST(ContinuousCollision, WithItTheSphereStopsAtTheWall) {
+  const Shot shot = shoot(true);
+  // The wall's face is at x = 0.4975; the sphere's centre never passes
+  // x = 0.4875 by more than the time-of-impact tolerance (0.1 mm).
+  EXPECT_LT(shot.farthest, 0.4875 + 1e-4);
+  EXPECT_GT(shot.farthest, 0.4875 - 1e-3);
+  EXPECT_NEAR(shot.finalVelocity, 0.0, 1e-6);  // restitution 0: it stays at the wall
+}
+
+}  // namespace
+}  // namespace rbsim
