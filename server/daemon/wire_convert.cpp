@@ -110,8 +110,12 @@ struct ContactFields {
   }
 };
 
+// `header` needs only its own fields: paginate sets every paging field.
 template <class Fields, class Page, class Item>
-std::vector<Page> paginate(const Page& header, std::vector<Item> items) {
+std::vector<Page> paginate(Page header, std::vector<Item> items) {
+  header.page = 0;
+  header.num_pages = 1;
+  Fields::setCounts(header, 0, 0, 0);
   std::vector<Page> pages;
   std::vector<int32_t> firstIndex;
   Page current = header;
@@ -154,11 +158,6 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
   header.step = world.stepCount();
   header.sim_time = world.time();
   header.world_revision = revision;
-  header.page = 0;
-  header.num_pages = 1;
-  header.total_bodies = 0;
-  header.first_body_index = 0;
-  header.num_bodies = 0;
   std::vector<rbsim::body_state_t> bodies;
   bodies.reserve(world.bodies().size());
   for (const Body& body : world.bodies()) bodies.push_back(bodyState(body));
@@ -177,11 +176,6 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   header.integrator = std::string(integratorName(world.settings().integrator));
   header.linear_damping = world.settings().linearDamping;
   header.angular_damping = world.settings().angularDamping;
-  header.page = 0;
-  header.num_pages = 1;
-  header.total_bodies = 0;
-  header.first_body_index = 0;
-  header.num_bodies = 0;
   std::vector<rbsim::body_description_t> bodies;
   bodies.reserve(world.bodies().size());
   for (const Body& body : world.bodies()) bodies.push_back(bodyDescription(body));
@@ -193,11 +187,6 @@ std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
   header.utime = utime;
   header.step = world.stepCount();
   header.sim_time = world.time();
-  header.page = 0;
-  header.num_pages = 1;
-  header.total_contacts = 0;
-  header.first_contact_index = 0;
-  header.num_contacts = 0;
   const double epsilon = world.settings().contact.classificationEpsilon;
   std::vector<rbsim::contact_t> contacts;
   for (const SolvedManifold& m : world.contacts()) {

@@ -84,15 +84,8 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
   for (std::size_t m = 0; m < m_constraints.size(); ++m) {
     const ManifoldConstraint& c = m_constraints[m];
     const BodyContact& contact = contacts[m];
-    SolvedManifold solved;
-    solved.serialA = serials[static_cast<std::size_t>(c.bodyA)];
-    solved.serialB = serials[static_cast<std::size_t>(c.bodyB)];
-    solved.pieceA = contact.pieceA;
-    solved.pieceB = contact.pieceB;
-    solved.bodyA = c.bodyA;
-    solved.bodyB = c.bodyB;
-    solved.normal = c.normal;
-    solved.pointCount = c.pointCount;
+    SolvedManifold solved = SolvedManifold::identityOf(
+        contact, serials[static_cast<std::size_t>(c.bodyA)], serials[static_cast<std::size_t>(c.bodyB)]);
     const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
     solved.frictionImpulse = c.tangentImpulse[0] * c.tangent1 + c.tangentImpulse[1] * c.tangent2;

@@ -79,6 +79,20 @@ struct SolvedManifold {
   bool sticking = false;                // the patch did not slip
   int pointCount = 0;
   SolvedContactPoint points[4];
+
+  // Which bodies, pieces, normal and point count: everything but the impulses.
+  static SolvedManifold identityOf(const BodyContact& contact, int32_t serialA, int32_t serialB) {
+    SolvedManifold m;
+    m.serialA = serialA;
+    m.serialB = serialB;
+    m.pieceA = contact.pieceA;
+    m.pieceB = contact.pieceB;
+    m.bodyA = contact.bodyA;
+    m.bodyB = contact.bodyB;
+    m.normal = contact.manifold.normal;
+    m.pointCount = contact.manifold.pointCount;
+    return m;
+  }
 };
 
 class ContactSolver {

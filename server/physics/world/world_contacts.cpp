@@ -307,15 +307,7 @@ void World::stepPenalty() {
     const PairMaterial material = combineMaterials(a.description().material, b.description().material);
     const ContactManifold& m = c.manifold;
     const double share = 1.0 / std::max(1, m.pointCount);
-    SolvedManifold record;
-    record.serialA = a.m_serial;
-    record.serialB = b.m_serial;
-    record.pieceA = c.pieceA;
-    record.pieceB = c.pieceB;
-    record.bodyA = c.bodyA;
-    record.bodyB = c.bodyB;
-    record.normal = m.normal;
-    record.pointCount = m.pointCount;
+    SolvedManifold record = SolvedManifold::identityOf(c, a.m_serial, b.m_serial);
     for (int p = 0; p < m.pointCount; ++p) {
       const ContactPoint& point = m.points[static_cast<std::size_t>(p)];
       SolvedContactPoint& out = record.points[p];
