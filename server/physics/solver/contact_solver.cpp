@@ -17,41 +17,39 @@ void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = n.cross(t1);
 }
 
-// 1 / (1/ma + 1/mb + (rA×d)·IA⁻¹(rA×d) + (rB×d)·IB⁻¹(rB×d)): the seed's
-// denominator, the inverse of the effective mass along d at the point.
-double effectiveMass(const SolverBody& a, const SolverBody& b, const Vec3& rA, const Vec3& rB,
-                     const Vec3& d) {
-  const Vec3 rnA = rA.cross(d), rnB = rB.cross(d);
-  const double k = a.inverseMass + b.inverseMass + rnA.dot(a.inverseInertia * rnA) +
-                   rnB.dot(b.inverseInertia * rnB);
-  return k > 0.0 ? 1.0 / k : 0.0;
+double inverseOrZero(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
+
+// The inverse of the leading size × size block of k, zero elsewhere; false
+// when that block is (nearly) singular.
+bool invertLeadingBlock(const Mat3& k, int size, Mat3& inverse) {
+  inverse.setZero();
+  if (size == 1) {
+    if (!(k(0, 0) > 0.0)) return false;
+    inverse(0, 0) = 1.0 / k(0, 0);
+    return true;
+  }
+  if (size == 2) {
+    const double det = k(0, 0) * k(1, 1) - k(0, 1) * k(1, 0);
+    if (!(det > 1e-12 * k(0, 0) * k(1, 1))) return false;
+    inverse(0, 0) = k(1, 1) / det;
+    inverse(1, 1) = k(0, 0) / det;
+    inverse(0, 1) = -k(0, 1) / det;
+    inverse(1, 0) = -k(1, 0) / det;
+    return true;
+  }
+  const double det = k.determinant();
+  if (!(det > 1e-12 * k(0, 0) * k(1, 1) * k(2, 2))) return false;
+  inverse = k.inverse();
+  return true;
 }
 
-Vec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const Vec3& rA, const Vec3& rB) {
-  return b.linearVelocity + b.angularVelocity.cross(rB) - a.linearVelocity -
-         a.angularVelocity.cross(rA);
-}
-
-void applyImpulse(SolverBody& a, SolverBody& b, const Vec3& rA, const Vec3& rB,
-                  const Vec3& impulse) {
-  a.linearVelocity -= a.inverseMass * impulse;
-  a.angularVelocity -= a.inverseInertia * rA.cross(impulse);
-  b.linearVelocity += b.inverseMass * impulse;
-  b.angularVelocity += b.inverseInertia * rB.cross(impulse);
-}
-
-double twistMass(const SolverBody& a, const SolverBody& b, const Vec3& n) {
-  const double k = n.dot(a.inverseInertia * n) + n.dot(b.inverseInertia * n);
-  return k > 0.0 ? 1.0 / k : 0.0;
-}
-
-// A pure angular impulse (torque impulse) on b, and its opposite on a.
-void applyTwist(SolverBody& a, SolverBody& b, const Vec3& angularImpulse) {
-  a.angularVelocity -= a.inverseInertia * angularImpulse;
-  b.angularVelocity += b.inverseInertia * angularImpulse;
-}
+// Which rows of the shock sweep feel body A and body B.
+bool movesA(int frozen) { return frozen != 1; }
+bool movesB(int frozen) { return frozen != 2; }
 
 using ManifoldKey = std::tuple<int32_t, int32_t, int, int>;
+
+constexpr int kLocalSweeps = 4;  // Gauss–Seidel passes over a manifold's points when the block solution is infeasible
 
 }  // namespace
 
@@ -73,11 +71,26 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
     // The shock sweep corrects velocities only: its impulses belong to a
     // different system (lower bodies held still), so the accumulated
     // impulses kept for warm starting are those of the regular sweeps.
-    const std::vector<ManifoldConstraint> accumulated = m_constraints;
+    m_saved.resize(m_constraints.size());
+    for (std::size_t m = 0; m < m_constraints.size(); ++m) {
+      const ManifoldConstraint& c = m_constraints[m];
+      AccumulatedImpulses& saved = m_saved[m];
+      for (int p = 0; p < c.pointCount; ++p) saved.normal[p] = c.points[p].normalImpulse;
+      saved.tangent[0] = c.tangentImpulse[0];
+      saved.tangent[1] = c.tangentImpulse[1];
+      saved.twist = c.twistImpulse;
+    }
     solveVelocities(bodies, true);
-    m_constraints = accumulated;
+    for (std::size_t m = 0; m < m_constraints.size(); ++m) {
+      ManifoldConstraint& c = m_constraints[m];
+      const AccumulatedImpulses& saved = m_saved[m];
+      for (int p = 0; p < c.pointCount; ++p) c.points[p].normalImpulse = saved.normal[p];
+      c.tangentImpulse[0] = saved.tangent[0];
+      c.tangentImpulse[1] = saved.tangent[1];
+      c.twistImpulse = saved.twist;
+    }
   }
-  solvePositions(bodies, settings, dt);
+  solvePositions(bodies, settings.positionIterations);
 
   result.clear();
   result.reserve(m_constraints.size());
@@ -93,9 +106,12 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
     double totalNormal = 0.0;
     for (int p = 0; p < c.pointCount; ++p) totalNormal += c.points[p].normalImpulse;
     // Sticking: the patch does not slip (after the solve) while it carries load.
-    const Vec3 v = relativeVelocity(a, b, c.rA, c.rB);
-    const double slip = (v - v.dot(c.normal) * c.normal).norm();
-    solved.sticking = totalNormal > 0.0 && slip < settings.stickVelocity;
+    const double slip1 = c.tangentRows[0].velocity(a.linearVelocity, a.angularVelocity,
+                                                   b.linearVelocity, b.angularVelocity);
+    const double slip2 = c.tangentRows[1].velocity(a.linearVelocity, a.angularVelocity,
+                                                   b.linearVelocity, b.angularVelocity);
+    solved.sticking = totalNormal > 0.0 &&
+                      slip1 * slip1 + slip2 * slip2 < settings.stickVelocity * settings.stickVelocity;
     for (int p = 0; p < c.pointCount; ++p) {
       const PointConstraint& pc = c.points[p];
       const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
@@ -133,6 +149,8 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
     c.pointCount = contact.manifold.pointCount;
     const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+    c.inverseMassA = a.inverseMass;
+    c.inverseMassB = b.inverseMass;
     // Shock propagation: in the last sweep the body nearer the ground (fewer
     // contacts from a static body) holds still, so the bodies above cannot
     // push it down or sideways: weight is carried, not fought over.
@@ -143,9 +161,88 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       if (la < lb) c.frozen = Frozen::A;
       if (lb < la) c.frozen = Frozen::B;
     }
-    const SolverBody still{};  // zero inverse mass and inertia
-    const SolverBody& shockA = c.frozen == Frozen::A ? still : a;
-    const SolverBody& shockB = c.frozen == Frozen::B ? still : b;
+    // Holding a static body still changes nothing: the shock sweep's masses
+    // are then the regular ones.
+    const bool frozenIsStatic = (c.frozen == Frozen::A && a.inverseMass == 0.0) ||
+                                (c.frozen == Frozen::B && b.inverseMass == 0.0);
+    const int frozen = frozenIsStatic ? 0 : c.frozen == Frozen::A ? 1 : c.frozen == Frozen::B ? 2 : 0;
+
+    // The patch: rows at the centroid of the points.
+    Vec3 centroid = Vec3::Zero();
+    for (int p = 0; p < c.pointCount; ++p) {
+      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
+      centroid += 0.5 * (raw.pointA + raw.pointB);
+    }
+    centroid /= std::max(1, c.pointCount);
+    const Vec3 rA = centroid - a.position;
+    const Vec3 rB = centroid - b.position;
+    const Mat3& invIA = a.inverseInertia;
+    const Mat3& invIB = b.inverseInertia;
+    c.normalRow.set(c.normal, rA.cross(c.normal), rB.cross(c.normal), invIA, invIB);
+    c.tangentRows[0].set(c.tangent1, rA.cross(c.tangent1), rB.cross(c.tangent1), invIA, invIB);
+    c.tangentRows[1].set(c.tangent2, rA.cross(c.tangent2), rB.cross(c.tangent2), invIA, invIB);
+    c.twistRow.set(Vec3::Zero(), c.normal, c.normal, invIA, invIB);
+
+    // Tilt axes: principal axes of Σ g_i g_iᵀ, g_i = (p_i − c)×n, in the tangent plane.
+    Vec3 offsets[4];
+    double s11 = 0.0, s12 = 0.0, s22 = 0.0;
+    c.twistRadius = 0.0;
+    for (int p = 0; p < c.pointCount; ++p) {
+      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
+      const Vec3 d = 0.5 * (raw.pointA + raw.pointB) - centroid;
+      c.twistRadius += d.norm();
+      offsets[p] = d.cross(c.normal);
+      const double g1 = offsets[p].dot(c.tangent1), g2 = offsets[p].dot(c.tangent2);
+      s11 += g1 * g1;
+      s12 += g1 * g2;
+      s22 += g2 * g2;
+    }
+    c.twistRadius /= std::max(1, c.pointCount);
+    const double angle = 0.5 * std::atan2(2.0 * s12, s11 - s22);
+    const Vec3 axes[2] = {std::cos(angle) * c.tangent1 + std::sin(angle) * c.tangent2,
+                          -std::sin(angle) * c.tangent1 + std::cos(angle) * c.tangent2};
+    NormalBlock& block = c.block;
+    block.size = 1;
+    double largestMoment = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      double moment = 0.0;
+      for (int p = 0; p < c.pointCount; ++p) moment += offsets[p].dot(axes[k]) * offsets[p].dot(axes[k]);
+      largestMoment = std::max(largestMoment, moment);
+      // An axis the points hardly spread along (a line of points, one point)
+      // carries no independent tilt.
+      constexpr double kMinimumMoment = 1e-10;  // m²: points 10 µm apart
+      const bool kept = moment > kMinimumMoment && moment > 1e-8 * largestMoment;
+      const int slot = block.size - 1;
+      if (!kept) continue;
+      block.tiltMoment[slot] = moment;
+      c.tiltRows[slot].set(Vec3::Zero(), axes[k], axes[k], invIA, invIB);
+      for (int p = 0; p < c.pointCount; ++p) c.points[p].direction[slot + 1] = offsets[p].dot(axes[k]);
+      ++block.size;
+    }
+    for (int slot = block.size - 1; slot < 2; ++slot) {
+      block.tiltMoment[slot] = 0.0;
+      c.tiltRows[slot] = VelocityRow{};
+      for (int p = 0; p < c.pointCount; ++p) c.points[p].direction[slot + 1] = 0.0;
+    }
+    const VelocityRow* rows[3] = {&c.normalRow, &c.tiltRows[0], &c.tiltRows[1]};
+    block.coupling.setZero();
+    for (int i = 0; i < block.size; ++i)
+      for (int j = 0; j <= i; ++j)
+        block.coupling(i, j) = block.coupling(j, i) =
+            rows[i]->coupling(*rows[j], a.inverseMass, b.inverseMass, true, true);
+    const bool invertible = invertLeadingBlock(block.coupling, block.size, block.inverse);
+    bool shockInvertible = invertible;
+    if (frozen == 0) {
+      block.shockCoupling = block.coupling;
+      block.shockInverse = block.inverse;
+    } else {
+      block.shockCoupling.setZero();
+      for (int i = 0; i < block.size; ++i)
+        for (int j = 0; j <= i; ++j)
+          block.shockCoupling(i, j) = block.shockCoupling(j, i) = rows[i]->coupling(
+              *rows[j], a.inverseMass, b.inverseMass, movesA(frozen), movesB(frozen));
+      shockInvertible = invertLeadingBlock(block.shockCoupling, block.size, block.shockInverse);
+    }
 
     const ManifoldKey key{serials[static_cast<std::size_t>(c.bodyA)],
                           serials[static_cast<std::size_t>(c.bodyB)], contact.pieceA,
@@ -158,28 +255,40 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
                                     ? &previous[previousIndex]
                                     : nullptr;
 
+    // Reduced velocities now (after this step's forces) and at the step start.
+    const Vec3 u(c.normalRow.velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity),
+                 c.tiltRows[0].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity),
+                 c.tiltRows[1].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity));
+    const Vec3 uStart(c.normalRow.velocity(a.startLinearVelocity, a.startAngularVelocity,
+                                           b.startLinearVelocity, b.startAngularVelocity),
+                      c.tiltRows[0].velocity(a.startLinearVelocity, a.startAngularVelocity,
+                                             b.startLinearVelocity, b.startAngularVelocity),
+                      c.tiltRows[1].velocity(a.startLinearVelocity, a.startAngularVelocity,
+                                             b.startLinearVelocity, b.startAngularVelocity));
+    bool allIncluded = true;
     for (int p = 0; p < c.pointCount; ++p) {
       const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
       PointConstraint& pc = c.points[p];
-      const Vec3 point = 0.5 * (raw.pointA + raw.pointB);
-      pc.rA = point - a.position;
-      pc.rB = point - b.position;
       pc.depth = raw.depth;
       pc.featureId = raw.featureId;
+      pc.direction[0] = 1.0;
+      const Vec3& weights = pc.direction;
+      pc.pressure = Vec3(1.0 / c.pointCount,
+                         block.size > 1 ? weights[1] / block.tiltMoment[0] : 0.0,
+                         block.size > 2 ? weights[2] / block.tiltMoment[1] : 0.0);
       // A point left out of the solve keeps a zero mass: it never gets an impulse.
       const bool included = -raw.depth <= settings.speculativeDistance;
-      pc.normalMass = included ? effectiveMass(a, b, pc.rA, pc.rB, c.normal) : 0.0;
-      pc.shockNormalMass = included ? effectiveMass(shockA, shockB, pc.rA, pc.rB, c.normal) : 0.0;
+      allIncluded = allIncluded && included;
+      pc.normalMass = included ? inverseOrZero(weights.dot(block.coupling * weights)) : 0.0;
+      pc.shockNormalMass = included ? inverseOrZero(weights.dot(block.shockCoupling * weights)) : 0.0;
       pc.pseudoImpulse = 0.0;
 
       // Target normal velocity. A gap (depth < 0) may close within the step
       // (speculative contact); a contact that will be hit this step faster
       // than the threshold bounces with −e v_rel (the seed's law of
       // restitution); penetration itself is left to the position pass.
-      const double vn = relativeVelocity(a, b, pc.rA, pc.rB).dot(c.normal);
-      pc.relativeNormalVelocity = (b.startLinearVelocity + b.startAngularVelocity.cross(pc.rB) -
-                                   a.startLinearVelocity - a.startAngularVelocity.cross(pc.rA))
-                                      .dot(c.normal);
+      const double vn = weights.dot(u);
+      pc.relativeNormalVelocity = weights.dot(uStart);
       const double gap = -raw.depth;
       const bool hitsThisStep = gap <= 0.0 || vn * dt < -gap;
       if (vn < -settings.restitutionThreshold && hitsThisStep && material.restitution > 0.0) {
@@ -187,6 +296,10 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       } else {
         pc.targetVelocity = gap > 0.0 ? -gap / dt : 0.0;
       }
+      // Split impulses remove a fraction of the penetration beyond the slop.
+      const double error = raw.depth - settings.linearSlop;
+      pc.positionTarget =
+          std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
 
       pc.normalImpulse = 0.0;
       if (old != nullptr && included && settings.warmStarting) {
@@ -197,22 +310,54 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
         }
       }
     }
+    // Least-squares reduced goals: u_goal = (AᵀA)⁻¹ Aᵀ t, with AᵀA = diag(n, σ1, σ2).
+    block.velocityGoal.setZero();
+    block.positionGoal.setZero();
+    for (int p = 0; p < c.pointCount; ++p) {
+      const PointConstraint& pc = c.points[p];
+      block.velocityGoal[0] += pc.targetVelocity;
+      block.positionGoal[0] += pc.positionTarget;
+      for (int k = 0; k + 1 < block.size; ++k) {
+        block.velocityGoal[k + 1] += pc.direction[k + 1] * pc.targetVelocity;
+        block.positionGoal[k + 1] += pc.direction[k + 1] * pc.positionTarget;
+      }
+    }
+    block.velocityGoal[0] /= std::max(1, c.pointCount);
+    block.positionGoal[0] /= std::max(1, c.pointCount);
+    for (int k = 0; k + 1 < block.size; ++k) {
+      block.velocityGoal[k + 1] /= block.tiltMoment[k];
+      block.positionGoal[k + 1] /= block.tiltMoment[k];
+    }
+    // Targets count as met by one motion when the least-squares goal misses
+    // none by more than a hundredth of the slop over the step (e.g. a resting
+    // face whose corners are a few nanometres apart or into the ground).
+    const double tolerance = 0.01 * settings.linearSlop / dt;
+    const auto consistent = [&](const Vec3& goal, double PointConstraint::*target) {
+      for (int p = 0; p < c.pointCount; ++p) {
+        const PointConstraint& pc = c.points[p];
+        const double reached = pc.direction.dot(goal);
+        if (std::abs(reached - pc.*target) > tolerance) return false;
+      }
+      return true;
+    };
+    const bool velocityConsistent = consistent(block.velocityGoal, &PointConstraint::targetVelocity);
+    block.velocityExact = allIncluded && invertible && velocityConsistent;
+    block.shockExact = allIncluded && shockInvertible && velocityConsistent;
+    block.positionExact = allIncluded && invertible &&
+                          consistent(block.positionGoal, &PointConstraint::positionTarget);
 
-    // The friction patch: at the centroid of the points.
-    Vec3 centroid = Vec3::Zero();
-    for (int p = 0; p < c.pointCount; ++p) centroid += c.points[p].rA;
-    centroid /= std::max(1, c.pointCount);  // relative to A's centre of mass
-    c.rA = centroid;
-    c.rB = centroid + a.position - b.position;
-    c.twistRadius = 0.0;
-    for (int p = 0; p < c.pointCount; ++p) c.twistRadius += (c.points[p].rA - centroid).norm();
-    c.twistRadius /= std::max(1, c.pointCount);
-    c.tangentMass[0] = effectiveMass(a, b, c.rA, c.rB, c.tangent1);
-    c.tangentMass[1] = effectiveMass(a, b, c.rA, c.rB, c.tangent2);
-    c.shockTangentMass[0] = effectiveMass(shockA, shockB, c.rA, c.rB, c.tangent1);
-    c.shockTangentMass[1] = effectiveMass(shockA, shockB, c.rA, c.rB, c.tangent2);
-    c.twistMass = twistMass(a, b, c.normal);
-    c.shockTwistMass = twistMass(shockA, shockB, c.normal);
+    // The friction patch.
+    for (int k = 0; k < 2; ++k) {
+      const VelocityRow& row = c.tangentRows[k];
+      c.tangentMass[k] = inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass, true, true));
+      c.shockTangentMass[k] = frozen == 0 ? c.tangentMass[k]
+                                          : inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass,
+                                                                       movesA(frozen), movesB(frozen)));
+    }
+    c.twistMass = inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass, true, true));
+    c.shockTwistMass = frozen == 0 ? c.twistMass
+                                   : inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass,
+                                                                       movesA(frozen), movesB(frozen)));
     c.tangentImpulse[0] = c.tangentImpulse[1] = 0.0;
     c.twistImpulse = 0.0;
     c.friction = material.friction;
@@ -231,41 +376,107 @@ void ContactSolver::warmStart(std::vector<SolverBody>& bodies) const {
   for (const ManifoldConstraint& c : m_constraints) {
     SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+    double lambda[3] = {0.0, 0.0, 0.0};
     for (int p = 0; p < c.pointCount; ++p) {
       const PointConstraint& pc = c.points[p];
-      applyImpulse(a, b, pc.rA, pc.rB, pc.normalImpulse * c.normal);
+      lambda[0] += pc.normalImpulse;
+      lambda[1] += pc.direction[1] * pc.normalImpulse;
+      lambda[2] += pc.direction[2] * pc.normalImpulse;
     }
-    applyImpulse(a, b, c.rA, c.rB, c.tangentImpulse[0] * c.tangent1 + c.tangentImpulse[1] * c.tangent2);
-    applyTwist(a, b, c.twistImpulse * c.normal);
+    const auto apply = [&](const VelocityRow& row, double impulse) {
+      row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linearVelocity, a.angularVelocity,
+                b.linearVelocity, b.angularVelocity);
+    };
+    apply(c.normalRow, lambda[0]);
+    for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], lambda[k + 1]);
+    apply(c.tangentRows[0], c.tangentImpulse[0]);
+    apply(c.tangentRows[1], c.tangentImpulse[1]);
+    apply(c.twistRow, c.twistImpulse);
   }
 }
 
+Vec3 ContactSolver::solveNormalBlock(ManifoldConstraint& c, const Vec3& u, bool exact, bool shock,
+                                     double PointConstraint::*impulse,
+                                     double PointConstraint::*target, const Vec3& goal) {
+  const NormalBlock& block = c.block;
+  const int n = c.pointCount;
+  if (exact) {
+    // The whole manifold at once: the affine pressure that meets the goal.
+    Vec3 lambda = Vec3::Zero();
+    for (int p = 0; p < n; ++p) {
+      const PointConstraint& pc = c.points[p];
+      lambda += pc.direction * (pc.*impulse);
+    }
+    const Vec3 delta = (shock ? block.shockInverse : block.inverse) * (goal - u);
+    const Vec3 solved = lambda + delta;
+    double pressures[4];
+    bool feasible = true;
+    for (int p = 0; p < n; ++p) {
+      const PointConstraint& pc = c.points[p];
+      const double x = pc.pressure.dot(solved);
+      pressures[p] = x;
+      feasible = feasible && x >= 0.0;
+    }
+    if (feasible) {
+      for (int p = 0; p < n; ++p) c.points[p].*impulse = pressures[p];
+      return delta;
+    }
+  }
+  // Projected Gauss–Seidel over the points, in the reduced space: an
+  // impulse δ at point i is δ a_i there and moves u by K δ a_i.
+  const Mat3& coupling = shock ? block.shockCoupling : block.coupling;
+  Vec3 velocity = u;
+  Vec3 total = Vec3::Zero();
+  for (int sweep = 0; sweep < kLocalSweeps; ++sweep) {
+    for (int p = 0; p < n; ++p) {
+      PointConstraint& pc = c.points[p];
+      const double mass = shock ? pc.shockNormalMass : pc.normalMass;
+      if (mass == 0.0) continue;
+      const Vec3& weights = pc.direction;
+      const double vn = weights.dot(velocity);
+      const double accumulated = std::max(pc.*impulse - mass * (vn - pc.*target), 0.0);
+      const double step = accumulated - pc.*impulse;
+      pc.*impulse = accumulated;
+      total += step * weights;
+      velocity += coupling * (step * weights);
+    }
+  }
+  return total;
+}
+
 void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock) {
-  SolverBody still;  // stands in for a frozen body: impulses on it go nowhere
   for (ManifoldConstraint& c : m_constraints) {
-    const bool freezeA = shock && c.frozen == Frozen::A;
-    const bool freezeB = shock && c.frozen == Frozen::B;
     SolverBody& realA = bodies[static_cast<std::size_t>(c.bodyA)];
     SolverBody& realB = bodies[static_cast<std::size_t>(c.bodyB)];
-    if (freezeA || freezeB) {
-      still = freezeA ? realA : realB;
-      still.inverseMass = 0.0;
-      still.inverseInertia.setZero();
-    }
-    SolverBody& a = freezeA ? still : realA;
-    SolverBody& b = freezeB ? still : realB;
+    // A body the shock sweep holds still: its velocities are read, and the
+    // impulses on it go to a copy that is thrown away (and never changes).
+    const bool freezeA = shock && c.frozen == Frozen::A;
+    const bool freezeB = shock && c.frozen == Frozen::B;
     const bool oneSided = freezeA || freezeB;
+    Vec3 heldLinear = freezeA ? realA.linearVelocity : realB.linearVelocity;
+    Vec3 heldAngular = freezeA ? realA.angularVelocity : realB.angularVelocity;
+    const Vec3 vHeld = heldLinear, wHeld = heldAngular;
+    Vec3& vA = freezeA ? heldLinear : realA.linearVelocity;
+    Vec3& wA = freezeA ? heldAngular : realA.angularVelocity;
+    Vec3& vB = freezeB ? heldLinear : realB.linearVelocity;
+    Vec3& wB = freezeB ? heldAngular : realB.angularVelocity;
+    const auto apply = [&](const VelocityRow& row, double impulse) {
+      row.apply(impulse, c.inverseMassA, c.inverseMassB, vA, wA, vB, wB);
+      if (oneSided) {
+        heldLinear = vHeld;
+        heldAngular = wHeld;
+      }
+    };
 
     // Friction first, limited by the normal impulses of the previous
     // iteration, then the normal impulses (non-penetration has the last word).
     double totalNormal = 0.0;
     for (int p = 0; p < c.pointCount; ++p) totalNormal += c.points[p].normalImpulse;
     {
-      const Vec3 v = relativeVelocity(a, b, c.rA, c.rB);
-      const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
       const double* mass = oneSided ? c.shockTangentMass : c.tangentMass;
-      double new1 = old1 - mass[0] * v.dot(c.tangent1);
-      double new2 = old2 - mass[1] * v.dot(c.tangent2);
+      const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
+      double new1 = old1 - mass[0] * c.tangentRows[0].velocity(vA, wA, vB, wB);
+      double new2 = old2 - mass[1] * c.tangentRows[1].velocity(vA, wA, vB, wB);
       // Coulomb: the accumulated tangential impulse stays in the disc of radius μ Σjn.
       const double limit = c.friction * totalNormal;
       const double magnitude = std::sqrt(new1 * new1 + new2 * new2);
@@ -276,57 +487,53 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock)
       }
       c.tangentImpulse[0] = new1;
       c.tangentImpulse[1] = new2;
-      applyImpulse(a, b, c.rA, c.rB, (new1 - old1) * c.tangent1 + (new2 - old2) * c.tangent2);
+      apply(c.tangentRows[0], new1 - old1);
+      apply(c.tangentRows[1], new2 - old2);
     }
     {
       // Torsion: the patch resists spinning about the normal up to μ r Σjn.
-      const double spin = (b.angularVelocity - a.angularVelocity).dot(c.normal);
+      const double spin = c.twistRow.velocity(vA, wA, vB, wB);
       const double limit = c.friction * c.twistRadius * totalNormal;
       const double mass = oneSided ? c.shockTwistMass : c.twistMass;
       const double accumulated = std::clamp(c.twistImpulse - mass * spin, -limit, limit);
-      applyTwist(a, b, (accumulated - c.twistImpulse) * c.normal);
+      apply(c.twistRow, accumulated - c.twistImpulse);
       c.twistImpulse = accumulated;
     }
-    for (int p = 0; p < c.pointCount; ++p) {
-      PointConstraint& pc = c.points[p];
-      const double vn = relativeVelocity(a, b, pc.rA, pc.rB).dot(c.normal);
-      const double mass = oneSided ? pc.shockNormalMass : pc.normalMass;
-      const double accumulated = std::max(pc.normalImpulse - mass * (vn - pc.targetVelocity), 0.0);
-      const double delta = accumulated - pc.normalImpulse;
-      pc.normalImpulse = accumulated;
-      applyImpulse(a, b, pc.rA, pc.rB, delta * c.normal);
-    }
+    const Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), c.tiltRows[0].velocity(vA, wA, vB, wB),
+                 c.tiltRows[1].velocity(vA, wA, vB, wB));
+    const Vec3 delta = solveNormalBlock(c, u, shock ? c.block.shockExact : c.block.velocityExact,
+                                        shock, &PointConstraint::normalImpulse,
+                                        &PointConstraint::targetVelocity, c.block.velocityGoal);
+    apply(c.normalRow, delta[0]);
+    for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
   }
 }
 
-void ContactSolver::solvePositions(std::vector<SolverBody>& bodies,
-                                   const ContactSolverSettings& settings, double dt) {
+void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iterations) {
   // Pseudo-velocities that remove a fraction of the penetration beyond the
   // slop; they move positions only and are discarded after the step.
-  for (int iteration = 0; iteration < settings.positionIterations; ++iteration) {
+  for (int iteration = 0; iteration < iterations; ++iteration) {
     for (ManifoldConstraint& c : m_constraints) {
+      bool needed = false;
+      for (int p = 0; p < c.pointCount; ++p)
+        needed = needed || c.points[p].positionTarget > 0.0 || c.points[p].pseudoImpulse > 0.0;
+      if (!needed) continue;
       SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
       SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-      for (int p = 0; p < c.pointCount; ++p) {
-        PointConstraint& pc = c.points[p];
-        const double error = pc.depth - settings.linearSlop;
-        if (error <= 0.0 && pc.pseudoImpulse == 0.0) continue;
-        const double bias =
-            std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
-        const double vn = (b.pseudoLinear + b.pseudoAngular.cross(pc.rB) - a.pseudoLinear -
-                           a.pseudoAngular.cross(pc.rA))
-                              .dot(c.normal);
-        const double accumulated = std::max(pc.pseudoImpulse - pc.normalMass * (vn - bias), 0.0);
-        const Vec3 impulse = (accumulated - pc.pseudoImpulse) * c.normal;
-        pc.pseudoImpulse = accumulated;
-        a.pseudoLinear -= a.inverseMass * impulse;
-        a.pseudoAngular -= a.inverseInertia * pc.rA.cross(impulse);
-        b.pseudoLinear += b.inverseMass * impulse;
-        b.pseudoAngular += b.inverseInertia * pc.rB.cross(impulse);
-      }
+      const Vec3 u(c.normalRow.velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular),
+                   c.tiltRows[0].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular),
+                   c.tiltRows[1].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular));
+      const Vec3 delta = solveNormalBlock(c, u, c.block.positionExact, false,
+                                          &PointConstraint::pseudoImpulse,
+                                          &PointConstraint::positionTarget, c.block.positionGoal);
+      const auto apply = [&](const VelocityRow& row, double impulse) {
+        row.apply(impulse, c.inverseMassA, c.inverseMassB, a.pseudoLinear, a.pseudoAngular,
+                  b.pseudoLinear, b.pseudoAngular);
+      };
+      apply(c.normalRow, delta[0]);
+      for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
     }
   }
 }
 
 }  // namespace rbsim
-

@@ -123,6 +123,8 @@ class World {
   void loadSolverBodies(const std::vector<char>& solving, double h);
   void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
                      double h, std::vector<SolvedManifold>& solved);
+  // Per body: how many contacts away from a static body (shock propagation).
+  std::vector<int> contactLevels(const std::vector<BodyContact>& active) const;
   void storeSolverVelocities(const std::vector<char>& solving);
   void advanceSolverPositions(const std::vector<char>& solving, double h, bool withPseudo);
 

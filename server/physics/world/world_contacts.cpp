@@ -126,15 +126,19 @@ void World::stepImpulse() {
     const Body& b = m_bodies[static_cast<std::size_t>(i)];
     return !b.isStatic() && !b.m_sleeping;
   };
-  std::vector<BodyContact> active;
-  active.reserve(detected.size());
+  std::vector<BodyContact> someActive;  // filled only when some contacts sleep
   std::vector<char> inContact(n, 0);
+  const bool allActive = std::all_of(detected.begin(), detected.end(), [&](const BodyContact& c) {
+    return awake(c.bodyA) || awake(c.bodyB);
+  });
+  if (!allActive) someActive.reserve(detected.size());
   for (const BodyContact& c : detected) {
     if (!awake(c.bodyA) && !awake(c.bodyB)) continue;
-    active.push_back(c);
+    if (!allActive) someActive.push_back(c);
     inContact[static_cast<std::size_t>(c.bodyA)] = 1;
     inContact[static_cast<std::size_t>(c.bodyB)] = 1;
   }
+  const std::vector<BodyContact>& active = allActive ? detected : someActive;
 
   // Bodies touching nothing: the world's integrator.
   integrateFree(dt, inContact);
@@ -216,19 +220,47 @@ void World::solveContacts(const std::vector<BodyContact>& active, const ContactS
   for (const BodyContact& c : active)
     materials.push_back(combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
                                          m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
-  // Levels: distance in contacts from a static body (for shock propagation).
-  std::vector<int> levels(m_bodies.size(), 1 << 20);
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) if (m_bodies[i].isStatic()) levels[i] = 0;
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const BodyContact& c : active) {
-      int& la = levels[static_cast<std::size_t>(c.bodyA)];
-      int& lb = levels[static_cast<std::size_t>(c.bodyB)];
-      if (la + 1 < lb) { lb = la + 1; changed = true; }
-      if (lb + 1 < la) { la = lb + 1; changed = true; }
+  m_solver.solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
+                 contactLevels(active));
+}
+
+std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) const {
+  // Levels: distance in contacts from a static body (for shock propagation),
+  // by a breadth-first search over the contact graph. Bodies that no chain of
+  // contacts joins to a static body share one level above all others.
+  const std::size_t n = m_bodies.size();
+  constexpr int kUnreached = 1 << 20;
+  std::vector<int> levels(n, kUnreached);
+  std::vector<int> start(n + 1, 0);  // adjacency in compressed rows
+  for (const BodyContact& c : active) {
+    ++start[static_cast<std::size_t>(c.bodyA) + 1];
+    ++start[static_cast<std::size_t>(c.bodyB) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> neighbours(static_cast<std::size_t>(start[n]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const BodyContact& c : active) {
+    neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(c.bodyA)]++)] = c.bodyB;
+    neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(c.bodyB)]++)] = c.bodyA;
+  }
+  std::vector<int> queue;
+  queue.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!m_bodies[i].isStatic()) continue;
+    levels[i] = 0;
+    queue.push_back(static_cast<int>(i));
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int body = queue[head];
+    const int next = levels[static_cast<std::size_t>(body)] + 1;
+    for (int k = start[static_cast<std::size_t>(body)]; k < start[static_cast<std::size_t>(body) + 1]; ++k) {
+      const int other = neighbours[static_cast<std::size_t>(k)];
+      if (levels[static_cast<std::size_t>(other)] != kUnreached) continue;
+      levels[static_cast<std::size_t>(other)] = next;
+      queue.push_back(other);
     }
   }
-  m_solver.solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved, levels);
+  return levels;
 }
 
 void World::storeSolverVelocities(const std::vector<char>& solving) {
