@@ -15,6 +15,15 @@ Transform poseOf(const Body& body) {
   return {body.rotation(), body.position()};
 }
 
+// Bitwise equality (NaN never equals, so a broken pose is never reused).
+bool samePose(const Transform& x, const Transform& y) {
+  return x.rotation == y.rotation && x.translation == y.translation;
+}
+
+uint64_t pairKey(int32_t serialA, int32_t serialB) {
+  return (static_cast<uint64_t>(static_cast<uint32_t>(serialA)) << 32) | static_cast<uint32_t>(serialB);
+}
+
 // Swaps the roles of A and B in a manifold: the normal turns round.
 void flip(ContactManifold& manifold) {
   manifold.normal = -manifold.normal;
@@ -40,20 +49,56 @@ void CollisionDetector::detect(const World& world) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     BodyGeometry& geometry = m_geometry[i];
+    const Transform pose = poseOf(body);
+    geometry.unchanged = geometry.description.get() == &body.description() &&
+                         geometry.serial == body.serial() && samePose(geometry.pose, pose);
     if (geometry.description.get() != &body.description()) {
       geometry.description = body.sharedDescription();
       geometry.collider = geometry.description->collider.get();
       geometry.shape = BroadPhaseShape::of(body);
     }
-    geometry.pose = poseOf(body);
+    geometry.serial = body.serial();
+    geometry.pose = pose;
     if (geometry.shape.hasGeometry()) {
       m_broadPhaseInputs.push_back(
           geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
     }
   }
   m_broadPhase.update(m_broadPhaseInputs);
+  m_previousContacts.swap(m_contacts);
+  m_previousContactKeys.swap(m_contactKeys);
+  m_previousPairKeys.swap(m_pairKeys);
+  m_previousContactCursor = m_previousPairCursor = 0;
   m_contacts.clear();
-  for (const BodyPair& pair : m_broadPhase.pairs()) collidePair(pair.a, pair.b);
+  m_contactKeys.clear();
+  m_pairKeys.clear();
+  for (const BodyPair& pair : m_broadPhase.pairs()) {
+    const BodyGeometry& a = m_geometry[at(pair.a)];
+    const BodyGeometry& b = m_geometry[at(pair.b)];
+    const uint64_t key = pairKey(a.serial, b.serial);
+    m_pairKeys.push_back(key);
+    if (!(a.unchanged && b.unchanged && reusePair(key, pair.a, pair.b))) collidePair(pair.a, pair.b);
+    m_contactKeys.resize(m_contacts.size(), key);
+  }
+}
+
+bool CollisionDetector::reusePair(uint64_t key, int indexA, int indexB) {
+  while (m_previousPairCursor < m_previousPairKeys.size() && m_previousPairKeys[m_previousPairCursor] < key)
+    ++m_previousPairCursor;
+  if (m_previousPairCursor == m_previousPairKeys.size() || m_previousPairKeys[m_previousPairCursor] != key)
+    return false;
+  while (m_previousContactCursor < m_previousContactKeys.size() &&
+         m_previousContactKeys[m_previousContactCursor] < key)
+    ++m_previousContactCursor;
+  for (; m_previousContactCursor < m_previousContactKeys.size() &&
+         m_previousContactKeys[m_previousContactCursor] == key;
+       ++m_previousContactCursor) {
+    BodyContact contact = m_previousContacts[m_previousContactCursor];
+    contact.bodyA = indexA;  // dense indices may have moved since
+    contact.bodyB = indexB;
+    m_contacts.push_back(contact);
+  }
+  return true;
 }
 
 void CollisionDetector::collidePair(int indexA, int indexB) {

@@ -4,6 +4,7 @@
 // Piece pairs are skipped when their boxes (grown by half the contact margin
 // each) do not overlap; manifolds without points are dropped.
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -39,13 +40,29 @@ class CollisionDetector {
     const Collider* collider = nullptr;                  // null: no collision geometry
     BroadPhaseShape shape;
     Transform pose;  // body -> world
+    int32_t serial = 0;
+    // Same collider at bit for bit the same pose as in the previous detect():
+    // a pair of such bodies has the same manifolds as then (the narrow phase
+    // is a pure function of the two placed colliders), so they are reused.
+    // Resting and sleeping bodies stop costing narrow-phase time.
+    bool unchanged = false;
   };
 
   void collidePair(int indexA, int indexB);
+  // Copies the previous detect()'s manifolds of the pair (serial order key);
+  // false when the pair was not a candidate then.
+  bool reusePair(uint64_t key, int indexA, int indexB);
 
   ContactSettings m_settings;
   BroadPhase m_broadPhase;
   std::vector<BodyContact> m_contacts;
+  std::vector<uint64_t> m_contactKeys;    // (serial A, serial B) of each of m_contacts
+  std::vector<uint64_t> m_pairKeys;       // the candidate pairs of this detect()
+  std::vector<BodyContact> m_previousContacts;
+  std::vector<uint64_t> m_previousContactKeys;
+  std::vector<uint64_t> m_previousPairKeys;
+  std::size_t m_previousContactCursor = 0;  // merge walks: pairs come in key order
+  std::size_t m_previousPairCursor = 0;
   std::vector<BroadPhaseBody> m_broadPhaseInputs;
   std::vector<BodyGeometry> m_geometry;  // by dense body index, for the current detect()
   std::vector<PlacedPiece> m_placedB;    // scratch
