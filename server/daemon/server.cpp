@@ -8,6 +8,7 @@
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
+#include <rbsim/handled_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
@@ -207,6 +208,16 @@ void Server::acknowledge(rbsim::ack_t ack) {
 
 void Server::onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
   record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
+  if (m_recorder.isOpen()) {
+    // Where the message is handled, for an exact replay of the record file.
+    rbsim::handled_t handled;
+    handled.utime = wallMicroseconds();
+    handled.step = world().stepCount();
+    handled.world_revision = m_session.worldRevision();
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(handled.getEncodedSize()));
+    handled.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    record(channel("HANDLED"), bytes.data(), bytes.size(), handled.utime);
+  }
   auto outcome = m_commands.handle(channelName, buffer->data, buffer->data_size, monotonicNow());
   if (!outcome) return;
   if (outcome->realTimeFactor) m_clock.setRealTimeFactor(*outcome->realTimeFactor, monotonicNow());
