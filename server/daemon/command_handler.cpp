@@ -6,6 +6,8 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "config/config_loader.h"
+#include "daemon/checkpoint_file.h"
+#include "daemon/session_checkpoint.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -121,8 +123,15 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       return outcome;
     }
     case rbsim::command_t::RESET: {
-      if (!message.path.empty()) return reject("reset from a checkpoint file is not supported yet");
-      m_session.resetToInitialWorld();
+      if (message.path.empty()) {
+        m_session.resetToInitialWorld();
+      } else {
+        const auto path = checkpointPathIn(m_settings.checkpointDirectory, message.path);
+        if (!path) return reject(path.error().message);
+        auto state = loadSessionCheckpoint(*path, m_session.initialWorld().settings(), true);
+        if (!state) return reject(state.error().message);
+        m_session.replaceWorld(std::move(state->world), std::move(state->wrenches));
+      }
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.paceChanged = true;
       outcome.publishWorld = true;
@@ -164,8 +173,15 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       outcome.publishWorld = true;
       return outcome;
     }
-    case rbsim::command_t::SAVE_CHECKPOINT:
-      return reject("checkpoints are not supported by this server version");
+    case rbsim::command_t::SAVE_CHECKPOINT: {
+      const std::string name =
+          message.path.empty() ? "checkpoint-" + std::to_string(world.stepCount()) + ".rbck" : message.path;
+      const auto path = checkpointPathIn(m_settings.checkpointDirectory, name);
+      if (!path) return reject(path.error().message);
+      const auto saved = saveSessionCheckpoint(m_session, *path);
+      if (!saved) return reject("checkpoint not saved: " + saved.error().message);
+      return accepted(std::move(ack), nextStep, "saved " + *path);
+    }
     default:
       return reject("unknown command " + std::to_string(message.command));
   }

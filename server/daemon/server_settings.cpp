@@ -1,6 +1,7 @@
 #include "daemon/server_settings.h"
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -56,8 +57,9 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 7> kKeys = {
-      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us"};
+  static constexpr std::array<std::string_view, 9> kKeys = {
+      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us",
+      "checkpoint_dir", "checkpoint_every"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -92,6 +94,20 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                   static_cast<double>(out.spinNanoseconds) * 1e-3);
   if (!spin) return spin.error();
   out.spinNanoseconds = static_cast<int64_t>(*spin * 1e3);
+  if (const auto* entry = server.find("checkpoint_dir")) {
+    const auto path = reader.string(entry->value);
+    if (!path) return path.error();
+    if (path->empty()) return reader.error(entry->value, "expected a directory path");
+    // Relative to the config file, like mesh files: the daemon's working
+    // directory is nobody's business (systemd starts it in /).
+    const std::filesystem::path directory(*path);
+    out.checkpointDirectory =
+        directory.is_absolute() ? *path
+                                : (std::filesystem::path(reader.sourceName()).parent_path() / directory).string();
+  }
+  const auto every = reader.number(server, "checkpoint_every", NumberRule::nonNegative(1e9), out.checkpointEvery);
+  if (!every) return every.error();
+  out.checkpointEvery = *every;
   const auto paused = reader.boolean(server, "start_paused", out.startPaused);
   if (!paused) return paused.error();
   out.startPaused = *paused;

@@ -31,6 +31,10 @@ struct ServerSettings {
   // 1 kHz); `server.spin_us: 0` turns it off.
   int64_t spinNanoseconds = 250000;
   std::string recordPath;                // empty: no recording
+  // Where SAVE_CHECKPOINT, RESET with a path and --checkpoint-every put and
+  // find checkpoint files; empty: checkpoints disabled.
+  std::string checkpointDirectory;
+  double checkpointEvery = 0.0;          // s of simulated time between periodic checkpoints; 0 = none
 
   WrenchLimits limits;
   double maxRealTimeFactor = 1000.0;     // SET_REAL_TIME_FACTOR above this is rejected
