@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   if (options->recordPath) settings->recordPath = *options->recordPath;
   if (options->stateRate) settings->stateRate = *options->stateRate;
   if (options->startPaused) settings->startPaused = true;
+  if (options->readOnly) settings->readOnly = true;
   if (options->checkpointDirectory) settings->checkpointDirectory = *options->checkpointDirectory;
   if (options->checkpointEvery) settings->checkpointEvery = *options->checkpointEvery;
   if (!isPlainChannelPrefix(settings->channelPrefix)) {

@@ -37,6 +37,8 @@ options (each overrides the config file's key):
   --state-rate HZ          RBSIM_STATE rate in Hz of simulated time; 0 = every step (lcm.state_rate)
   --record FILE            write every published and received message to an LCM log (server.record)
   --paused                 start paused (server.start_paused)
+  --read-only              reject every wrench and command (with an ack saying so); state,
+                           status and world are still published (server.read_only)
   --checkpoint-dir DIR     where SAVE_CHECKPOINT, RESET with a path and periodic checkpoints
                            put and find their files; clients can only name plain files in
                            it (server.checkpoint_dir; none: checkpoints disabled)
@@ -75,6 +77,8 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       options.massProperties = true;
     } else if (arg == "--paused") {
       options.startPaused = true;
+    } else if (arg == "--read-only") {
+      options.readOnly = true;
     } else if (arg == "--verify") {
       options.verify = true;
     } else if (arg == "--config" || arg == "--lcm-url" || arg == "--channel-prefix" ||

@@ -21,6 +21,7 @@ struct Options {
   std::optional<double> stateRate;  // Hz
   std::optional<std::string> logLevel;
   bool startPaused = false;
+  bool readOnly = false;
   std::optional<std::string> checkpointDirectory;
   std::optional<double> checkpointEvery;  // s of simulated time
   std::optional<std::string> resumePath;  // a checkpoint file to start from

@@ -19,6 +19,8 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
   // The log says which messages were accepted: admission rules that depend
   // on the moment (read-only mode, rate limits) must not second-guess it.
   ServerSettings replaySettings = settings;
+  replaySettings.readOnly = false;
+  replaySettings.clientRate = 0.0;
   Session session(std::move(initialWorld), settings.startPaused);
   if (resumed)
     session.resumeFrom(std::move(resumed->world), std::move(resumed->wrenches), resumed->worldRevision,

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "daemon/step_clock.h"
 #include "daemon/wire_convert.h"
@@ -39,6 +40,15 @@ struct ServerSettings {
   WrenchLimits limits;
   double maxRealTimeFactor = 1000.0;     // SET_REAL_TIME_FACTOR above this is rejected
   int64_t maxStepsPerCommand = 10000000; // STEP num_steps above this is rejected
+
+  // Access control and limits of the command path (CommandHandler).
+  bool readOnly = false;                 // every wrench and command is rejected; state still published
+  // Bodies that accept external wrenches; unset: every body.
+  std::optional<std::vector<std::string>> wrenchBodies;
+  double clientRate = 5000.0;            // wrenches + commands per second per client id; 0 = unlimited
+  double clientBurst = 5000.0;           // messages a client may send at once (token bucket size)
+  int64_t maxMessageBytes = 262144;      // bytes; larger wrench/command messages are rejected undecoded
+  int64_t maxBodies = 100000;            // SPAWN is rejected when the world has this many bodies
 };
 
 // Reads the `lcm`, `server` and `limits` sections of the config file (absent
