@@ -59,6 +59,7 @@ replay (instead of serving; as fast as possible, no pacing):
   --verify                 compare every replayed state with the log's, bit for bit; exit 1
                            naming the first step and body that differ (and by how much),
                            0 when identical; 3 when the log cannot be read or followed
+                           (2: the output cannot be opened)
   --help                   this text
 )";
 }
