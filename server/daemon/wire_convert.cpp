@@ -62,7 +62,8 @@ void copyDimensions(Message& out, const CompoundPartShape& shape) {
           out.num_vertices = static_cast<int32_t>(mesh.vertices.size());
           out.vertices.resize(mesh.vertices.size(), std::vector<double>(3));
           for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-            for (int k = 0; k < 3; ++k) out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
+            for (int k = 0; k < 3; ++k)
+              out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
           out.num_triangles = static_cast<int32_t>(mesh.triangles.size());
           out.triangles.resize(mesh.triangles.size(), std::vector<int32_t>(3));
           for (std::size_t i = 0; i < mesh.triangles.size(); ++i)

@@ -190,7 +190,8 @@ TEST_F(Commands, SpawnACompoundBody) {
       " shape: {type: compound, shapes: [\n"
       "  {shape: {type: sphere, radius: 0.1}, position: [-0.4, 0, 0]},\n"
       "  {shape: {type: sphere, radius: 0.1}, position: [0.4, 0, 0]},\n"
-      "  {shape: {type: capsule, radius: 0.02, half_length: 0.3}, rpy: [0, 1.5707963267948966, 0]}]}}";
+      "  {shape: {type: capsule, radius: 0.02, half_length: 0.3},\n"
+      "   rpy: [0, 1.5707963267948966, 0]}]}}";
   expectAccepted(client().spawn(dumbbellYaml));
   waitFor("the world description with the dumbbell",
           [&] { return client::findBody(*client().world(), "dumbbell") != nullptr; });

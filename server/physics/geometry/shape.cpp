@@ -18,7 +18,9 @@ struct TypeName {
 }  // namespace
 
 std::string shapeTypeName(const Shape& shape) { return std::visit(TypeName{}, shape); }
-std::string shapeTypeName(const CompoundPartShape& shape) { return std::visit(TypeName{}, shape); }
+std::string shapeTypeName(const CompoundPartShape& shape) {
+  return std::visit(TypeName{}, shape);
+}
 
 Shape toShape(const CompoundPartShape& shape) {
   return std::visit([](const auto& part) { return Shape{part}; }, shape);

@@ -46,7 +46,8 @@ struct PlaneShape {
 // What a compound may be made of: the solids. A plane (infinite) or another
 // compound (nesting adds nothing a flat list cannot say) cannot be a part,
 // and this type makes them impossible to write.
-using CompoundPartShape = std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape>;
+using CompoundPartShape =
+    std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape>;
 
 // One part of a compound, placed in the compound's frame (the frame the
 // compound is given in, like any shape's).
@@ -66,8 +67,8 @@ struct CompoundShape {
   std::vector<CompoundPart> parts;  // at least one
 };
 
-using Shape =
-    std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape, PlaneShape, CompoundShape>;
+using Shape = std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape,
+                           PlaneShape, CompoundShape>;
 
 // "sphere", "box", ... as written in config files and on the wire.
 std::string shapeTypeName(const Shape& shape);

@@ -67,7 +67,8 @@ Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
         const std::string partWhere = where + "compound part " + std::to_string(i) + ": ";
         if (!isFiniteVec(part.position) || !part.orientation.isFinite() ||
             part.orientation.norm() < 1e-9)
-          return Error{partWhere + "position and orientation must be finite, the quaternion non-zero"};
+          return Error{partWhere +
+                       "position and orientation must be finite, the quaternion non-zero"};
         if (part.density && !isPositiveFinite(*part.density))
           return Error{partWhere + "density must be positive"};
         const auto unit = std::visit(Visitor{partWhere, bodyDensity}, part.shape);

@@ -228,7 +228,8 @@ TEST(Collider, CompoundPartsArePiecesPlacedThroughTheirPoses) {
   const Vec3& t = kShapeToBody.translation;
   EXPECT_LE((collider->pieces[1].placement.translation - (r * Vec3(0.5, 0, 0) + t)).norm(), 1e-15);
   const Mat3 capsuleRotation = r * alongX.toRotationMatrix();
-  EXPECT_LE((collider->pieces[2].placement.rotation - capsuleRotation).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LE((collider->pieces[2].placement.rotation - capsuleRotation).cwiseAbs().maxCoeff(),
+            1e-15);
   // The capsule's axis (its z) now runs along the compound's x.
   EXPECT_LE((capsuleRotation.col(2) - r.col(0)).cwiseAbs().maxCoeff(), 1e-12);
 
@@ -247,7 +248,8 @@ TEST(Collider, CompoundPartsArePiecesPlacedThroughTheirPoses) {
   bad.parts[1].shape = SphereShape{-1.0};
   auto refused = buildCollider(bad, Transform{}, "body 'dumbbell'");
   ASSERT_FALSE(refused.ok());
-  EXPECT_EQ(refused.error().message, "body 'dumbbell' compound part 1: sphere radius must be positive");
+  EXPECT_EQ(refused.error().message,
+            "body 'dumbbell' compound part 1: sphere radius must be positive");
   EXPECT_FALSE(buildCollider(CompoundShape{}, Transform{}, "body 'none'").ok());
 }
 

@@ -677,12 +677,13 @@ bodies:
 }
 
 TEST(ConfigLoaderErrors, Compound) {
-  EXPECT_EQ(errorOf(R"(
+  EXPECT_EQ(
+      errorOf(R"(
 bodies:
   - name: a
     shape: {type: compound, shapes: []}
 )"),
-            "test.yaml:3:37: bodies[0].shape.shapes: expected at least one part shape in a compound");
+      "test.yaml:3:37: bodies[0].shape.shapes: expected at least one part shape in a compound");
   EXPECT_EQ(errorOf(R"(
 bodies:
   - name: a
@@ -761,7 +762,8 @@ bodies:
 )"),
             "test.yaml:6:55: bodies[0].shape.shapes[0].density: expected a positive number, got "
             "\"0\"");
-  EXPECT_PRED2(startsWith, errorOf(R"(
+  EXPECT_PRED2(
+      startsWith, errorOf(R"(
 bodies:
   - name: a
     shape:
@@ -769,7 +771,7 @@ bodies:
       shapes:
         - {shape: {type: sphere, radius: 1}, mass: 2}
 )"),
-               "test.yaml:6:46: bodies[0].shape.shapes[0].mass: unknown key; a compound part has: ");
+      "test.yaml:6:46: bodies[0].shape.shapes[0].mass: unknown key; a compound part has: ");
   EXPECT_EQ(errorOf(R"(
 bodies:
   - name: a

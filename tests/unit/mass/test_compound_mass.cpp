@@ -34,8 +34,9 @@ void expectVecNear(const Vec3& actual, const Vec3& expected, double absTol) {
 
 void expectMatrixNear(const Mat3& actual, const Mat3& expected, double relTol = kRelTol) {
   const double scale = expected.cwiseAbs().maxCoeff();
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), relTol * scale)
-      << "actual\n" << actual << "\nexpected\n" << expected;
+  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), relTol * scale) << "actual\n"
+                                                                       << actual << "\nexpected\n"
+                                                                       << expected;
 }
 
 CompoundPart boxPart(const Vec3& halfExtents, const Vec3& position,
@@ -68,8 +69,9 @@ TEST(CompoundMass, TwoBoxesSideBySideAreTheBoxTheyForm) {
   // The same as a body: the same mass and principal moments, the same axes
   // (the tensor is diagonal), the centre of mass at the shape's origin.
   World world;
-  BodyDef pair = compoundBody("pair", {boxPart(Vec3::Constant(0.5), Vec3(-0.5, 0, 0)),
-                                       boxPart(Vec3::Constant(0.5), Vec3(0.5, 0, 0))},
+  BodyDef pair = compoundBody("pair",
+                              {boxPart(Vec3::Constant(0.5), Vec3(-0.5, 0, 0)),
+                               boxPart(Vec3::Constant(0.5), Vec3(0.5, 0, 0))},
                               density);
   pair.position = Vec3(1, 2, 3);
   BodyDef single;
@@ -80,7 +82,8 @@ TEST(CompoundMass, TwoBoxesSideBySideAreTheBoxTheyForm) {
   const Body& a = world.body(*world.createBody(pair));
   const Body& b = world.body(*world.createBody(single));
   expectRelNear(a.mass(), b.mass());
-  for (int k = 0; k < 3; ++k) expectRelNear(a.dynamics().inertiaBody[k], b.dynamics().inertiaBody[k]);
+  for (int k = 0; k < 3; ++k)
+    expectRelNear(a.dynamics().inertiaBody[k], b.dynamics().inertiaBody[k]);
   expectVecNear(a.position(), b.position(), 1e-12);
   EXPECT_EQ(a.orientation().w, 1.0);
 }
@@ -162,8 +165,7 @@ TEST(CompoundMass, RotatedBoxOffCentreHasTheInertiaWorkedOutByHand) {
                    sphereMass * (ds.x() * ds.x() + ds.z() * ds.z());
   expected(2, 2) = ic + boxMass * (db.x() * db.x() + db.y() * db.y()) + is +
                    sphereMass * (ds.x() * ds.x() + ds.y() * ds.y());
-  expected(0, 1) = expected(1, 0) =
-      rxy - boxMass * db.x() * db.y() - sphereMass * ds.x() * ds.y();
+  expected(0, 1) = expected(1, 0) = rxy - boxMass * db.x() * db.y() - sphereMass * ds.x() * ds.y();
   expected(0, 2) = expected(2, 0) = -boxMass * db.x() * db.z() - sphereMass * ds.x() * ds.z();
   expected(1, 2) = expected(2, 1) = -boxMass * db.y() * db.z() - sphereMass * ds.y() * ds.z();
 
@@ -180,15 +182,17 @@ TEST(CompoundMass, RotatedBoxOffCentreHasTheInertiaWorkedOutByHand) {
   // centre of mass lands where the shape pose puts it, and the shape frame
   // sits in body space so that shape points map to the same world points.
   World world;
-  BodyDef def = compoundBody("lever", {boxPart(Vec3(a, b, c), p, turn),
-                                       CompoundPart{SphereShape{radius}, Vec3::Zero(),
-                                                    Quaternion::identity(), std::nullopt}},
-                             density);
+  BodyDef def = compoundBody(
+      "lever",
+      {boxPart(Vec3(a, b, c), p, turn),
+       CompoundPart{SphereShape{radius}, Vec3::Zero(), Quaternion::identity(), std::nullopt}},
+      density);
   def.position = Vec3(2.0, -1.0, 0.5);
   def.orientation = Quaternion::fromRollPitchYaw(0.4, 0.0, -0.7);
   const Body& body = world.body(*world.createBody(def));
   const Eigen::SelfAdjointEigenSolver<Mat3> eigen(expected);
-  for (int k = 0; k < 3; ++k) expectRelNear(body.dynamics().inertiaBody[k], eigen.eigenvalues()[k], 1e-11);
+  for (int k = 0; k < 3; ++k)
+    expectRelNear(body.dynamics().inertiaBody[k], eigen.eigenvalues()[k], 1e-11);
   expectVecNear(body.position(), def.position + def.orientation.rotate(com), 1e-12);
   const BodyDescription& d = body.description();
   for (const Vec3& shapePoint : {Vec3(0, 0, 0), p, Vec3(0.3, -0.4, 0.2)}) {
@@ -221,7 +225,8 @@ TEST(CompoundMass, PartDensitiesWeighThePartsAndABodyMassScalesTheWhole) {
   expectVecNear(b.position(), Vec3(0.5, 0, 0), 1e-15);
   // About the y axis through the centre of mass: (2/5) m r² each plus
   // 2 kg at 1.5 m and 6 kg at 0.5 m.
-  expectRelNear(b.dynamics().inertiaBody.y(), 0.4 * 8.0 * radius * radius + 2.0 * 2.25 + 6.0 * 0.25);
+  expectRelNear(b.dynamics().inertiaBody.y(),
+                0.4 * 8.0 * radius * radius + 2.0 * 2.25 + 6.0 * 0.25);
 }
 
 TEST(CompoundMass, BadCompoundsAreRejectedByTheWorld) {
@@ -237,9 +242,8 @@ TEST(CompoundMass, BadCompoundsAreRejectedByTheWorld) {
   EXPECT_EQ(zero.error().message,
             "body 'flat': compound part 0: box half_extents must be positive");
 
-  BodyDef turned = compoundBody("turned", {boxPart(Vec3::Constant(1), Vec3::Zero(),
-                                                   Quaternion{0, 0, 0, 0})},
-                                1000.0);
+  BodyDef turned = compoundBody(
+      "turned", {boxPart(Vec3::Constant(1), Vec3::Zero(), Quaternion{0, 0, 0, 0})}, 1000.0);
   EXPECT_FALSE(world.createBody(turned).ok());
   EXPECT_EQ(world.bodyCount(), 0);
 }

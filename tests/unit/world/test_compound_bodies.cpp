@@ -79,7 +79,8 @@ TEST(CompoundBodies, AFallingCompoundHitsABoxWithThePieceAboveIt) {
     if (!world.contacts().empty()) firstContactStep = i;
   }
   ASSERT_GE(firstContactStep, 0) << "the dumbbell never reached the block";
-  EXPECT_EQ(touchingPieces(world, body), std::set<int>{1}) << "only the +x sphere is above the block";
+  EXPECT_EQ(touchingPieces(world, body), std::set<int>{1})
+      << "only the +x sphere is above the block";
   for (const SolvedManifold& m : world.contacts()) {
     EXPECT_NEAR(std::abs(m.normal.z()), 1.0, 1e-9);
     for (int p = 0; p < m.pointCount; ++p) {
@@ -93,7 +94,8 @@ TEST(CompoundBodies, AFallingCompoundHitsABoxWithThePieceAboveIt) {
   // (a negative turn about y).
   for (int i = 0; i < 100; ++i) world.step();
   EXPECT_LT(body.angularVelocity().y(), -0.1);
-  EXPECT_LT(body.bodyToWorld(Vec3(-kHalfSpan, 0, 0)).z(), body.bodyToWorld(Vec3(kHalfSpan, 0, 0)).z() - 0.01);
+  EXPECT_LT(body.bodyToWorld(Vec3(-kHalfSpan, 0, 0)).z(),
+            body.bodyToWorld(Vec3(kHalfSpan, 0, 0)).z() - 0.01);
 }
 
 }  // namespace
