@@ -56,7 +56,10 @@ constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
 constexpr std::array<std::string_view, 3> kCylinderKeys = {"type", "radius", "half_length"};
 constexpr std::array<std::string_view, 2> kMeshKeys = {"type", "file"};
 constexpr std::array<std::string_view, 3> kPlaneKeys = {"type", "normal", "offset"};
-constexpr std::string_view kShapeTypes = "sphere, box, cylinder, capsule, mesh, plane";
+constexpr std::array<std::string_view, 2> kCompoundKeys = {"type", "shapes"};
+constexpr std::array<std::string_view, 5> kCompoundPartKeys = {"shape", "position", "orientation",
+                                                               "rpy", "density"};
+constexpr std::string_view kShapeTypes = "sphere, box, cylinder, capsule, mesh, plane, compound";
 
 constexpr std::array<IntegratorKind, 3> kIntegrators = {
     IntegratorKind::ExplicitEuler, IntegratorKind::SemiImplicitEuler, IntegratorKind::Rk4};
@@ -89,6 +92,8 @@ class ConfigParser {
   Expected<Shape> parseShape(const YamlNode& node, bool isStatic) const;
   Expected<Shape> parseMesh(const YamlMap& shape) const;
   Expected<Shape> parsePlane(const YamlMap& shape, const YamlNode& type, bool isStatic) const;
+  Expected<Shape> parseCompound(const YamlMap& shape, bool isStatic) const;
+  Expected<CompoundPart> parseCompoundPart(const YamlNode& node, bool isStatic) const;
 
   YamlReader m_reader;
   std::filesystem::path m_baseDirectory;
@@ -368,6 +373,10 @@ Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) co
     if (auto error = m_reader.checkKeys(*map, kPlaneKeys, "a plane shape")) return *error;
     return parsePlane(*map, *typeNode, isStatic);
   }
+  if (*type == "compound") {
+    if (auto error = m_reader.checkKeys(*map, kCompoundKeys, "a compound shape")) return *error;
+    return parseCompound(*map, isStatic);
+  }
   return m_reader.error(*typeNode, "expected one of " + std::string(kShapeTypes) + ", got " +
                                        describeNode(typeNode->node));
 }
@@ -416,6 +425,72 @@ Expected<Shape> ConfigParser::parsePlane(const YamlMap& shape, const YamlNode& t
   if (!offset) return offset.error();
   plane.offset = *offset;
   return Shape{plane};
+}
+
+Expected<Shape> ConfigParser::parseCompound(const YamlMap& shape, bool isStatic) const {
+  Expected<YamlNode> shapesNode = m_reader.required(shape, "shapes");
+  if (!shapesNode) return shapesNode.error();
+  Expected<std::vector<YamlNode>> items = m_reader.list(*shapesNode);
+  if (!items) return items.error();
+  if (items->empty()) {
+    return m_reader.error(*shapesNode, "expected at least one part shape in a compound");
+  }
+  CompoundShape compound;
+  for (const YamlNode& item : *items) {
+    Expected<CompoundPart> part = parseCompoundPart(item, isStatic);
+    if (!part) return part.error();
+    compound.parts.push_back(std::move(*part));
+  }
+  return Shape{std::move(compound)};
+}
+
+Expected<CompoundPart> ConfigParser::parseCompoundPart(const YamlNode& node, bool isStatic) const {
+  Expected<YamlMap> map = m_reader.map(node);
+  if (!map) return map.error();
+  if (auto error = m_reader.checkKeys(*map, kCompoundPartKeys, "a compound part")) return *error;
+
+  Expected<YamlNode> shapeNode = m_reader.required(*map, "shape");
+  if (!shapeNode) return shapeNode.error();
+  // Planes and compounds are refused by name before parsing, so that the
+  // message says why rather than what a plane would need elsewhere.
+  Expected<YamlMap> shapeMap = m_reader.map(*shapeNode);
+  if (!shapeMap) return shapeMap.error();
+  if (const YamlMap::Entry* type = shapeMap->find("type")) {
+    Expected<std::string> name = m_reader.string(type->value);
+    if (!name) return name.error();
+    if (*name == "compound") {
+      return m_reader.error(type->value,
+                            "a compound cannot contain a compound; list its parts here instead");
+    }
+    if (*name == "plane") {
+      return m_reader.error(type->value,
+                            "a plane cannot be part of a compound (a half-space has no finite "
+                            "mass); make it a static body of its own");
+    }
+  }
+  Expected<Shape> shape = parseShape(*shapeNode, isStatic);
+  if (!shape) return shape.error();
+
+  std::optional<CompoundPartShape> partShape = toPartShape(std::move(*shape));
+  if (!partShape) return m_reader.error(*shapeNode, "this shape cannot be part of a compound");
+  CompoundPart part;
+  part.shape = std::move(*partShape);
+
+  Expected<Vec3> position =
+      m_reader.vec3(*map, "position", NumberRule::any(kMaxLength), part.position);
+  if (!position) return position.error();
+  part.position = *position;
+
+  Expected<Quaternion> orientation = parseOrientation(*map);
+  if (!orientation) return orientation.error();
+  part.orientation = *orientation;
+
+  if (const YamlMap::Entry* density = map->find("density")) {
+    Expected<double> value = m_reader.number(density->value, NumberRule::positive(kMaxDensity));
+    if (!value) return value.error();
+    part.density = *value;
+  }
+  return part;
 }
 
 // Runs `parse` on the single document of `yamlText`, turning every yaml-cpp

@@ -35,6 +35,53 @@ rbsim::body_state_t bodyState(const Body& body) {
   return out;
 }
 
+// The dimensions of a solid, into the same-named fields of a
+// body_description_t or a compound_part_t (zero for the other shapes').
+template <class Message>
+void copyDimensions(Message& out, const CompoundPartShape& shape) {
+  out.radius = 0.0;
+  out.half_length = 0.0;
+  copyTo(out.half_extents, Vec3::Zero());
+  out.num_vertices = 0;
+  out.num_triangles = 0;
+  std::visit(
+      [&](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, SphereShape>) {
+          out.radius = s.radius;
+        } else if constexpr (std::is_same_v<S, BoxShape>) {
+          copyTo(out.half_extents, s.halfExtents);
+        } else if constexpr (std::is_same_v<S, CylinderShape> || std::is_same_v<S, CapsuleShape>) {
+          out.radius = s.radius;
+          out.half_length = s.halfLength;
+        } else {
+          static_assert(std::is_same_v<S, MeshShape>);
+          out.mesh_file = s.file;
+          // Vertices in the shape's (or part's) own frame.
+          const TriangleMesh& mesh = *s.mesh;
+          out.num_vertices = static_cast<int32_t>(mesh.vertices.size());
+          out.vertices.resize(mesh.vertices.size(), std::vector<double>(3));
+          for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+            for (int k = 0; k < 3; ++k)
+              out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
+          out.num_triangles = static_cast<int32_t>(mesh.triangles.size());
+          out.triangles.resize(mesh.triangles.size(), std::vector<int32_t>(3));
+          for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+            for (std::size_t k = 0; k < 3; ++k) out.triangles[i][k] = mesh.triangles[i][k];
+        }
+      },
+      shape);
+}
+
+rbsim::compound_part_t compoundPart(const CompoundPart& part) {
+  rbsim::compound_part_t out;
+  out.shape_type = shapeTypeName(part.shape);
+  copyTo(out.position, part.position);
+  copyTo(out.orientation, part.orientation.normalized());
+  copyDimensions(out, part.shape);
+  return out;
+}
+
 rbsim::body_description_t bodyDescription(const Body& body) {
   const BodyDescription& d = body.description();
   rbsim::body_description_t out;
@@ -55,34 +102,18 @@ rbsim::body_description_t bodyDescription(const Body& body) {
   copyTo(out.plane_normal, Vec3::Zero());
   out.num_vertices = 0;
   out.num_triangles = 0;
-  std::visit(
-      [&](const auto& shape) {
-        using S = std::decay_t<decltype(shape)>;
-        if constexpr (std::is_same_v<S, SphereShape>) {
-          out.radius = shape.radius;
-        } else if constexpr (std::is_same_v<S, BoxShape>) {
-          copyTo(out.half_extents, shape.halfExtents);
-        } else if constexpr (std::is_same_v<S, CylinderShape> || std::is_same_v<S, CapsuleShape>) {
-          out.radius = shape.radius;
-          out.half_length = shape.halfLength;
-        } else if constexpr (std::is_same_v<S, PlaneShape>) {
-          copyTo(out.plane_normal, shape.normal);
-          out.plane_offset = shape.offset;
-        } else if constexpr (std::is_same_v<S, MeshShape>) {
-          out.mesh_file = shape.file;
-          // Vertices in the shape's frame: shape_position/orientation place it in body space.
-          const TriangleMesh& mesh = *shape.mesh;
-          out.num_vertices = static_cast<int32_t>(mesh.vertices.size());
-          out.vertices.resize(mesh.vertices.size(), std::vector<double>(3));
-          for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-            for (int k = 0; k < 3; ++k) out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
-          out.num_triangles = static_cast<int32_t>(mesh.triangles.size());
-          out.triangles.resize(mesh.triangles.size(), std::vector<int32_t>(3));
-          for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-            for (std::size_t k = 0; k < 3; ++k) out.triangles[i][k] = mesh.triangles[i][k];
-        }
-      },
-      d.shape);
+  out.num_parts = 0;
+  if (const auto* plane = std::get_if<PlaneShape>(&d.shape)) {
+    copyTo(out.plane_normal, plane->normal);
+    out.plane_offset = plane->offset;
+  } else if (const auto* compound = std::get_if<CompoundShape>(&d.shape)) {
+    // Each part is placed in the shape frame, which shape_position and
+    // shape_orientation place in body space, as for any shape.
+    for (const CompoundPart& part : compound->parts) out.parts.push_back(compoundPart(part));
+    out.num_parts = static_cast<int32_t>(out.parts.size());
+  } else if (auto solid = toPartShape(d.shape)) {
+    copyDimensions(out, *solid);
+  }
   return out;
 }
 

@@ -181,6 +181,48 @@ TEST_F(Commands, SpawnAndRemoveBodies) {
   EXPECT_GT(client::findBody(*client().world(), "probe")->id, probe.id) << "ids are never reused";
 }
 
+// A compound arrives through the same parser as a config file's bodies, and
+// viewers get its parts in the world description.
+TEST_F(Commands, SpawnACompoundBody) {
+  startServer("free_bodies.yaml", {"--paused", "--state-rate", "0"});
+  const char* dumbbellYaml =
+      "{name: dumbbell, position: [0, 0, 20], density: 1000, linear_velocity: [1, 0, 0],\n"
+      " shape: {type: compound, shapes: [\n"
+      "  {shape: {type: sphere, radius: 0.1}, position: [-0.4, 0, 0]},\n"
+      "  {shape: {type: sphere, radius: 0.1}, position: [0.4, 0, 0]},\n"
+      "  {shape: {type: capsule, radius: 0.02, half_length: 0.3},\n"
+      "   rpy: [0, 1.5707963267948966, 0]}]}}";
+  expectAccepted(client().spawn(dumbbellYaml));
+  waitFor("the world description with the dumbbell",
+          [&] { return client::findBody(*client().world(), "dumbbell") != nullptr; });
+  const rbsim::body_description_t dumbbell = *client::findBody(*client().world(), "dumbbell");
+  EXPECT_EQ(dumbbell.shape_type, "compound");
+  ASSERT_EQ(dumbbell.num_parts, 3);
+  ASSERT_EQ(dumbbell.parts.size(), 3u);
+  EXPECT_EQ(dumbbell.parts[0].shape_type, "sphere");
+  EXPECT_EQ(dumbbell.parts[0].radius, 0.1);
+  EXPECT_EQ(dumbbell.parts[1].position[0], 0.4);
+  EXPECT_EQ(dumbbell.parts[2].shape_type, "capsule");
+  EXPECT_EQ(dumbbell.parts[2].half_length, 0.3);
+  // Two spheres and a capsule of water: 2 (4/3 π r³) + π r² (2 h) + 4/3 π r³ for the caps.
+  const double sphere = 4.0 / 3.0 * M_PI * 0.001;
+  const double rod = M_PI * 0.0004 * 0.6 + 4.0 / 3.0 * M_PI * 8e-6;
+  EXPECT_NEAR(dumbbell.mass, 1000.0 * (2.0 * sphere + rod), 1e-9);
+
+  // A nested compound is refused with the loader's message.
+  const rbsim::ack_t nested = expectRejected(client().spawn(
+      "{name: nest, shape: {type: compound, shapes: [{shape: {type: compound, shapes: []}}]}}"));
+  EXPECT_NE(nested.reason.find("a compound cannot contain a compound"), std::string::npos)
+      << nested.reason;
+
+  // It moves like any free body (zero gravity here): 10 steps at 1 m/s.
+  const rbsim::ack_t step = stepAndWait(10);
+  const auto& moved = history().body(step.effective_step + 9, "dumbbell");
+  EXPECT_EQ(moved.id, dumbbell.id);
+  EXPECT_NEAR(moved.position[0], 10 * client().world()->dt, 1e-12);
+  EXPECT_EQ(moved.position[2], 20.0);
+}
+
 // wire contract (body_state_t.id): "a removed body's id is never given to a
 // later body". RESET removes the bodies spawned since the start.
 TEST_F(Commands, BodyIdsAreNeverReusedAcrossReset) {

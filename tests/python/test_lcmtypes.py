@@ -10,8 +10,8 @@ import math
 import pytest
 
 import rbsim
-from rbsim import (ack_t, body_description_t, body_state_t, command_t, status_t, world_state_t,
-                   world_t, wrench_t)
+from rbsim import (ack_t, body_description_t, body_state_t, command_t, compound_part_t, status_t,
+                   world_state_t, world_t, wrench_t)
 from rbsim.lcm_ctypes import EventLog
 
 
@@ -49,7 +49,7 @@ def _world():
     m.utime, m.step, m.sim_time, m.world_revision, m.dt = 5, 6, 0.006, 2, 0.001
     m.gravity, m.integrator = (0.0, 0.0, -9.81), "rk4"
     m.linear_damping, m.angular_damping = 0.1, 0.2
-    m.page, m.num_pages, m.total_bodies, m.first_body_index = 0, 1, 2, 0
+    m.page, m.num_pages, m.total_bodies, m.first_body_index = 0, 1, 3, 0
     mesh = body_description_t()
     mesh.id, mesh.name, mesh.is_static, mesh.mass = 1, "tetra", False, 3.5
     mesh.inertia = (0.1, 0.2, 0.3)
@@ -62,8 +62,18 @@ def _world():
     plane = body_description_t()
     plane.id, plane.name, plane.is_static, plane.shape_type = 2, "ground", True, "plane"
     plane.plane_normal, plane.plane_offset = (0.0, 0.0, 1.0), -3.0
-    m.bodies = [mesh, plane]
-    m.num_bodies = 2
+    dumbbell = body_description_t()
+    dumbbell.id, dumbbell.name, dumbbell.mass, dumbbell.shape_type = 3, "dumbbell", 8.5, "compound"
+    dumbbell.shape_position, dumbbell.shape_orientation = (0.0, 0.0, -0.01), (1.0, 0.0, 0.0, 0.0)
+    ball, rod = compound_part_t(), compound_part_t()
+    ball.shape_type, ball.radius, ball.position = "sphere", 0.1, (0.4, 0.0, 0.0)
+    ball.orientation = (1.0, 0.0, 0.0, 0.0)
+    rod.shape_type, rod.radius, rod.half_length = "capsule", 0.02, 0.3
+    rod.orientation = (math.sqrt(0.5), 0.0, math.sqrt(0.5), 0.0)
+    dumbbell.parts = [ball, rod]
+    dumbbell.num_parts = 2
+    m.bodies = [mesh, plane, dumbbell]
+    m.num_bodies = 3
     return m
 
 

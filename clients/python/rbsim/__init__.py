@@ -31,6 +31,7 @@ _GENERATED_TYPES = (
     "body_description_t",
     "body_state_t",
     "command_t",
+    "compound_part_t",
     "contact_t",
     "contacts_t",
     "status_t",

@@ -127,7 +127,23 @@ Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBod
             collider.bounds = collider.bounds.merged(collider.pieces.back().bounds);
           }
           return collider;
+        } else if constexpr (std::is_same_v<T, CompoundShape>) {
+          if (s.parts.empty()) return Error{sourceName + ": a compound needs at least one part"};
+          // Each part's pieces, in part order, placed through the part's pose.
+          for (std::size_t i = 0; i < s.parts.size(); ++i) {
+            const CompoundPart& part = s.parts[i];
+            const Transform partToBody =
+                shapeToBody * Transform::fromPose(part.position, part.orientation.normalized());
+            auto partCollider = buildCollider(toShape(part.shape), partToBody,
+                                              sourceName + " compound part " + std::to_string(i));
+            if (!partCollider) return partCollider.error();
+            for (ConvexPiece& piece : partCollider->pieces)
+              collider.pieces.push_back(std::move(piece));
+            collider.bounds = collider.bounds.merged(partCollider->bounds);
+          }
+          return collider;
         } else {
+          static_assert(std::is_same_v<T, PlaneShape>);
           const double length = s.normal.norm();
           if (!s.normal.allFinite() || !(length > 0.0) || !std::isfinite(s.offset))
             return Error{sourceName + ": plane normal must be finite and non-zero"};

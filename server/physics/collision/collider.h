@@ -30,7 +30,8 @@ struct Collider {
 // Builds the collider of `shape`, whose frame sits at `shapeToBody` in body
 // space. Meshes become the convex hulls of their connected components
 // (triangles sharing a vertex index or a vertex position), in the order of
-// their first vertex. Errors (bad sizes, a component without volume) name
+// their first vertex. A compound's parts give their pieces in part order.
+// Errors (bad sizes, a component without volume) name
 // `sourceName` and, for meshes, the file and the component.
 Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBody,
                                  const std::string& sourceName);

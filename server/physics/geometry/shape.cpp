@@ -1,5 +1,8 @@
 #include "physics/geometry/shape.h"
 
+#include <type_traits>
+#include <utility>
+
 namespace rbsim {
 
 namespace {
@@ -10,9 +13,30 @@ struct TypeName {
   std::string operator()(const CapsuleShape&) const { return "capsule"; }
   std::string operator()(const MeshShape&) const { return "mesh"; }
   std::string operator()(const PlaneShape&) const { return "plane"; }
+  std::string operator()(const CompoundShape&) const { return "compound"; }
 };
 }  // namespace
 
 std::string shapeTypeName(const Shape& shape) { return std::visit(TypeName{}, shape); }
+std::string shapeTypeName(const CompoundPartShape& shape) {
+  return std::visit(TypeName{}, shape);
+}
+
+Shape toShape(const CompoundPartShape& shape) {
+  return std::visit([](const auto& part) { return Shape{part}; }, shape);
+}
+
+std::optional<CompoundPartShape> toPartShape(Shape shape) {
+  return std::visit(
+      [](auto&& s) -> std::optional<CompoundPartShape> {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, PlaneShape> || std::is_same_v<T, CompoundShape>) {
+          return std::nullopt;
+        } else {
+          return CompoundPartShape{std::move(s)};
+        }
+      },
+      std::move(shape));
+}
 
 }  // namespace rbsim

@@ -2,10 +2,13 @@
 // Shape descriptions: what a body is made of, in the frame the user gave it in.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "physics/geometry/triangle_mesh.h"
+#include "physics/math/quaternion.h"
 #include "physics/math/types.h"
 
 namespace rbsim {
@@ -40,9 +43,40 @@ struct PlaneShape {
   double offset = 0.0;          // m
 };
 
-using Shape = std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape, PlaneShape>;
+// What a compound may be made of: the solids. A plane (infinite) or another
+// compound (nesting adds nothing a flat list cannot say) cannot be a part,
+// and this type makes them impossible to write.
+using CompoundPartShape =
+    std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape>;
+
+// One part of a compound, placed in the compound's frame (the frame the
+// compound is given in, like any shape's).
+struct CompoundPart {
+  CompoundPartShape shape;
+  Vec3 position = Vec3::Zero();                     // m: the part frame's origin
+  Quaternion orientation = Quaternion::identity();  // part -> compound
+  // Unset: the body's density. With a body mass, the densities only weigh
+  // the parts against each other and the whole is scaled to that mass.
+  std::optional<double> density;  // kg/m³
+};
+
+// A non-convex solid as a union of solids, each colliding on its own (a
+// body's convex pieces). Mass properties add up part by part, so parts
+// should not overlap: an overlap is counted twice.
+struct CompoundShape {
+  std::vector<CompoundPart> parts;  // at least one
+};
+
+using Shape = std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape,
+                           PlaneShape, CompoundShape>;
 
 // "sphere", "box", ... as written in config files and on the wire.
 std::string shapeTypeName(const Shape& shape);
+std::string shapeTypeName(const CompoundPartShape& shape);
+
+// A compound part's shape as a shape of its own, and back (nothing for a
+// plane or a compound).
+Shape toShape(const CompoundPartShape& shape);
+std::optional<CompoundPartShape> toPartShape(Shape shape);
 
 }  // namespace rbsim

@@ -1,8 +1,11 @@
 #pragma once
 // Mass properties of a solid of uniform density.
 
+#include <span>
+
 #include "physics/common/expected.h"
 #include "physics/geometry/triangle_mesh.h"
+#include "physics/math/transform.h"
 #include "physics/math/types.h"
 
 namespace rbsim {
@@ -47,6 +50,20 @@ struct MonteCarloMassProperties {
 };
 MonteCarloMassProperties monteCarloMassProperties(const TriangleMesh& mesh, double density,
                                                    int samples, unsigned long long seed);
+
+// One solid of a union: its mass properties in its own frame, and where
+// that frame sits (part frame -> the union's frame).
+struct PlacedMassProperties {
+  MassProperties properties;
+  Transform placement;
+};
+
+// The exact mass properties of a union of solids that do not overlap, in the
+// union's frame: masses and volumes add, the centre of mass is the
+// mass-weighted mean, and each inertia is rotated into the union's frame
+// (R I Rᵀ) and moved to the common centre of mass (parallel-axis theorem).
+// `parts` must not be empty.
+MassProperties combinedMassProperties(std::span<const PlacedMassProperties> parts);
 
 // Eigen-decomposition of a symmetric inertia tensor. When the tensor is
 // already diagonal (off-diagonal terms below 1e-12 of its trace) the axes

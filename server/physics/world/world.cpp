@@ -16,11 +16,17 @@ namespace {
 bool isPositiveFinite(double value) { return std::isfinite(value) && value > 0.0; }
 bool isFiniteVec(const Vec3& v) { return v.allFinite(); }
 
+MassProperties scaled(const MassProperties& unit, double density);
+
 // Mass properties of the shape at unit density, or an error for a bad size.
+// A compound's parts of their own density weigh density / bodyDensity
+// (kg/m³ over kg/m³), so that scaling by the body's density gives each part
+// its own.
 Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
   const std::string where = "body '" + def.name + "': ";
   struct Visitor {
     const std::string& where;
+    double bodyDensity;  // kg/m³
     Expected<MassProperties> operator()(const SphereShape& s) const {
       if (!isPositiveFinite(s.radius)) return Error{where + "sphere radius must be positive"};
       return sphereMassProperties(s.radius, 1.0);
@@ -52,8 +58,29 @@ Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
         return Error{where + "plane normal must be a finite non-zero vector"};
       return MassProperties{};  // a half-space has no finite mass
     }
+    Expected<MassProperties> operator()(const CompoundShape& s) const {
+      if (s.parts.empty()) return Error{where + "a compound needs at least one part"};
+      std::vector<PlacedMassProperties> parts;
+      parts.reserve(s.parts.size());
+      for (std::size_t i = 0; i < s.parts.size(); ++i) {
+        const CompoundPart& part = s.parts[i];
+        const std::string partWhere = where + "compound part " + std::to_string(i) + ": ";
+        if (!isFiniteVec(part.position) || !part.orientation.isFinite() ||
+            part.orientation.norm() < 1e-9)
+          return Error{partWhere +
+                       "position and orientation must be finite, the quaternion non-zero"};
+        if (part.density && !isPositiveFinite(*part.density))
+          return Error{partWhere + "density must be positive"};
+        const auto unit = std::visit(Visitor{partWhere, bodyDensity}, part.shape);
+        if (!unit) return unit.error();
+        const double weight = part.density ? *part.density / bodyDensity : 1.0;
+        parts.push_back({scaled(*unit, weight),
+                         Transform::fromPose(part.position, part.orientation.normalized())});
+      }
+      return combinedMassProperties(parts);
+    }
   };
-  return std::visit(Visitor{where}, def.shape);
+  return std::visit(Visitor{where, def.density.value_or(BodyDef::kDefaultDensity)}, def.shape);
 }
 
 MassProperties scaled(const MassProperties& unit, double density) {
@@ -127,7 +154,9 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     dynamics.mass = 0.0;  // a half-space has no finite mass
     dynamics.inertiaBody = Vec3::Zero();
   } else {
-    const double density = def.mass ? *def.mass / unit->volume
+    // unit->mass is the volume, except for a compound whose parts have
+    // densities of their own (then it weighs them).
+    const double density = def.mass ? *def.mass / unit->mass
                                     : def.density.value_or(BodyDef::kDefaultDensity);
     description->massProperties = scaled(*unit, density);
     if (def.mass) description->massProperties.mass = *def.mass;  // exactly as given

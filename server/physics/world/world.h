@@ -41,7 +41,8 @@ class World {
   // body frame at the centre of mass along the principal axes and places it
   // so that the shape lands at def.position / def.orientation. Errors: empty
   // or duplicate name, non-positive or non-finite mass, density or size, a
-  // plane on a dynamic body, a mesh that is missing.
+  // plane on a dynamic body, a mesh that is missing, a compound without
+  // parts or with a bad part (named by its index).
   Expected<BodyId> createBody(const BodyDef& def);
   bool removeBody(BodyId id);  // false for a null or stale id
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "geometry_test_helpers.h"
 #include "physics/collision/collider.h"
@@ -204,6 +205,52 @@ TEST(Collider, WorldStoresTheColliderOfEachBody) {
   const auto& floorCollider = world.body(*world.createBody(floor)).description().collider;
   ASSERT_NE(floorCollider, nullptr);
   EXPECT_TRUE(floorCollider->plane.has_value());
+}
+
+TEST(Collider, CompoundPartsArePiecesPlacedThroughTheirPoses) {
+  // A box at the origin, a sphere at +x and a capsule turned along x at −x.
+  const Quaternion alongX = Quaternion::fromAxisAngle(Vec3::UnitY(), 0.5 * std::numbers::pi);
+  CompoundShape dumbbell;
+  dumbbell.parts = {
+      CompoundPart{BoxShape{Vec3(0.5, 0.05, 0.05)}, Vec3::Zero(), Quaternion::identity(), {}},
+      CompoundPart{SphereShape{0.1}, Vec3(0.5, 0, 0), Quaternion::identity(), {}},
+      CompoundPart{CapsuleShape{0.05, 0.2}, Vec3(-0.5, 0, 0), alongX, {}}};
+  auto collider = buildCollider(dumbbell, kShapeToBody, "dumbbell");
+  ASSERT_TRUE(collider.ok()) << collider.error().message;
+  ASSERT_EQ(collider->pieces.size(), 3u);
+  EXPECT_FALSE(collider->plane.has_value());
+  EXPECT_TRUE(std::holds_alternative<BoxShape>(collider->pieces[0].geometry));
+  EXPECT_TRUE(std::holds_alternative<SphereShape>(collider->pieces[1].geometry));
+  EXPECT_TRUE(std::holds_alternative<CapsuleShape>(collider->pieces[2].geometry));
+
+  // Each piece sits at shapeToBody ∘ partPose.
+  const Mat3& r = kShapeToBody.rotation;
+  const Vec3& t = kShapeToBody.translation;
+  EXPECT_LE((collider->pieces[1].placement.translation - (r * Vec3(0.5, 0, 0) + t)).norm(), 1e-15);
+  const Mat3 capsuleRotation = r * alongX.toRotationMatrix();
+  EXPECT_LE((collider->pieces[2].placement.rotation - capsuleRotation).cwiseAbs().maxCoeff(),
+            1e-15);
+  // The capsule's axis (its z) now runs along the compound's x.
+  EXPECT_LE((capsuleRotation.col(2) - r.col(0)).cwiseAbs().maxCoeff(), 1e-12);
+
+  // The body's bounds are the union of the pieces' (each exact).
+  const Vec3 sphereCenter = r * Vec3(0.5, 0, 0) + t;
+  expectBounds(collider->pieces[1].bounds, sphereCenter - Vec3::Constant(0.1),
+               sphereCenter + Vec3::Constant(0.1));
+  Aabb united = Aabb::empty();
+  for (const ConvexPiece& piece : collider->pieces) united = united.merged(piece.bounds);
+  expectBounds(collider->bounds, united.min, united.max, 0.0);
+  EXPECT_GT(collider->bounds.max.x() - collider->bounds.min.x(),
+            collider->pieces[0].bounds.max.x() - collider->pieces[0].bounds.min.x());
+
+  // A bad part names itself; an empty compound is refused.
+  CompoundShape bad = dumbbell;
+  bad.parts[1].shape = SphereShape{-1.0};
+  auto refused = buildCollider(bad, Transform{}, "body 'dumbbell'");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message,
+            "body 'dumbbell' compound part 1: sphere radius must be positive");
+  EXPECT_FALSE(buildCollider(CompoundShape{}, Transform{}, "body 'none'").ok());
 }
 
 }  // namespace

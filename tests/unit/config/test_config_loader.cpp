@@ -249,6 +249,51 @@ TEST(ConfigLoader, MeshPathIsRelativeToTheConfigFile) {
   EXPECT_EQ(mesh.mesh->triangles.size(), 4u);
 }
 
+TEST(ConfigLoader, CompoundOfShapesWithPosesAndDensities) {
+  const Expected<WorldDef> world = parse(R"(
+bodies:
+  - name: dumbbell
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: box, half_extents: [0.5, 0.05, 0.05]}, position: [0, 0, 0], orientation: [2, 0, 0, 0]}
+        - {shape: {type: sphere, radius: 0.1}, position: [0.5, 0, 0], density: 7800}
+        - {shape: {type: capsule, radius: 0.05, half_length: 0.2}, position: [-0.5, 0, 0], rpy: [0, 1.5708, 0]}
+        - shape: {type: mesh, file: meshes/tetra.obj}
+          position: [0, 1, 0]
+    mass: 3.0
+)");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  const BodyDef& body = world->bodies[0];
+  ASSERT_TRUE(std::holds_alternative<CompoundShape>(body.shape));
+  EXPECT_EQ(shapeTypeName(body.shape), "compound");
+  EXPECT_DOUBLE_EQ(*body.mass, 3.0);
+  const std::vector<CompoundPart>& parts = std::get<CompoundShape>(body.shape).parts;
+  ASSERT_EQ(parts.size(), 4u);
+
+  ASSERT_TRUE(std::holds_alternative<BoxShape>(parts[0].shape));
+  expectVec3(std::get<BoxShape>(parts[0].shape).halfExtents, 0.5, 0.05, 0.05);
+  expectVec3(parts[0].position, 0.0, 0.0, 0.0);
+  expectQuaternion(parts[0].orientation, Quaternion::identity());  // normalised
+  EXPECT_FALSE(parts[0].density.has_value());
+
+  ASSERT_TRUE(std::holds_alternative<SphereShape>(parts[1].shape));
+  EXPECT_DOUBLE_EQ(std::get<SphereShape>(parts[1].shape).radius, 0.1);
+  expectVec3(parts[1].position, 0.5, 0.0, 0.0);
+  ASSERT_TRUE(parts[1].density.has_value());
+  EXPECT_DOUBLE_EQ(*parts[1].density, 7800.0);
+
+  ASSERT_TRUE(std::holds_alternative<CapsuleShape>(parts[2].shape));
+  EXPECT_DOUBLE_EQ(std::get<CapsuleShape>(parts[2].shape).halfLength, 0.2);
+  expectQuaternion(parts[2].orientation, Quaternion::fromRollPitchYaw(0.0, 1.5708, 0.0));
+
+  // Mesh parts resolve their file against the config's directory, like mesh bodies.
+  ASSERT_TRUE(std::holds_alternative<MeshShape>(parts[3].shape));
+  EXPECT_EQ(std::get<MeshShape>(parts[3].shape).file,
+            (kDataDir / "meshes" / "tetra.obj").lexically_normal().string());
+  expectVec3(parts[3].position, 0.0, 1.0, 0.0);
+}
+
 TEST(ConfigLoader, OneBodyForSpawning) {
   const Expected<BodyDef> body = parseBodyDef(yaml(R"(
 name: probe
@@ -262,6 +307,24 @@ mass: 7
   expectVec3(std::get<BoxShape>(body->shape).halfExtents, 1.0, 2.0, 3.0);
   expectVec3(body->position, 4.0, 5.0, 6.0);
   EXPECT_DOUBLE_EQ(*body->mass, 7.0);
+}
+
+TEST(ConfigLoader, OneCompoundBodyForSpawning) {
+  const Expected<BodyDef> body = parseBodyDef(
+      "name: pair\nshape: {type: compound, shapes: [{shape: {type: sphere, radius: 0.1}},\n"
+      "  {shape: {type: box, half_extents: [0.1, 0.1, 0.1]}, position: [0.3, 0, 0]}]}\n",
+      "spawn", "");
+  ASSERT_TRUE(body.ok()) << body.error().message;
+  ASSERT_TRUE(std::holds_alternative<CompoundShape>(body->shape));
+  EXPECT_EQ(std::get<CompoundShape>(body->shape).parts.size(), 2u);
+
+  const Expected<BodyDef> nested = parseBodyDef(
+      "name: n\nshape: {type: compound, shapes: [{shape: {type: compound, shapes: []}}]}\n",
+      "spawn", "");
+  ASSERT_FALSE(nested.ok());
+  EXPECT_EQ(nested.error().message,
+            "spawn:2:49: shape.shapes[0].shape.type: a compound cannot contain a compound; list "
+            "its parts here instead");
 }
 
 TEST(ConfigLoader, OneBodyErrorsHaveBodyRelativePaths) {
@@ -295,7 +358,7 @@ TEST(ConfigLoader, DefaultWorldShowsEveryShape) {
   EXPECT_DOUBLE_EQ(world->settings.dt, 0.001);
   std::vector<std::string> types;
   for (const BodyDef& body : world->bodies) types.push_back(shapeTypeName(body.shape));
-  for (const char* type : {"sphere", "box", "cylinder", "capsule", "mesh", "plane"}) {
+  for (const char* type : {"sphere", "box", "cylinder", "capsule", "mesh", "plane", "compound"}) {
     EXPECT_NE(std::find(types.begin(), types.end(), type), types.end()) << type;
   }
 }
@@ -593,7 +656,7 @@ bodies:
     shape: {type: cone, radius: 1}
 )"),
             "test.yaml:3:19: bodies[0].shape.type: expected one of sphere, box, cylinder, "
-            "capsule, mesh, plane, got \"cone\"");
+            "capsule, mesh, plane, compound, got \"cone\"");
 }
 
 TEST(ConfigLoaderErrors, Plane) {
@@ -611,6 +674,113 @@ bodies:
     shape: {type: plane, normal: [0, 0, 0]}
 )"),
             "test.yaml:4:34: bodies[0].shape.normal: expected a non-zero normal vector");
+}
+
+TEST(ConfigLoaderErrors, Compound) {
+  EXPECT_EQ(
+      errorOf(R"(
+bodies:
+  - name: a
+    shape: {type: compound, shapes: []}
+)"),
+      "test.yaml:3:37: bodies[0].shape.shapes: expected at least one part shape in a compound");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape: {type: compound}
+)"),
+            "test.yaml:3:12: bodies[0].shape.shapes: missing required key");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - shape: {type: sphere, radius: 1}
+        - shape: {type: compound, shapes: [{shape: {type: sphere, radius: 1}}]}
+)"),
+            "test.yaml:7:25: bodies[0].shape.shapes[1].shape.type: a compound cannot contain a "
+            "compound; list its parts here instead");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    static: true
+    shape:
+      type: compound
+      shapes:
+        - shape: {type: plane}
+)"),
+            "test.yaml:7:25: bodies[0].shape.shapes[0].shape.type: a plane cannot be part of a "
+            "compound (a half-space has no finite mass); make it a static body of its own");
+  // Bad part poses and sizes, with the same messages as for bodies.
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: sphere, radius: 1}, orientation: [0, 0, 0, 0]}
+)"),
+            "test.yaml:6:59: bodies[0].shape.shapes[0].orientation: expected a non-zero "
+            "quaternion (w, x, y, z)");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: sphere, radius: 1}, orientation: [1, 0, 0, 0], rpy: [0, 0, 1]}
+)"),
+            "test.yaml:6:73: bodies[0].shape.shapes[0].rpy: give orientation or rpy, not both");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: sphere, radius: 1}, position: [0, .nan, 0]}
+)"),
+            "test.yaml:6:60: bodies[0].shape.shapes[0].position[1]: expected a finite number, got "
+            "\".nan\"");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: box, half_extents: [1, -1, 1]}, density: 0}
+)"),
+            "test.yaml:6:49: bodies[0].shape.shapes[0].shape.half_extents[1]: expected a positive "
+            "number, got \"-1\"");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: sphere, radius: 1}, density: 0}
+)"),
+            "test.yaml:6:55: bodies[0].shape.shapes[0].density: expected a positive number, got "
+            "\"0\"");
+  EXPECT_PRED2(
+      startsWith, errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {shape: {type: sphere, radius: 1}, mass: 2}
+)"),
+      "test.yaml:6:46: bodies[0].shape.shapes[0].mass: unknown key; a compound part has: ");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: a
+    shape:
+      type: compound
+      shapes:
+        - {position: [0, 0, 0]}
+)"),
+            "test.yaml:6:11: bodies[0].shape.shapes[0].shape: missing required key");
 }
 
 TEST(ConfigLoaderErrors, StaticBodyCannotMove) {

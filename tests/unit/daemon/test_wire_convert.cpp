@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "config/config_loader.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -138,6 +139,75 @@ TEST(WireConvert, WorldDescriptionCarriesShapesAndMasses) {
   EXPECT_EQ(ground.shape_type, "plane");
   EXPECT_TRUE(ground.is_static);
   EXPECT_EQ(ground.plane_normal[2], 1.0);
+}
+
+TEST(WireConvert, SpawnedCompoundRoundTripsInTheWorldDescription) {
+  // A spawn_yaml as rbserver receives it: parsed by the config loader, then
+  // created, described and sent.
+  const std::string yaml =
+      "name: lever\n"
+      "shape:\n"
+      "  type: compound\n"
+      "  shapes:\n"
+      "    - {shape: {type: box, half_extents: [0.5, 0.05, 0.05]}}\n"
+      "    - {shape: {type: sphere, radius: 0.1}, position: [0.5, 0, 0], density: 7800}\n"
+      "    - {shape: {type: capsule, radius: 0.05, half_length: 0.2}, position: [-0.5, 0, 0],\n"
+      "       rpy: [0, 1.5707963267948966, 0]}\n"
+      "    - {shape: {type: mesh, file: meshes/tetra.obj}, position: [0, 0.3, 0]}\n"
+      "position: [1, 2, 3]\n";
+  const Expected<BodyDef> def =
+      parseBodyDef(yaml, "spawn", std::string(RBSIM_TEST_DATA_DIR) + "/config");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  World world;
+  const BodyId id = *world.createBody(*def);
+  const Body& body = world.body(id);
+
+  const auto pages = worldDescriptionPages(world, 0, 1);
+  ASSERT_EQ(pages.size(), 1u);
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(pages[0].getEncodedSize()));
+  ASSERT_EQ(pages[0].encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  rbsim::world_t decoded;
+  ASSERT_EQ(decoded.decode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  ASSERT_EQ(decoded.num_bodies, 1);
+  const rbsim::body_description_t& lever = decoded.bodies[0];
+  EXPECT_EQ(lever.shape_type, "compound");
+  EXPECT_EQ(lever.mass, body.mass());
+  EXPECT_EQ(lever.inertia[1], body.dynamics().inertiaBody.y());
+  // The shape frame's placement in body space, as for a mesh.
+  const BodyDescription& d = body.description();
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(lever.shape_position[k], d.shapeTranslation[k]);
+  const Quaternion placement{lever.shape_orientation[0], lever.shape_orientation[1],
+                             lever.shape_orientation[2], lever.shape_orientation[3]};
+  EXPECT_LE((placement.toRotationMatrix() - d.shapeRotation).cwiseAbs().maxCoeff(), 1e-12);
+
+  ASSERT_EQ(lever.num_parts, 4);
+  ASSERT_EQ(lever.parts.size(), 4u);
+  const auto& bar = lever.parts[0];
+  EXPECT_EQ(bar.shape_type, "box");
+  EXPECT_EQ(bar.half_extents[0], 0.5);
+  EXPECT_EQ(bar.half_extents[1], 0.05);
+  EXPECT_EQ(bar.orientation[0], 1.0);
+  const auto& ball = lever.parts[1];
+  EXPECT_EQ(ball.shape_type, "sphere");
+  EXPECT_EQ(ball.radius, 0.1);
+  EXPECT_EQ(ball.position[0], 0.5);
+  const auto& handle = lever.parts[2];
+  EXPECT_EQ(handle.shape_type, "capsule");
+  EXPECT_EQ(handle.radius, 0.05);
+  EXPECT_EQ(handle.half_length, 0.2);
+  EXPECT_EQ(handle.position[0], -0.5);
+  EXPECT_NEAR(handle.orientation[0], std::sqrt(0.5), 1e-15);  // a quarter turn about y
+  EXPECT_NEAR(handle.orientation[2], std::sqrt(0.5), 1e-15);
+  const auto& wedge = lever.parts[3];
+  EXPECT_EQ(wedge.shape_type, "mesh");
+  EXPECT_EQ(wedge.num_vertices, 4);
+  EXPECT_EQ(wedge.num_triangles, 4);
+  EXPECT_EQ(wedge.position[1], 0.3);
+  EXPECT_NE(wedge.mesh_file.find("tetra.obj"), std::string::npos);
+  // Shapes that are not compounds carry no parts.
+  EXPECT_EQ(worldDescriptionPages(makeWorld(1), 0, 1)[0].bodies[0].num_parts, 0);
 }
 
 }  // namespace

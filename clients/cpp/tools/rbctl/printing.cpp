@@ -64,6 +64,10 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
     if (b.shape_type == "mesh")
       std::fprintf(out, " file %s vertices %d triangles %d", b.mesh_file.c_str(), b.num_vertices,
                    b.num_triangles);
+    if (b.shape_type == "compound") {
+      std::fprintf(out, " parts %d", b.num_parts);
+      for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
+    }
     std::fputc('\n', out);
   }
 }
