@@ -15,7 +15,8 @@ namespace {
 constexpr uint32_t kMaxNameLength = 4096;
 constexpr uint32_t kMaxFileNameLength = 65536;
 
-enum class ShapeTag : uint8_t { Sphere = 1, Box = 2, Cylinder = 3, Capsule = 4, Mesh = 5, Plane = 6 };
+enum class ShapeTag : uint8_t { Sphere = 1, Box = 2, Cylinder = 3, Capsule = 4, Mesh = 5, Plane = 6, Compound = 7 };
+constexpr uint32_t kMaxCompoundParts = 1u << 16;
 
 Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWriter& out) {
   if (const auto* s = std::get_if<SphereShape>(&shape)) {
@@ -46,6 +47,17 @@ Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWrite
     out.u8(static_cast<uint8_t>(ShapeTag::Plane));
     out.vec3(h->normal);
     out.f64(h->offset);
+  } else if (const auto* compound = std::get_if<CompoundShape>(&shape)) {
+    // Part by part: its shape (never a plane or a compound), pose and density.
+    out.u8(static_cast<uint8_t>(ShapeTag::Compound));
+    out.u32(static_cast<uint32_t>(compound->parts.size()));
+    for (const CompoundPart& part : compound->parts) {
+      if (auto written = writeShape(toShape(part.shape), body, out); !written) return written;
+      out.vec3(part.position);
+      out.quaternion(part.orientation);
+      out.boolean(part.density.has_value());
+      out.f64(part.density.value_or(0.0));
+    }
   } else {
     return Error{"body '" + body + "': a " + shapeTypeName(shape) +
                  " shape cannot be saved in a checkpoint (format version " +
@@ -100,6 +112,31 @@ Shape readShape(ByteReader& in, const std::string& body) {
       p.normal = in.vec3("plane normal");
       p.offset = in.f64("plane offset");
       return p;
+    }
+    case ShapeTag::Compound: {
+      CompoundShape compound;
+      const uint32_t parts = in.count("compound part count", 1);
+      if (parts == 0 || parts > kMaxCompoundParts)
+        in.fail("body '" + body + "': a compound of " + std::to_string(parts) + " parts");
+      for (uint32_t i = 0; i < parts && !in.failed(); ++i) {
+        const std::size_t partAt = in.offset();
+        auto partShape = toPartShape(readShape(in, body));
+        if (in.failed()) break;
+        if (!partShape) {
+          in.fail("body '" + body + "': compound part " + std::to_string(i) + " at byte " +
+                  std::to_string(partAt) + " is a plane or a compound");
+          break;
+        }
+        CompoundPart part;
+        part.shape = std::move(*partShape);
+        part.position = in.vec3("compound part position");
+        part.orientation = in.quaternion("compound part orientation");
+        const bool hasDensity = in.boolean("compound part density flag");
+        const double density = in.f64("compound part density");
+        if (hasDensity) part.density = density;
+        compound.parts.push_back(std::move(part));
+      }
+      return compound;
     }
   }
   in.fail("body '" + body + "': unknown shape type at byte " + std::to_string(at));
@@ -393,6 +430,14 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
     const bool isPlane = std::holds_alternative<PlaneShape>(description->shape);
     if (isPlane && !description->isStatic)
       return Error{"world snapshot: " + where + ": a plane can only be static"};
+    if (const auto* compound = std::get_if<CompoundShape>(&description->shape)) {
+      for (const CompoundPart& part : compound->parts) {
+        const auto* mesh = std::get_if<MeshShape>(&part.shape);
+        if (mesh == nullptr) continue;
+        const auto valid = validateClosedMesh(*mesh->mesh, description->name);
+        if (!valid) return Error{"world snapshot: " + where + ": " + valid.error().message};
+      }
+    }
     if (const auto* mesh = std::get_if<MeshShape>(&description->shape)) {
       const auto valid = validateClosedMesh(*mesh->mesh, description->name);
       if (!valid) return Error{"world snapshot: " + where + ": " + valid.error().message};

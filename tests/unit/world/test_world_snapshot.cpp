@@ -42,6 +42,15 @@ World makePile() {
       case 5: def.shape = CapsuleShape{0.07, 0.08}; break;
       case 7: def.shape = CylinderShape{0.09, 0.08}; break;
       case 8: def.shape = MeshShape{"cube.obj", mesh}; def.mass = 0.8; break;
+      case 6: {  // a compound: a rod between a denser ball and a turned capsule
+        CompoundShape dumbbell;
+        dumbbell.parts.push_back({BoxShape{Vec3(0.08, 0.02, 0.02)}, Vec3::Zero(), Quaternion::identity(), {}});
+        dumbbell.parts.push_back({SphereShape{0.04}, Vec3(0.1, 0, 0), Quaternion::identity(), 3000.0});
+        dumbbell.parts.push_back({CapsuleShape{0.03, 0.03}, Vec3(-0.1, 0, 0),
+                                  Quaternion::fromAxisAngle(Vec3::UnitX(), 0.3), {}});
+        def.shape = dumbbell;
+        break;
+      }
       default: def.shape = BoxShape{Vec3(0.1, 0.09, 0.08)};
     }
     def.position = Vec3((column % 3 - 1) * 0.23 + random.uniform(-0.01, 0.01),
