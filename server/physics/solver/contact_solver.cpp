@@ -365,7 +365,7 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       if (settings.warmStarting) {
         c.tangentImpulse[0] = old->frictionImpulse.dot(c.tangent1);
         c.tangentImpulse[1] = old->frictionImpulse.dot(c.tangent2);
-        c.twistImpulse = old->twistImpulse;
+        c.twistImpulse = c.twistRadius > 0.0 ? old->twistImpulse : 0.0;  // a point has no torsion
       }
       if (old->sticking) c.friction = material.staticFriction;
     }
@@ -391,7 +391,7 @@ void ContactSolver::warmStart(std::vector<SolverBody>& bodies) const {
     for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], lambda[k + 1]);
     apply(c.tangentRows[0], c.tangentImpulse[0]);
     apply(c.tangentRows[1], c.tangentImpulse[1]);
-    apply(c.twistRow, c.twistImpulse);
+    if (c.twistImpulse != 0.0) apply(c.twistRow, c.twistImpulse);
   }
 }
 
@@ -490,8 +490,9 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock)
       apply(c.tangentRows[0], new1 - old1);
       apply(c.tangentRows[1], new2 - old2);
     }
-    {
-      // Torsion: the patch resists spinning about the normal up to μ r Σjn.
+    if (c.twistRadius > 0.0) {
+      // Torsion: the patch resists spinning about the normal up to μ r Σjn
+      // (nothing for a single point).
       const double spin = c.twistRow.velocity(vA, wA, vB, wB);
       const double limit = c.friction * c.twistRadius * totalNormal;
       const double mass = oneSided ? c.shockTwistMass : c.twistMass;
@@ -499,8 +500,8 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock)
       apply(c.twistRow, accumulated - c.twistImpulse);
       c.twistImpulse = accumulated;
     }
-    const Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), c.tiltRows[0].velocity(vA, wA, vB, wB),
-                 c.tiltRows[1].velocity(vA, wA, vB, wB));
+    Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), 0.0, 0.0);
+    for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = c.tiltRows[k].velocity(vA, wA, vB, wB);
     const Vec3 delta = solveNormalBlock(c, u, shock ? c.block.shockExact : c.block.velocityExact,
                                         shock, &PointConstraint::normalImpulse,
                                         &PointConstraint::targetVelocity, c.block.velocityGoal);
@@ -520,9 +521,9 @@ void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iteratio
       if (!needed) continue;
       SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
       SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-      const Vec3 u(c.normalRow.velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular),
-                   c.tiltRows[0].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular),
-                   c.tiltRows[1].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular));
+      Vec3 u(c.normalRow.velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular), 0.0, 0.0);
+      for (int k = 0; k + 1 < c.block.size; ++k)
+        u[k + 1] = c.tiltRows[k].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular);
       const Vec3 delta = solveNormalBlock(c, u, c.block.positionExact, false,
                                           &PointConstraint::pseudoImpulse,
                                           &PointConstraint::positionTarget, c.block.positionGoal);
