@@ -13,6 +13,7 @@
 
 #include "config/config_loader.h"
 #include "daemon/log.h"
+#include "daemon/message_decode.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -224,8 +225,7 @@ void Server::acknowledge(const std::string& client, int64_t seq, int8_t kind, in
 void Server::onWrench(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
   record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
   rbsim::wrench_t message;
-  const int used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
-  if (used < 0 || static_cast<uint32_t>(used) != buffer->data_size) {
+  if (!decodeWholeMessage(message, buffer->data, buffer->data_size)) {
     acknowledge("", -1, rbsim::ack_t::KIND_WRENCH, -1, false,
                 "undecodable wrench_t message (" + std::to_string(buffer->data_size) + " bytes)", -1);
     return;
@@ -245,8 +245,7 @@ void Server::onWrench(const lcm::ReceiveBuffer* buffer, const std::string& chann
 void Server::onCommand(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
   record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
   rbsim::command_t message;
-  const int used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
-  if (used < 0 || static_cast<uint32_t>(used) != buffer->data_size) {
+  if (!decodeWholeMessage(message, buffer->data, buffer->data_size)) {
     acknowledge("", -1, rbsim::ack_t::KIND_COMMAND, -1, false,
                 "undecodable command_t message (" + std::to_string(buffer->data_size) + " bytes)",
                 -1);
