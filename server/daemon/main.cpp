@@ -9,6 +9,7 @@
 #include "daemon/log.h"
 #include "daemon/mass_properties_report.h"
 #include "daemon/options.h"
+#include "daemon/replay_runner.h"
 #include "daemon/server.h"
 #include "daemon/server_settings.h"
 #include "daemon/signal_events.h"
@@ -82,6 +83,11 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  const std::string configDirectory =
+      std::filesystem::path(options->configPath).parent_path().string();
+  if (options->replayPath)
+    return runReplay(*options, *settings, std::move(world).value(), configDirectory);
+
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
@@ -91,8 +97,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
     return 1;
   }
-  const std::string configDirectory =
-      std::filesystem::path(options->configPath).parent_path().string();
   Server server(*settings, std::move(world).value(), configDirectory);
   const auto opened = server.open();
   if (!opened) {

@@ -38,6 +38,17 @@ options (each overrides the config file's key):
   --record FILE            write every published and received message to an LCM log (server.record)
   --paused                 start paused (server.start_paused)
   --log-level LEVEL        debug, info, warning or error (default info)
+
+replay (instead of serving; as fast as possible, no pacing):
+  --replay LOG             re-simulate the session recorded in LOG (an rbserver --record
+                           file or an lcm-logger log of the bus), applying the wrenches
+                           and commands the server accepted at the steps it handled them;
+                           the states go to --replay-output, or are published on LCM
+                           when neither --replay-output nor --verify is given
+  --replay-output FILE     write the replayed states and world descriptions to an LCM log
+  --verify                 compare every replayed state with the log's, bit for bit; exit 1
+                           naming the first step and body that differ (and by how much),
+                           0 when identical; 3 when the log cannot be read or followed
   --help                   this text
 )";
 }
@@ -56,9 +67,12 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       options.massProperties = true;
     } else if (arg == "--paused") {
       options.startPaused = true;
+    } else if (arg == "--verify") {
+      options.verify = true;
     } else if (arg == "--config" || arg == "--lcm-url" || arg == "--channel-prefix" ||
                arg == "--record" || arg == "--log-level" || arg == "--real-time-factor" ||
-               arg == "--duration" || arg == "--state-rate") {
+               arg == "--duration" || arg == "--state-rate" || arg == "--replay" ||
+               arg == "--replay-output") {
       const auto text = value();
       if (!text) return text.error();
       if (arg == "--config") options.configPath = *text;
@@ -66,6 +80,8 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       if (arg == "--channel-prefix") options.channelPrefix = *text;
       if (arg == "--record") options.recordPath = *text;
       if (arg == "--log-level") options.logLevel = *text;
+      if (arg == "--replay") options.replayPath = *text;
+      if (arg == "--replay-output") options.replayOutputPath = *text;
       if (arg == "--real-time-factor" || arg == "--state-rate") {
         const auto number = parseNumber(arg, *text, true);
         if (!number) return number.error();
@@ -81,6 +97,8 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
     }
   }
   if (!options.help && options.configPath.empty()) return Error{"--config FILE is required (see --help)"};
+  if (!options.replayPath && (options.verify || options.replayOutputPath))
+    return Error{"--verify and --replay-output need --replay LOG"};
   return options;
 }
 

@@ -8,12 +8,11 @@
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
+#include <rbsim/handled_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "config/config_loader.h"
 #include "daemon/log.h"
-#include "daemon/message_decode.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -36,13 +35,11 @@ Nanoseconds periodOf(double hertz) {
 
 Server::Server(ServerSettings settings, World initialWorld, std::string configDirectory)
     : m_settings(std::move(settings)),
-      m_initialWorld(initialWorld),
-      m_world(std::move(initialWorld)),
-      m_configDirectory(std::move(configDirectory)),
-      m_clock(m_world.settings().dt, m_settings.realTimeFactor, m_settings.catchUp,
-              m_settings.maxBurst),
-      m_paused(m_settings.startPaused) {
-  const double dt = m_world.settings().dt;
+      m_session(std::move(initialWorld), m_settings.startPaused),
+      m_commands(m_session, m_settings, std::move(configDirectory)),
+      m_clock(m_session.world().settings().dt, m_settings.realTimeFactor, m_settings.catchUp,
+              m_settings.maxBurst) {
+  const double dt = world().settings().dt;
   m_stateEverySteps =
       m_settings.stateRate <= 0.0
           ? 1
@@ -50,7 +47,7 @@ Server::Server(ServerSettings settings, World initialWorld, std::string configDi
 }
 
 Expected<bool> Server::open() {
-  const double dt = m_world.settings().dt;
+  const double dt = world().settings().dt;
   m_contactsEverySteps =
       m_settings.contactsRate <= 0.0
           ? 0
@@ -60,8 +57,8 @@ Expected<bool> Server::open() {
     return Error{"cannot open LCM with URL '" + m_settings.lcmUrl +
                  "' (is there a route for multicast, e.g. `ip route add 224.0.0.0/4 dev lo`?)"};
   // Channel names are exact: the prefix was checked to hold no regex characters.
-  m_lcm->subscribe(channel("WRENCH"), &Server::onWrench, this)->setQueueCapacity(10000);
-  m_lcm->subscribe(channel("COMMAND"), &Server::onCommand, this)->setQueueCapacity(10000);
+  m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
+  m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   if (!m_settings.recordPath.empty()) {
     const auto opened = m_recorder.open(m_settings.recordPath);
     if (!opened) return opened.error();
@@ -71,10 +68,12 @@ Expected<bool> Server::open() {
 
 bool Server::durationReached() const {
   return m_settings.duration &&
-         m_world.time() >= *m_settings.duration - 0.5 * m_world.settings().dt;
+         world().time() >= *m_settings.duration - 0.5 * world().settings().dt;
 }
 
-bool Server::shouldStep() const { return (!m_paused || m_stepsRequested > 0) && !durationReached(); }
+bool Server::shouldStep() const {
+  return (!m_session.paused() || m_session.stepsRequested() > 0) && !durationReached();
+}
 
 int Server::run(SignalEvents& signals) {
   const Nanoseconds statusPeriod = periodOf(m_settings.statusRate);
@@ -82,16 +81,16 @@ int Server::run(SignalEvents& signals) {
       m_settings.stateRate > 0.0 ? periodOf(m_settings.stateRate) : periodOf(100.0);
   Nanoseconds now = monotonicNow();
   m_lastStatus = now;
-  m_stepAtLastStatus = m_world.stepCount();
+  m_stepAtLastStatus = world().stepCount();
   publishWorld();
   publishState();
   publishStatus(now);
   m_clock.anchor(now);
   const Nanoseconds runStart = now;
-  const int64_t stepAtStart = m_world.stepCount();
-  logInfo("stepping " + std::to_string(m_world.bodyCount()) + " bodies at dt = " +
-          std::to_string(m_world.settings().dt) + " s, real-time factor " +
-          std::to_string(m_settings.realTimeFactor) + (m_paused ? " (paused)" : ""));
+  const int64_t stepAtStart = world().stepCount();
+  logInfo("stepping " + std::to_string(world().bodyCount()) + " bodies at dt = " +
+          std::to_string(world().settings().dt) + " s, real-time factor " +
+          std::to_string(m_settings.realTimeFactor) + (m_session.paused() ? " (paused)" : ""));
 
   pollfd fds[2] = {{m_lcm->getFileno(), POLLIN, 0}, {signals.fileDescriptor(), POLLIN, 0}};
   bool wasStepping = shouldStep();
@@ -103,7 +102,7 @@ int Server::run(SignalEvents& signals) {
 
     Nanoseconds wakeAt = m_lastStatus + statusPeriod;
     if (stepping) {
-      wakeAt = m_stepsRequested > 0 ? now : std::min(wakeAt, m_clock.nextDeadline(now));
+      wakeAt = m_session.stepsRequested() > 0 ? now : std::min(wakeAt, m_clock.nextDeadline(now));
     } else {
       wakeAt = std::min(wakeAt, m_lastPausedStatePublish + pausedStatePeriod);
     }
@@ -139,7 +138,7 @@ int Server::run(SignalEvents& signals) {
 
     drainMessages();  // everything that arrived up to the step boundary
     now = monotonicNow();
-    if (shouldStep() && (m_stepsRequested > 0 || now >= m_clock.nextDeadline(now))) stepOnce();
+    if (shouldStep() && (m_session.stepsRequested() > 0 || now >= m_clock.nextDeadline(now))) stepOnce();
     now = monotonicNow();
     if (!shouldStep() && now >= m_lastPausedStatePublish + pausedStatePeriod) {
       publishState();
@@ -157,10 +156,10 @@ int Server::run(SignalEvents& signals) {
   const double wallSeconds = static_cast<double>(monotonicNow() - runStart) * 1e-9;
   const double achievedFactor =
       wallSeconds > 0.0
-          ? static_cast<double>(m_world.stepCount() - stepAtStart) * m_world.settings().dt / wallSeconds
+          ? static_cast<double>(world().stepCount() - stepAtStart) * world().settings().dt / wallSeconds
           : 0.0;
-  logInfo("stopped at step " + std::to_string(m_world.stepCount()) + " (t = " +
-          std::to_string(m_world.time()) + " s), " + std::to_string(m_clock.overruns()) +
+  logInfo("stopped at step " + std::to_string(world().stepCount()) + " (t = " +
+          std::to_string(world().time()) + " s), " + std::to_string(m_clock.overruns()) +
           " overruns, " + std::to_string(m_clock.slips()) + " slips, worst step " +
           std::to_string(m_worstStepEver * 1e3) + " ms; step-start lateness over " +
           std::to_string(m_lateness.count()) + " paced steps: p50 " +
@@ -177,169 +176,55 @@ void Server::drainMessages() {
 }
 
 void Server::stepOnce() {
-  const bool requested = m_stepsRequested > 0;
-  if (requested) {
-    --m_stepsRequested;
-  } else {
-    m_lateness.add(m_clock.beginStep(monotonicNow()));
-  }
-  const int64_t stepNumber = m_world.stepCount() + 1;
-  m_wrenches.applyForStep(m_world, stepNumber);
+  const bool requested = m_session.takeRequestedStep();
+  if (!requested) m_lateness.add(m_clock.beginStep(monotonicNow()));
   const Nanoseconds start = monotonicNow();
-  m_world.step();
+  m_session.step();
   const double seconds = static_cast<double>(monotonicNow() - start) * 1e-9;
-  m_wrenches.finishStep(stepNumber);
   m_stepTimes.sum += seconds;
   m_stepTimes.worst = std::max(m_stepTimes.worst, seconds);
   ++m_stepTimes.count;
   m_worstStepEver = std::max(m_worstStepEver, seconds);
 
-  const bool lastRequested = requested && m_stepsRequested == 0;
-  if (m_world.stepCount() % m_stateEverySteps == 0 || lastRequested) publishState();
-  if (m_contactsEverySteps > 0 && (m_world.stepCount() % m_contactsEverySteps == 0 || lastRequested))
+  const bool lastRequested = requested && m_session.stepsRequested() == 0;
+  if (world().stepCount() % m_stateEverySteps == 0 || lastRequested) publishState();
+  if (m_contactsEverySteps > 0 && (world().stepCount() % m_contactsEverySteps == 0 || lastRequested))
     publishContacts();
   if (!requested) m_clock.endStep(monotonicNow());
 }
 
-void Server::acknowledge(const std::string& client, int64_t seq, int8_t kind, int8_t request,
-                         bool accepted, const std::string& reason, int64_t effectiveStep) {
-  rbsim::ack_t ack;
+void Server::acknowledge(rbsim::ack_t ack) {
   ack.utime = wallMicroseconds();
-  ack.client = client;
-  ack.seq = seq;
-  ack.kind = kind;
-  ack.request = request;
-  ack.accepted = accepted;
-  ack.reason = reason;
-  ack.effective_step = accepted ? effectiveStep : -1;
-  if (accepted) {
+  if (ack.accepted) {
     ++m_counters.accepted;
   } else {
     ++m_counters.rejected;
-    logDebug("rejected " + std::string(kind == rbsim::ack_t::KIND_WRENCH ? "wrench" : "command") +
-             " from '" + client + "' seq " + std::to_string(seq) + ": " + reason);
+    logDebug("rejected " +
+             std::string(ack.kind == rbsim::ack_t::KIND_WRENCH ? "wrench" : "command") + " from '" +
+             ack.client + "' seq " + std::to_string(ack.seq) + ": " + ack.reason);
   }
   publish(channel("ACK"), ack);
 }
 
-void Server::onWrench(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
+void Server::onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
   record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
-  rbsim::wrench_t message;
-  if (!decodeWholeMessage(message, buffer->data, buffer->data_size)) {
-    acknowledge("", -1, rbsim::ack_t::KIND_WRENCH, -1, false,
-                "undecodable wrench_t message (" + std::to_string(buffer->data_size) + " bytes)", -1);
-    return;
+  if (m_recorder.isOpen()) {
+    // Where the message is handled, for an exact replay of the record file.
+    rbsim::handled_t handled;
+    handled.utime = wallMicroseconds();
+    handled.step = world().stepCount();
+    handled.world_revision = m_session.worldRevision();
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(handled.getEncodedSize()));
+    handled.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    record(channel("HANDLED"), bytes.data(), bytes.size(), handled.utime);
   }
-  const auto request =
-      wrenchRequestFrom(message, m_world, m_world.stepCount() + 1, m_settings.limits);
-  if (!request) {
-    acknowledge(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode, false,
-                request.error().message, -1);
-    return;
-  }
-  m_wrenches.add(*request);
-  acknowledge(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode, true, "",
-              request->firstStep);
-}
-
-void Server::onCommand(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
-  record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
-  rbsim::command_t message;
-  if (!decodeWholeMessage(message, buffer->data, buffer->data_size)) {
-    acknowledge("", -1, rbsim::ack_t::KIND_COMMAND, -1, false,
-                "undecodable command_t message (" + std::to_string(buffer->data_size) + " bytes)",
-                -1);
-    return;
-  }
-  const auto reject = [&](const std::string& reason) {
-    acknowledge(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command, false,
-                reason, -1);
-  };
-  const auto accept = [&](const std::string& note = "") {
-    acknowledge(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command, true,
-                note, m_world.stepCount() + 1);
-  };
-  const auto controlChanged = [&] { ++m_controlVersion; };
-
-  switch (message.command) {
-    case rbsim::command_t::PAUSE:
-      m_paused = true;
-      m_stepsRequested = 0;
-      controlChanged();
-      accept();
-      return;
-    case rbsim::command_t::RESUME:
-      m_paused = false;
-      m_stepsRequested = 0;
-      controlChanged();
-      accept();
-      return;
-    case rbsim::command_t::STEP:
-      if (!m_paused) return reject("STEP needs the server to be paused (send PAUSE first)");
-      if (message.num_steps < 1 || message.num_steps > m_settings.maxStepsPerCommand)
-        return reject("num_steps must be between 1 and " +
-                      std::to_string(m_settings.maxStepsPerCommand));
-      // The first of these steps comes after the steps still pending from
-      // earlier STEP commands.
-      acknowledge(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command, true,
-                  "", m_world.stepCount() + 1 + m_stepsRequested);
-      m_stepsRequested += message.num_steps;
-      controlChanged();
-      return;
-    case rbsim::command_t::RESET:
-      if (!message.path.empty()) return reject("reset from a checkpoint file is not supported yet");
-      {
-        // Ids handed out to spawned bodies stay taken (body ids are never reused).
-        const int32_t lastSerial = m_world.lastSerial();
-        m_world = m_initialWorld;
-        m_world.continueSerialsAfter(lastSerial);
-      }
-      m_wrenches.clearAll();
-      m_stepsRequested = 0;
-      ++m_worldRevision;
-      controlChanged();
-      accept();
-      publishWorld();
-      publishState();
-      return;
-    case rbsim::command_t::SET_REAL_TIME_FACTOR:
-      if (!std::isfinite(message.real_time_factor) || message.real_time_factor < 0.0 ||
-          message.real_time_factor > m_settings.maxRealTimeFactor)
-        return reject("real_time_factor must be 0 (as fast as possible) or positive up to " +
-                      std::to_string(m_settings.maxRealTimeFactor));
-      m_clock.setRealTimeFactor(message.real_time_factor, monotonicNow());
-      controlChanged();
-      accept();
-      return;
-    case rbsim::command_t::SPAWN: {
-      const auto def = parseBodyDef(message.spawn_yaml, "spawn_yaml", m_configDirectory);
-      if (!def) return reject(def.error().message);
-      const auto id = m_world.createBody(*def);
-      if (!id) return reject(id.error().message);
-      ++m_worldRevision;
-      accept();
-      publishWorld();
-      return;
-    }
-    case rbsim::command_t::REMOVE: {
-      const BodyId id = m_world.findBody(message.body);
-      if (id.isNull()) return reject("unknown body '" + message.body + "'");
-      m_world.removeBody(id);
-      m_wrenches.removeBody(message.body);
-      ++m_worldRevision;
-      accept();
-      publishWorld();
-      return;
-    }
-    case rbsim::command_t::PUBLISH_WORLD:
-      accept();
-      publishWorld();
-      return;
-    case rbsim::command_t::SAVE_CHECKPOINT:
-      return reject("checkpoints are not supported by this server version");
-    default:
-      return reject("unknown command " + std::to_string(message.command));
-  }
+  auto outcome = m_commands.handle(channelName, buffer->data, buffer->data_size, monotonicNow());
+  if (!outcome) return;
+  if (outcome->realTimeFactor) m_clock.setRealTimeFactor(*outcome->realTimeFactor, monotonicNow());
+  if (outcome->paceChanged) ++m_controlVersion;
+  acknowledge(std::move(outcome->ack));
+  if (outcome->publishWorld) publishWorld();
+  if (outcome->publishState) publishState();
 }
 
 template <class Message>
@@ -357,47 +242,47 @@ void Server::record(const std::string& channelName, const void* data, std::size_
 }
 
 void Server::publishState() {
-  for (const auto& page : worldStatePages(m_world, wallMicroseconds(), m_worldRevision))
+  for (const auto& page : worldStatePages(world(), wallMicroseconds(), m_session.worldRevision()))
     publish(channel("STATE"), page);
 }
 
 void Server::publishContacts() {
-  for (const auto& page : contactPages(m_world, wallMicroseconds())) publish(channel("CONTACTS"), page);
+  for (const auto& page : contactPages(world(), wallMicroseconds())) publish(channel("CONTACTS"), page);
 }
 
 void Server::publishWorld() {
-  for (const auto& page : worldDescriptionPages(m_world, wallMicroseconds(), m_worldRevision))
+  for (const auto& page : worldDescriptionPages(world(), wallMicroseconds(), m_session.worldRevision()))
     publish(channel("WORLD"), page);
 }
 
 void Server::publishStatus(Nanoseconds now) {
   rbsim::status_t status;
   status.utime = wallMicroseconds();
-  status.step = m_world.stepCount();
-  status.sim_time = m_world.time();
-  status.world_revision = m_worldRevision;
-  status.dt = m_world.settings().dt;
-  status.paused = m_paused;
+  status.step = world().stepCount();
+  status.sim_time = world().time();
+  status.world_revision = m_session.worldRevision();
+  status.dt = world().settings().dt;
+  status.paused = m_session.paused();
   status.target_real_time_factor = m_clock.realTimeFactor();
   const double window = static_cast<double>(now - m_lastStatus) * 1e-9;
-  const int64_t steps = m_world.stepCount() - m_stepAtLastStatus;
+  const int64_t steps = world().stepCount() - m_stepAtLastStatus;
   status.window = window;
   status.measured_real_time_factor =
-      window > 0.0 && steps > 0 ? static_cast<double>(steps) * m_world.settings().dt / window : 0.0;
+      window > 0.0 && steps > 0 ? static_cast<double>(steps) * world().settings().dt / window : 0.0;
   status.step_time_mean =
       m_stepTimes.count > 0 ? m_stepTimes.sum / static_cast<double>(m_stepTimes.count) : 0.0;
   status.step_time_worst = m_stepTimes.worst;
   status.overruns = m_clock.overruns();
   status.commands_accepted = m_counters.accepted;
   status.commands_rejected = m_counters.rejected;
-  status.num_bodies = m_world.bodyCount();
+  status.num_bodies = world().bodyCount();
   status.num_frozen_bodies = 0;
-  status.num_active_wrenches = m_wrenches.activeCount();
-  status.num_contacts = m_world.contactPointCount();
+  status.num_active_wrenches = m_session.wrenches().activeCount();
+  status.num_contacts = world().contactPointCount();
   publish(channel("STATUS"), status);
   m_recorder.flush();
   m_lastStatus = now;
-  m_stepAtLastStatus = m_world.stepCount();
+  m_stepAtLastStatus = world().stepCount();
   m_stepTimes = {};
 }
 

@@ -10,12 +10,13 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "daemon/command_handler.h"
 #include "daemon/event_recorder.h"
 #include "daemon/lateness_histogram.h"
 #include "daemon/server_settings.h"
 #include "daemon/signal_events.h"
 #include "daemon/step_clock.h"
-#include "daemon/wrench_scheduler.h"
+#include "daemon/session.h"
 #include "physics/world/world.h"
 
 namespace rbsim {
@@ -51,10 +52,9 @@ class Server {
   void stepOnce();
   void drainMessages();
 
-  void onWrench(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
-  void onCommand(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
-  void acknowledge(const std::string& client, int64_t seq, int8_t kind, int8_t request,
-                   bool accepted, const std::string& reason, int64_t effectiveStep);
+  // A wrench or command: recorded, handed to the command handler, answered.
+  void onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
+  void acknowledge(rbsim::ack_t ack);
 
   void publishState();
   void publishStatus(Nanoseconds now);
@@ -64,18 +64,15 @@ class Server {
   void publish(const std::string& channelName, const Message& message);
   void record(const std::string& channelName, const void* data, std::size_t size, int64_t utime);
 
+  const World& world() const { return m_session.world(); }
+
   ServerSettings m_settings;
-  World m_initialWorld;
-  World m_world;
-  std::string m_configDirectory;
+  Session m_session;
+  CommandHandler m_commands;
   std::unique_ptr<lcm::LCM> m_lcm;
   EventRecorder m_recorder;
-  WrenchScheduler m_wrenches;
   StepClock m_clock;
 
-  bool m_paused = false;
-  int64_t m_stepsRequested = 0;  // STEP while paused: steps still to take
-  int64_t m_worldRevision = 1;
   int64_t m_stateEverySteps = 1;
   int64_t m_contactsEverySteps = 0;  // 0: not published
   Counters m_counters;

@@ -1,0 +1,60 @@
+#pragma once
+// The server's command path without LCM and without a clock: raw bytes of a
+// wrench_t or command_t in, the ack_t and what the caller must do out. The
+// same handler serves rbserver, a replay of a recorded session and fuzz
+// targets, so all three take exactly the same decisions.
+//
+// Every message gets exactly one ack, accepted or rejected with a reason;
+// nothing in the session changes unless the message is accepted.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <rbsim/ack_t.hpp>
+#include <rbsim/command_t.hpp>
+
+#include "daemon/server_settings.h"
+#include "daemon/session.h"
+
+namespace rbsim {
+
+// What handling one message asks of the caller, besides publishing the ack.
+struct CommandOutcome {
+  rbsim::ack_t ack;  // utime is 0: the caller stamps it when it publishes
+  bool publishWorld = false;  // the description changed or was asked for
+  bool publishState = false;  // the state jumped (RESET)
+  bool paceChanged = false;   // pause, resume, step or rate: re-plan the next deadline
+  std::optional<double> realTimeFactor;  // SET_REAL_TIME_FACTOR: the new target
+};
+
+class CommandHandler {
+ public:
+  // `settings` gives the channel prefix and the limits; `configDirectory`
+  // resolves mesh files of spawned bodies. The session must outlive the handler.
+  CommandHandler(Session& session, ServerSettings settings, std::string configDirectory);
+
+  // A message received on `channel`: <prefix>WRENCH or <prefix>COMMAND.
+  // Nullopt for any other channel (no ack is due). `receivedAt` (ns of a
+  // monotonic clock) is the only notion of time the handler has.
+  std::optional<CommandOutcome> handle(std::string_view channel, const void* data,
+                                       std::size_t size, int64_t receivedAt);
+  CommandOutcome handleWrench(const void* data, std::size_t size, int64_t receivedAt);
+  CommandOutcome handleCommand(const void* data, std::size_t size, int64_t receivedAt);
+
+  const std::string& wrenchChannel() const { return m_wrenchChannel; }
+  const std::string& commandChannel() const { return m_commandChannel; }
+
+ private:
+  CommandOutcome applyCommand(const rbsim::command_t& message, int64_t receivedAt);
+
+  Session& m_session;
+  ServerSettings m_settings;
+  std::string m_configDirectory;
+  std::string m_wrenchChannel;
+  std::string m_commandChannel;
+};
+
+}  // namespace rbsim
