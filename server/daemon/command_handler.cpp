@@ -6,6 +6,7 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "config/config_loader.h"
+#include "daemon/message_decode.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -42,14 +43,6 @@ CommandOutcome accepted(rbsim::ack_t ack, int64_t effectiveStep, std::string not
   return outcome;
 }
 
-// Decodes the whole buffer as one message; trailing bytes are as bad as missing ones.
-template <class Message>
-bool decodeWhole(Message& message, const void* data, std::size_t size) {
-  if (size > static_cast<std::size_t>(INT32_MAX)) return false;
-  const int used = message.decode(data, 0, static_cast<int>(size));
-  return used >= 0 && static_cast<std::size_t>(used) == size;
-}
-
 }  // namespace
 
 CommandHandler::CommandHandler(Session& session, ServerSettings settings, std::string configDirectory)
@@ -69,7 +62,7 @@ std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, c
 CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, int64_t receivedAt) {
   (void)receivedAt;
   rbsim::wrench_t message;
-  if (!decodeWhole(message, data, size))
+  if (!decodeWholeMessage(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1),
                     "undecodable wrench_t message (" + std::to_string(size) + " bytes)");
   rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode);
@@ -82,7 +75,7 @@ CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, 
 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {
   rbsim::command_t message;
-  if (!decodeWhole(message, data, size))
+  if (!decodeWholeMessage(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1),
                     "undecodable command_t message (" + std::to_string(size) + " bytes)");
   return applyCommand(message, receivedAt);

@@ -9,11 +9,11 @@
 namespace rbsim {
 
 // Decodes `message` from exactly `size` bytes (hash included); false if the
-// bytes are not one whole message of that type. lcm-gen 1.3.1's C++ decoder
-// trusts a string's length prefix: a length of 0 or less makes it call
-// std::string::assign with (size_t)-1 and throw std::length_error, which
-// would unwind through LCM's C dispatch and terminate the server. So a
-// throwing decode counts as a malformed message here.
+// bytes are not one whole message of that type. The generated decoders are
+// hardened at build time against length fields no encoder writes
+// (lcmtypes/harden_decoders.cmake); what can still throw (an allocation that
+// fails) counts as a malformed message, because an exception would unwind
+// through LCM's C dispatch and terminate the server.
 template <class Message>
 bool decodeWholeMessage(Message& message, const void* data, std::size_t size) {
   if (size > static_cast<std::size_t>(INT_MAX)) return false;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <rbsim/command_t.hpp>
+#include <rbsim/world_state_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
 #include "daemon/message_decode.h"
@@ -54,8 +55,9 @@ TEST(MessageDecode, RefusesTruncatedAndOverlongBytes) {
 }
 
 // Found by tests/fuzz/fuzz_wrench_message (regressions/wrench_message/
-// zero_length_string): lcm-gen's decoder threw std::length_error for a string
-// length prefix of 0, and the exception would have ended rbserver.
+// zero_length_string, negative_string_length): lcm-gen's decoder threw
+// std::length_error for a string length prefix of 0, which would have ended
+// rbserver, and read far past the buffer for INT32_MIN.
 TEST(MessageDecode, RefusesStringLengthsOfZeroOrLess) {
   const rbsim::wrench_t message = aWrench();
   for (const int32_t length : {0, -1, -1000, INT32_MIN}) {
@@ -70,6 +72,35 @@ TEST(MessageDecode, RefusesStringLengthsOfZeroOrLess) {
   putBigEndian32(bytes, 16, 0);
   rbsim::command_t decoded;
   EXPECT_FALSE(decodeWholeMessage(decoded, bytes.data(), bytes.size()));
+}
+
+// Found by tests/fuzz/fuzz_command_handler (regressions/command_handler/
+// embedded_nul_in_client): a string with a NUL inside was kept whole, and
+// the ack echoing it encoded to fewer bytes than its announced size.
+TEST(MessageDecode, RefusesStringsThatAreNotCStrings) {
+  const rbsim::wrench_t message = aWrench();  // body "crate"
+  const size_t body = bodyLengthOffset(message) + 4;
+  auto embedded = encoded(message);
+  embedded[body + 2] = 0;  // "cr\0te"
+  auto unterminated = encoded(message);
+  unterminated[body + 5] = 'x';  // the NUL after "crate"
+  rbsim::wrench_t decoded;
+  EXPECT_FALSE(decodeWholeMessage(decoded, embedded.data(), embedded.size()));
+  EXPECT_FALSE(decodeWholeMessage(decoded, unterminated.data(), unterminated.size()));
+}
+
+// An array count is checked against the bytes left before anything is
+// allocated: a state page claiming 2^31 − 1 bodies is refused at once.
+TEST(MessageDecode, RefusesArrayCountsBeyondTheBytesLeft) {
+  rbsim::world_state_t page{};
+  page.num_bodies = 0;
+  auto bytes = encoded(page);
+  // num_bodies is the last field of an empty page.
+  for (const int32_t count : {INT32_MAX, -1, 1}) {
+    putBigEndian32(bytes, bytes.size() - 4, count);
+    rbsim::world_state_t decoded;
+    EXPECT_FALSE(decodeWholeMessage(decoded, bytes.data(), bytes.size())) << count;
+  }
 }
 
 }  // namespace
