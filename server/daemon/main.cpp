@@ -12,6 +12,7 @@
 #include "daemon/replay_runner.h"
 #include "daemon/server.h"
 #include "daemon/server_settings.h"
+#include "daemon/session_checkpoint.h"
 #include "daemon/signal_events.h"
 
 using namespace rbsim;
@@ -77,6 +78,9 @@ int main(int argc, char** argv) {
   if (options->recordPath) settings->recordPath = *options->recordPath;
   if (options->stateRate) settings->stateRate = *options->stateRate;
   if (options->startPaused) settings->startPaused = true;
+  if (options->readOnly) settings->readOnly = true;
+  if (options->checkpointDirectory) settings->checkpointDirectory = *options->checkpointDirectory;
+  if (options->checkpointEvery) settings->checkpointEvery = *options->checkpointEvery;
   if (!isPlainChannelPrefix(settings->channelPrefix)) {
     std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
                  settings->channelPrefix.c_str());
@@ -85,8 +89,17 @@ int main(int argc, char** argv) {
 
   const std::string configDirectory =
       std::filesystem::path(options->configPath).parent_path().string();
+  std::optional<SessionState> resumed;
+  if (options->resumePath) {
+    auto state = loadSessionCheckpoint(*options->resumePath, world->settings());
+    if (!state) {
+      std::fprintf(stderr, "rbserver: --resume: %s\n", state.error().message.c_str());
+      return 1;
+    }
+    resumed = std::move(state).value();
+  }
   if (options->replayPath)
-    return runReplay(*options, *settings, std::move(world).value(), configDirectory);
+    return runReplay(*options, *settings, std::move(world).value(), configDirectory, std::move(resumed));
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.
@@ -102,6 +115,10 @@ int main(int argc, char** argv) {
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());
     return 1;
+  }
+  if (resumed) {
+    logInfo("resuming from " + *options->resumePath + " at step " + std::to_string(resumed->world.stepCount()));
+    server.resumeFrom(std::move(*resumed));
   }
   return server.run(signals);
 }

@@ -15,11 +15,16 @@
 namespace rbsim {
 
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& configDirectory) {
+              const std::string& configDirectory, std::optional<SessionState> resumed) {
   // The log says which messages were accepted: admission rules that depend
   // on the moment (read-only mode, rate limits) must not second-guess it.
   ServerSettings replaySettings = settings;
+  replaySettings.readOnly = false;
+  replaySettings.clientRate = 0.0;
   Session session(std::move(initialWorld), settings.startPaused);
+  if (resumed)
+    session.resumeFrom(std::move(resumed->world), std::move(resumed->wrenches), resumed->worldRevision,
+                       resumed->paused, resumed->stepsRequested);
   CommandHandler handler(session, replaySettings, configDirectory);
 
   EventRecorder file;
@@ -69,7 +74,7 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
     return 1;
   }
   if (options.verify)
-    std::printf("replay identical to the log: %lld state pages compared, steps 0 to %lld\n",
+    std::printf("replay identical to the log: %lld state pages compared, up to step %lld\n",
                 static_cast<long long>(report->pagesCompared), static_cast<long long>(report->lastStep));
   return 0;
 }

@@ -4,15 +4,18 @@
 // process exit code: 0 done (identical, with --verify), 1 a difference,
 // 3 a log that cannot be read or followed, 2 an output that cannot be opened.
 
+#include <optional>
 #include <string>
 
 #include "daemon/options.h"
 #include "daemon/server_settings.h"
+#include "daemon/session_checkpoint.h"
 #include "physics/world/world.h"
 
 namespace rbsim {
 
+// `resumed`: the checkpoint the recorded server started from (--resume).
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& configDirectory);
+              const std::string& configDirectory, std::optional<SessionState> resumed);
 
 }  // namespace rbsim

@@ -1,6 +1,7 @@
 #include "daemon/server_settings.h"
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -56,8 +57,9 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 7> kKeys = {
-      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us"};
+  static constexpr std::array<std::string_view, 10> kKeys = {
+      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us",
+      "checkpoint_dir", "checkpoint_every", "read_only"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -92,6 +94,23 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                   static_cast<double>(out.spinNanoseconds) * 1e-3);
   if (!spin) return spin.error();
   out.spinNanoseconds = static_cast<int64_t>(*spin * 1e3);
+  if (const auto* entry = server.find("checkpoint_dir")) {
+    const auto path = reader.string(entry->value);
+    if (!path) return path.error();
+    if (path->empty()) return reader.error(entry->value, "expected a directory path");
+    // Relative to the config file, like mesh files: the daemon's working
+    // directory is nobody's business (systemd starts it in /).
+    const std::filesystem::path directory(*path);
+    out.checkpointDirectory =
+        directory.is_absolute() ? *path
+                                : (std::filesystem::path(reader.sourceName()).parent_path() / directory).string();
+  }
+  const auto every = reader.number(server, "checkpoint_every", NumberRule::nonNegative(1e9), out.checkpointEvery);
+  if (!every) return every.error();
+  out.checkpointEvery = *every;
+  const auto readOnly = reader.boolean(server, "read_only", out.readOnly);
+  if (!readOnly) return readOnly.error();
+  out.readOnly = *readOnly;
   const auto paused = reader.boolean(server, "start_paused", out.startPaused);
   if (!paused) return paused.error();
   out.startPaused = *paused;
@@ -100,9 +119,10 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
 
 std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 7> kKeys = {
+  static constexpr std::array<std::string_view, 12> kKeys = {
       "max_force", "max_torque", "max_lever_arm", "max_duration", "max_steps_ahead",
-      "max_real_time_factor", "max_steps_per_command"};
+      "max_real_time_factor", "max_steps_per_command", "wrench_bodies", "client_rate", "client_burst",
+      "max_message_bytes", "max_bodies"};
   if (auto error = reader.checkKeys(limits, kKeys, "the limits section")) return error;
   struct Field {
     std::string_view key;
@@ -122,6 +142,31 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
     if (!value) return value.error();
     *field.value = *value;
   }
+  if (const auto* entry = limits.find("wrench_bodies")) {
+    const auto names = reader.list(entry->value);
+    if (!names) return names.error();
+    out.wrenchBodies.emplace();
+    for (const YamlNode& node : *names) {
+      const auto name = reader.string(node);
+      if (!name) return name.error();
+      out.wrenchBodies->push_back(*name);
+    }
+  }
+  const auto rate = reader.number(limits, "client_rate", NumberRule::nonNegative(1e9), out.clientRate);
+  if (!rate) return rate.error();
+  out.clientRate = *rate;
+  const auto burst = reader.number(limits, "client_burst", NumberRule::positive(1e9), out.clientBurst);
+  if (!burst) return burst.error();
+  if (*burst < 1.0) return Error{reader.sourceName() + ": limits.client_burst must be at least 1 message"};
+  out.clientBurst = *burst;
+  const auto bytes = reader.number(limits, "max_message_bytes", NumberRule::positive(268435456.0),
+                                   static_cast<double>(out.maxMessageBytes));
+  if (!bytes) return bytes.error();
+  out.maxMessageBytes = static_cast<int64_t>(*bytes);
+  const auto bodies = reader.number(limits, "max_bodies", NumberRule::positive(1e9),
+                                    static_cast<double>(out.maxBodies));
+  if (!bodies) return bodies.error();
+  out.maxBodies = static_cast<int64_t>(*bodies);
   out.limits.maxStepsAhead = static_cast<int64_t>(stepsAhead);
   out.maxStepsPerCommand = static_cast<int64_t>(stepsPerCommand);
   return std::nullopt;

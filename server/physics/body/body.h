@@ -109,6 +109,7 @@ class Body {
   double m_restTime = 0.0;  // s spent below the sleep velocities
 
   friend class World;  // the stepping loop writes state and derived values in one pass
+  friend class WorldSnapshot;  // checkpoints restore the state bit for bit
 };
 
 }  // namespace rbsim
