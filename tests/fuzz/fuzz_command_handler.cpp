@@ -8,7 +8,9 @@
 //   0 payload  on <prefix>WRENCH
 //   1 payload  on <prefix>COMMAND
 //   2 payload  on another channel (no ack is due)
-//   3 count    take up to count % 8 steps
+//   3 count    take up to count % 8 steps (at most kMaxSteps per input:
+//              stepping dominates the cost, and a fuzz input should run in
+//              milliseconds; long sessions are the replay tests' business)
 
 #include <cstddef>
 #include <cstdint>
@@ -23,6 +25,8 @@
 #include "small_world.h"
 
 namespace {
+
+constexpr int kMaxSteps = 48;
 
 template <class Message>
 void encodeAsPublished(const Message& message) {
@@ -41,12 +45,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const ServerSettings settings;
   CommandHandler handler(session, settings, RBSIM_FUZZ_MESH_DIR);
   int64_t receivedAt = 0;
+  int stepsLeft = kMaxSteps;
 
   fuzz::InputRecords records(data, size);
   while (!records.done()) {
     const uint8_t tag = records.byte();
     if (tag % 4 == 3) {
-      for (int i = records.byte() % 8; i > 0; --i) {
+      for (int i = records.byte() % 8; i > 0 && stepsLeft > 0; --i, --stepsLeft) {
         // As Server::stepOnce: a paused session steps only when STEP asked.
         if (session.paused() && !session.takeRequestedStep()) break;
         session.step();

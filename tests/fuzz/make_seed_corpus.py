@@ -7,6 +7,9 @@ meshes, a few bodies in YAML and point sets for the hull builder. The output
 is checked in; rerun this after changing a message type or a seed:
 
     /usr/bin/python3 tests/fuzz/make_seed_corpus.py build/lcmtypes/python
+
+The checkpoint seeds are binary session states written by a program of the
+normal build: build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/checkpoint
 """
 
 import os
