@@ -14,6 +14,8 @@ packages=(
   libeigen3-dev libccd-dev libyaml-cpp-dev libqhull-dev
   # tests and benchmarks
   libgtest-dev googletest libgmock-dev libbenchmark-dev
+  # fuzzing (tests/fuzz): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
   # python side (run with /usr/bin/python3)
   python3 python3-numpy python3-pytest python3-matplotlib
   # hermetic multi-process tests (network namespaces)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds rbsim and runs every test: the C++ suites (ctest, both cores), the
-# determinism golden hash again in a Debug build, and the Python suite.
+# determinism golden hash again in a Debug build, the Python suite, and the
+# fuzz targets for a bounded time each in a clang build (tests/fuzz).
 # Assumes scripts/install_deps.sh has run (the README's test command does both).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,6 +9,9 @@ cd "$(dirname "$0")/.."
 jobs=2
 build=${RBSIM_BUILD_DIR:-build}
 debug_build=${RBSIM_DEBUG_BUILD_DIR:-build-debug}
+# Fuzzing: RBSIM_FUZZ_BUILD_DIR (default build-fuzz), RBSIM_FUZZ_SECONDS per
+# target (default 15; 0 skips fuzzing, the corpora still run in ctest).
+fuzz_seconds=${RBSIM_FUZZ_SECONDS:-15}
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j"$jobs"
@@ -26,4 +30,12 @@ if [ -d tests/python ]; then
   RBSIM_BUILD_DIR="$PWD/$build" /usr/bin/python3 -m pytest -q tests/python
 else
   echo "run_tests: no Python tests in this tree (tests/python missing)"
+fi
+
+# Fuzzing (clang, ASan + UBSan): each target for a bounded time, two at a
+# time; any crash, hang, leak or sanitizer report fails the suite.
+if [ "$fuzz_seconds" != 0 ]; then
+  RBSIM_FUZZ_SECONDS=$fuzz_seconds bash tests/fuzz/run_fuzzers.sh
+else
+  echo "run_tests: fuzzing skipped (RBSIM_FUZZ_SECONDS=0)"
 fi

@@ -15,6 +15,7 @@
 #include <memory>
 #include <utility>
 
+#include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
 #include "physics/geometry/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
@@ -500,15 +501,16 @@ Expected<T> parseDocument(const std::string& yamlText, const std::string& source
                           const Parse& parse) {
   const YamlReader reader(sourceName);
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yamlText);
-    if (documents.empty()) {
+    // Not YAML::LoadAll, which can loop forever (yaml_document_count.h).
+    YAML::Mark secondStart;
+    const int documents = countYamlDocuments(yamlText, 2, &secondStart);
+    if (documents == 0) {
       return reader.error(YAML::Mark(), "", "expected a mapping, got an empty document");
     }
-    if (documents.size() > 1) {
-      return reader.error(documents[1].Mark(), "",
-                          "expected one YAML document, found a second one");
+    if (documents > 1) {
+      return reader.error(secondStart, "", "expected one YAML document, found a second one");
     }
-    return parse(YamlNode::root(documents[0]));
+    return parse(YamlNode::root(YAML::Load(yamlText)));
   } catch (const YAML::Exception& e) {
     return reader.error(e.mark, "", "YAML syntax error: " + e.msg);
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 
 #include "config/config_loader.h"
 #include "daemon/checkpoint_file.h"
+#include "daemon/message_decode.h"
 #include "daemon/session_checkpoint.h"
 #include "daemon/wire_convert.h"
 
@@ -45,14 +46,6 @@ CommandOutcome accepted(rbsim::ack_t ack, int64_t effectiveStep, std::string not
   return outcome;
 }
 
-// Decodes the whole buffer as one message; trailing bytes are as bad as missing ones.
-template <class Message>
-bool decodeWhole(Message& message, const void* data, std::size_t size) {
-  if (size > static_cast<std::size_t>(INT32_MAX)) return false;
-  const int used = message.decode(data, 0, static_cast<int>(size));
-  return used >= 0 && static_cast<std::size_t>(used) == size;
-}
-
 }  // namespace
 
 CommandHandler::CommandHandler(Session& session, ServerSettings settings, std::string configDirectory)
@@ -87,7 +80,7 @@ std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, c
 CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, int64_t receivedAt) {
   if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1), *refusal);
   rbsim::wrench_t message;
-  if (!decodeWhole(message, data, size))
+  if (!decodeWholeMessage(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1),
                     "undecodable wrench_t message (" + std::to_string(size) + " bytes)");
   rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode);
@@ -107,7 +100,7 @@ CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {
   if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1), *refusal);
   rbsim::command_t message;
-  if (!decodeWhole(message, data, size))
+  if (!decodeWholeMessage(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1),
                     "undecodable command_t message (" + std::to_string(size) + " bytes)");
   return applyCommand(message, receivedAt);

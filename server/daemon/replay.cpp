@@ -11,6 +11,7 @@
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
+#include "daemon/message_decode.h"
 #include "daemon/state_comparison.h"
 #include "daemon/wire_convert.h"
 
@@ -21,8 +22,7 @@ namespace {
 template <class Message>
 std::optional<Message> decodeWhole(const std::vector<uint8_t>& data) {
   Message message;
-  const int used = message.decode(data.data(), 0, static_cast<int>(data.size()));
-  if (used < 0 || static_cast<std::size_t>(used) != data.size()) return std::nullopt;
+  if (!decodeWholeMessage(message, data.data(), data.size())) return std::nullopt;
   return message;
 }
 

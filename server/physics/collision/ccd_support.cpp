@@ -147,6 +147,9 @@ std::vector<Vec3> candidateAxes(const PlacedConvex& a, const PlacedConvex& b,
 
 }  // namespace
 
+// m: how far apart (centre distance plus size) two pieces may be for libccd.
+constexpr double kMaxLibccdReach = 1e50;
+
 Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
                         const PenetrationSettings& settings) {
   // GJK inside EPA needs at most maxIterations queries and EPA's start up
@@ -175,17 +178,29 @@ Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
   ccd.mpr_tolerance = settings.tolerance * scale;
   ccd.dist_tolerance = settings.tolerance * scale;
 
+  // libccd dereferences a null face when its arithmetic meets NaN: from a
+  // non-finite pose (found by fuzz_checkpoint: a body whose restored
+  // momentum overflowed its position in one step), or from products of
+  // coordinates beyond ~1e100 m (EPA and MPR multiply three of them). Such
+  // pairs skip libccd and get the candidate axes' answer below.
+  const double reach = (objectB.center - objectA.center).norm() + scale;
+  const bool libccdCanRun = std::isfinite(reach) && reach < kMaxLibccdReach &&
+                            a.pose.rotation.allFinite() && b.pose.rotation.allFinite();
+
   Penetration result;
   ccd_real_t depth = 0.0;
   ccd_vec3_t direction{};
   ccd_vec3_t position{};
   // obj1 = A, obj2 = B: libccd's direction is then the way B must move to
   // clear A, which is our A-to-B normal with no sign change.
-  result.epaStatus = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
-  CcdAnswer answer = readAnswer(result.epaStatus, depth, direction, position);
-  answer.usable = answer.usable && !objectA.exhausted && !objectB.exhausted;
+  CcdAnswer answer;
+  if (libccdCanRun) {
+    result.epaStatus = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
+    answer = readAnswer(result.epaStatus, depth, direction, position);
+    answer.usable = answer.usable && !objectA.exhausted && !objectB.exhausted;
+  }
   result.method = PenetrationMethod::Epa;
-  if (!answer.usable) {
+  if (!answer.usable && libccdCanRun) {
     depth = 0.0;
     direction = {};
     position = {};

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "geometry_test_helpers.h"
 #include "physics/collision/ccd_support.h"
@@ -253,6 +254,30 @@ TEST(SignedDistance, SignChangesContinuouslyThroughContact) {
     previous = r.distance;
   }
   EXPECT_LT(previous, 0.0);
+}
+
+}  // namespace
+}  // namespace rbsim
+
+namespace rbsim {
+namespace {
+
+// Found by tests/fuzz/fuzz_checkpoint (regressions/checkpoint/
+// nan_pose_crashes_libccd): a body restored with a momentum of 1e300 had a
+// NaN pose after one step, and libccd's EPA dereferenced a null pointer on
+// it. Non-finite poses, and pieces beyond libccd's range, skip libccd.
+TEST(Penetration, NonFiniteOrFarOutPosesGiveAnAnswerNotACrash) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Solid box = makeSolid(BoxShape{Vec3::Constant(0.5)}, Vec3::Zero());
+  const Solid lost = makeSolid(SphereShape{0.5}, Vec3(nan, 0.0, 0.0));
+  const Penetration p = penetration(box.placed(), lost.placed());
+  EXPECT_FALSE(std::isfinite(p.depth) && p.normal.allFinite() && p.pointA.allFinite())
+      << "no meaningful answer exists for a NaN pose, but there must be one without a crash";
+  for (const double far : {1e60, 1e200, 1e298}) {
+    const Solid c = makeSolid(SphereShape{0.5}, Vec3(far, far, far));
+    const Solid d = makeSolid(SphereShape{0.5}, Vec3(far, far, far));
+    EXPECT_EQ(penetration(c.placed(), d.placed()).method, PenetrationMethod::SupportEstimate) << far;
+  }
 }
 
 }  // namespace

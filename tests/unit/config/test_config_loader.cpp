@@ -829,5 +829,17 @@ TEST(ConfigLoaderErrors, MissingFile) {
   EXPECT_PRED2(startsWith, world.error().message, path + ": cannot read the config file: ");
 }
 
+// Found by tests/fuzz/fuzz_body_yaml (regressions/body_yaml/stray_comma_hang):
+// yaml-cpp 0.7's LoadAll looped forever, allocating, on a stray token after
+// a document, so a SPAWN's spawn_yaml could hang rbserver.
+TEST(ConfigLoaderErrors, StrayTokenAfterTheDocumentIsAnErrorNotAHang) {
+  for (const char* text : {"{name: a, shape: {type: sphere, radius: 1}},", "[a],", "'a',"}) {
+    const Expected<BodyDef> body = parseBodyDef(text, "spawn_yaml", "");
+    ASSERT_FALSE(body.ok()) << text;
+    EXPECT_NE(body.error().message.find("spawn_yaml:1:"), std::string::npos) << body.error().message;
+  }
+  EXPECT_FALSE(parseWorldConfig("{world: {dt: 0.1}},", "test.yaml", "").ok());
+}
+
 }  // namespace
 }  // namespace rbsim

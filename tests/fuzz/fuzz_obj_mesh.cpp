@@ -1,0 +1,12 @@
+// Wavefront OBJ mesh files (loadObj), then the rest of a mesh body's path.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "mesh_body.h"
+#include "scratch_files.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  rbsim::fuzz::loadMeshAsBody(rbsim::fuzz::writeScratchFile("mesh.obj", data, size));
+  return 0;
+}

@@ -1,0 +1,76 @@
+// Writes the seed corpus of fuzz_checkpoint (tests/fuzz/corpus/checkpoint/):
+// checkpoint payloads of sessions of the small world, with spawned bodies
+// of every shape, wrenches pending and acting, and contacts in the solver's
+// warm-start cache. Run after the checkpoint format changes:
+//
+//   build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/checkpoint
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "config/config_loader.h"
+#include "daemon/session.h"
+#include "daemon/session_checkpoint.h"
+#include "small_world.h"
+
+namespace {
+
+using namespace rbsim;
+
+bool save(const Session& session, const std::filesystem::path& path) {
+  const auto payload = encodeSessionCheckpoint(session);
+  if (!payload) {
+    std::fprintf(stderr, "%s: %s\n", path.c_str(), payload.error().message.c_str());
+    return false;
+  }
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(payload->data()), static_cast<std::streamsize>(payload->size()));
+  return static_cast<bool>(out);
+}
+
+WrenchRequest push(const char* body, WrenchMode mode, int64_t firstStep) {
+  WrenchRequest request;
+  request.client = "seed";
+  request.body = body;
+  request.force = Vec3(3, 0, 1);
+  request.point = Vec3(0.05, 0, 0);
+  request.mode = mode;
+  request.durationSteps = 5;
+  request.firstStep = firstStep;
+  return request;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s OUTPUT_DIRECTORY\n", argv[0]);
+    return 2;
+  }
+  const std::filesystem::path directory(argv[1]);
+  std::filesystem::create_directories(directory);
+
+  Session fresh(fuzz::smallWorld());
+  if (!save(fresh, directory / "fresh")) return 1;
+
+  Session busy(fuzz::smallWorld());
+  for (const char* yaml : {"{name: m, shape: {type: mesh, file: cube.obj}, position: [0, 0, 2]}",
+                           "{name: t, shape: {type: mesh, file: tetrahedron.stl}, position: [0, 1, 0.5]}",
+                           "{name: s, shape: {type: sphere, radius: 0.2}, position: [1, 1, 0.2], ccd: true}"}) {
+    const auto def = parseBodyDef(yaml, "seed", RBSIM_FUZZ_MESH_DIR);
+    if (!def || !busy.world().createBody(*def)) {
+      std::fprintf(stderr, "cannot spawn %s\n", yaml);
+      return 1;
+    }
+  }
+  busy.wrenches().add(push("crate", WrenchMode::Persistent, 1));
+  busy.wrenches().add(push("ball", WrenchMode::Duration, 1));
+  busy.wrenches().add(push("pill", WrenchMode::OneStep, 40));
+  for (int i = 0; i < 20; ++i) busy.step();
+  busy.pause();
+  busy.requestSteps(3);
+  if (!save(busy, directory / "busy")) return 1;
+  return 0;
+}

@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora of the fuzz targets into tests/fuzz/corpus/<target>/.
+
+Seeds are small valid inputs the mutations start from: encoded wrench_t and
+command_t messages (one per mode and command), the repository's worlds and
+meshes, a few bodies in YAML and point sets for the hull builder. The output
+is checked in; rerun this after changing a message type or a seed:
+
+    /usr/bin/python3 tests/fuzz/make_seed_corpus.py build/lcmtypes/python
+
+The checkpoint seeds are binary session states written by a program of the
+normal build: build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/checkpoint
+"""
+
+import os
+import shutil
+import struct
+import sys
+
+FUZZ = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(FUZZ))
+CORPUS = os.path.join(FUZZ, "corpus")
+
+
+def write(target, name, data):
+    directory = os.path.join(CORPUS, target)
+    os.makedirs(directory, exist_ok=True)
+    if isinstance(data, str):
+        data = data.encode()
+    with open(os.path.join(directory, name), "wb") as f:
+        f.write(data)
+
+
+def copy(target, path):
+    os.makedirs(os.path.join(CORPUS, target), exist_ok=True)
+    shutil.copy(os.path.join(REPO, path), os.path.join(CORPUS, target, os.path.basename(path)))
+
+
+def record(tag, payload=None):
+    """One record of tests/fuzz/input_records.h."""
+    if payload is None:
+        return bytes([tag])
+    return bytes([tag]) + struct.pack("<H", len(payload)) + payload
+
+
+def log_event(number, channel, data):
+    """One event of an LCM log file (big-endian header, then channel and data)."""
+    channel = channel.encode()
+    return struct.pack(">IqqII", 0xEDA1DA01, number, 1000 * number, len(channel), len(data)) + channel + data
+
+
+def messages(types_dir):
+    sys.path.insert(0, types_dir)
+    from rbsim import ack_t, command_t, handled_t, world_state_t, wrench_t  # noqa: E402 (lcm-gen)
+
+    modes = {"one_step": 0, "duration": 1, "persistent": 2, "clear": 3}
+    for mode_name, mode in modes.items():
+        for frame_name, frame in (("world", 0), ("body", 1)):
+            w = wrench_t()
+            w.utime, w.client, w.seq, w.body = 1, "fuzz", 1, "crate"
+            w.frame, w.mode = frame, mode
+            w.force, w.torque, w.point = [10.0, 0.0, 5.0], [0.0, 1.0, 0.0], [0.1, 0.0, 0.1]
+            w.duration, w.apply_at_step = 0.05, -1
+            write("wrench_message", f"{mode_name}_{frame_name}", w.encode())
+    w = wrench_t()
+    w.client, w.body, w.mode, w.apply_at_step = "fuzz", "", 3, 2
+    write("wrench_message", "clear_all_later", w.encode())
+
+    def command(name, code, **fields):
+        c = command_t()
+        c.client, c.seq, c.command = "fuzz", 1, code
+        for key, value in fields.items():
+            setattr(c, key, value)
+        write("command_message", name, c.encode())
+        return c
+
+    command("pause", 1)
+    command("resume", 2)
+    command("step", 3, num_steps=3)
+    command("reset", 4)
+    command("real_time_factor", 5, real_time_factor=2.0)
+    command("remove", 7, body="ball")
+    command("publish_world", 8)
+    command("save", 9, path="/tmp/x")
+    for name, yaml in BODIES.items():
+        command("spawn_" + name, 6, spawn_yaml=yaml)
+
+    # Sessions for the command handler: messages with steps in between.
+    corpus = os.path.join(CORPUS, "command_message")
+    def message(name):
+        with open(os.path.join(corpus, name), "rb") as f:
+            return f.read()
+    wrenches = os.path.join(CORPUS, "wrench_message")
+    def wrench(name):
+        with open(os.path.join(wrenches, name), "rb") as f:
+            return f.read()
+    step = lambda n: record(3) + bytes([n])
+    write("command_handler", "push_pause_step_resume",
+          record(0, wrench("duration_world")) + step(5) + record(1, message("pause")) +
+          record(1, message("step")) + step(7) + record(1, message("resume")) + step(3))
+    write("command_handler", "spawn_remove_reset",
+          record(1, message("spawn_box")) + step(2) + record(0, wrench("persistent_body")) + step(4) +
+          record(1, message("remove")) + step(2) + record(1, message("reset")) + step(2))
+    write("command_handler", "spawn_mesh_clear",
+          record(1, message("spawn_mesh")) + record(0, wrench("persistent_world")) + step(3) +
+          record(0, wrench("clear_all_later")) + step(7) + record(2, message("pause")) +
+          record(1, message("real_time_factor")) + record(1, message("publish_world")))
+
+    # Replay logs: an rbserver --record file (a handled_t after each received
+    # message) and an lcm-logger log (acks only), of a short session.
+    def ack(kind, request, seq, effective):
+        a = ack_t()
+        a.client, a.seq, a.kind, a.request, a.accepted, a.effective_step = "fuzz", seq, kind, request, True, effective
+        return a.encode()
+    def handled(step_count):
+        h = handled_t()
+        h.step, h.world_revision = step_count, 1
+        return h.encode()
+    def state(step_count):
+        st = world_state_t()
+        st.step, st.num_pages, st.world_revision = step_count, 1, 1
+        return st.encode()
+    w = wrench_t()
+    w.client, w.seq, w.body, w.mode, w.force, w.apply_at_step = "fuzz", 1, "crate", 1, [5.0, 0.0, 0.0], -1
+    w.duration = 0.03
+    c = command_t()
+    c.client, c.seq, c.command, c.spawn_yaml = "fuzz", 2, 6, BODIES["sphere"]
+    r = command_t()
+    r.client, r.seq, r.command, r.body = "fuzz", 3, 7, "ball"
+    recorded = [("RBSIM_WRENCH", w.encode()), ("RBSIM_HANDLED", handled(0)), ("RBSIM_ACK", ack(0, 1, 1, 1)),
+                ("RBSIM_COMMAND", c.encode()), ("RBSIM_HANDLED", handled(2)), ("RBSIM_ACK", ack(1, 6, 2, 3)),
+                ("RBSIM_COMMAND", r.encode()), ("RBSIM_HANDLED", handled(3)), ("RBSIM_ACK", ack(1, 7, 3, 4)),
+                ("RBSIM_STATE", state(6))]
+    write("replay_log", "record_file",
+          b"".join(log_event(i, ch, data) for i, (ch, data) in enumerate(recorded)))
+    logger = [(ch, data) for ch, data in recorded if ch != "RBSIM_HANDLED"]
+    write("replay_log", "lcm_logger",
+          b"".join(log_event(i, ch, data) for i, (ch, data) in enumerate(logger)))
+
+
+BODIES = {
+    "sphere": "{name: s, shape: {type: sphere, radius: 0.1}, position: [0, 0, 1], mass: 2}",
+    "box": "name: b\nshape: {type: box, half_extents: [0.1, 0.2, 0.3]}\n"
+           "rpy: [0.1, 0.2, 0.3]\nlinear_velocity: [1, 0, 0]\nmaterial: {restitution: 0.5, friction: 0.3}\n",
+    "capsule": "{name: c, shape: {type: capsule, radius: 0.1, half_length: 0.2}, "
+               "orientation: [1, 0, 0, 0], angular_velocity: [0, 0, 3], ccd: true}",
+    "cylinder": "{name: y, shape: {type: cylinder, radius: 0.1, half_length: 0.2}, density: 500, "
+                "damping: {linear: 0.1, angular: 0.1}}",
+    "plane": "{name: p, static: true, shape: {type: plane, normal: [0, 0.1, 1], offset: -1}}",
+    "mesh": "{name: m, shape: {type: mesh, file: cube.obj}, position: [0, 0, 2]}",
+    "mesh_stl": "{name: t, shape: {type: mesh, file: tetrahedron.stl}, position: [0, 1, 0.5]}",
+}
+
+
+def yaml_seeds():
+    for name, yaml in BODIES.items():
+        write("body_yaml", name, yaml)
+    # The target resolves mesh paths against config/, as for config/default.yaml.
+    for path in ("config/default.yaml", "config/worlds/free_fall.yaml",
+                 "config/worlds/tumbling.yaml", "tests/data/config/full_world.yaml"):
+        with open(os.path.join(REPO, path)) as f:
+            text = f.read()
+        text = text.replace("../meshes/l_block.obj", "meshes/l_block.obj")
+        text = text.replace("meshes/tetra.obj", "meshes/l_block.obj")
+        write("world_config", os.path.basename(path), text)
+    write("world_config", "penalty_backtracking.yaml",
+          "world: {dt: 0.01, integrator: rk4, damping: {linear: 0.1}}\n"
+          "contact: {model: penalty, backtracking: true, stiffness: 1e4, damping: 100,\n"
+          "          iterations: 4, position_iterations: 2, margin: 0.01, slop: 0.001,\n"
+          "          baumgarte: 0.2, warm_starting: false, epsilon: 0.01, sleeping: false,\n"
+          "          sleep_velocity: 0.01, sleep_time: 0.5, restitution_threshold: 1,\n"
+          "          friction_damping: 10, static_friction: 0.9, friction: 0.5, enabled: true}\n"
+          "lcm: {url: 'memq://', channel_prefix: X_, state_rate: 0, status_rate: 1, contacts_rate: 0}\n"
+          "server: {real_time_factor: 0, catch_up: reanchor, max_burst: 3, start_paused: true}\n"
+          "limits: {max_force: 10, max_torque: 10, max_lever_arm: 1, max_duration: 5}\n"
+          "bodies:\n"
+          "  - {name: g, static: true, shape: {type: plane}}\n"
+          "  - {name: a, shape: {type: box, half_extents: [0.1, 0.1, 0.1]}, position: [0, 0, 0.09]}\n"
+          "  - {name: b, shape: {type: mesh, file: meshes/l_block.obj}, position: [0, 0, 0.5]}\n")
+
+
+def mesh_seeds():
+    for path in ("tests/data/meshes/cube.obj", "tests/data/meshes/inverted_cube.obj",
+                 "tests/data/meshes/open_box.obj", "config/meshes/l_block.obj",
+                 "tests/data/config/meshes/tetra.obj"):
+        copy("obj_mesh", path)
+    write("obj_mesh", "negative_indices.obj",
+          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+          "f -4 -2 -3\nf -4 -3//1 -1\nf -4/1/1 -1 -2\nf -3 -2 -1\n")
+    copy("stl_mesh", "tests/data/meshes/tetrahedron.stl")
+    # The same tetrahedron as binary STL: 80-byte header, count, 4 records.
+    corners = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+    binary = b"binary tetrahedron".ljust(80, b" ") + struct.pack("<I", len(faces))
+    for face in faces:
+        binary += struct.pack("<3f", 0, 0, 0)
+        for index in face:
+            binary += struct.pack("<3f", *corners[index])
+        binary += struct.pack("<H", 0)
+    write("stl_mesh", "tetrahedron_binary.stl", binary)
+    # Binary, but with a header that starts with "solid", as many exporters write.
+    write("stl_mesh", "solid_header_binary.stl", b"solid" + binary[5:])
+
+
+def hull_seeds():
+    cube = [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
+    square = [(x, y, 0) for x in (-1, 1) for y in (-1, 1)]
+    octahedron = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    for name, scale, points in (("cube", 8, cube), ("square", 8, square),
+                                ("octahedron", 2, octahedron), ("cube_with_centre", 11, cube + [(0, 0, 0)])):
+        write("convex_hull", name, bytes([scale]) + struct.pack(f"{3 * len(points)}b",
+                                                                  *[c for p in points for c in p]))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    messages(os.path.abspath(sys.argv[1]))
+    yaml_seeds()
+    mesh_seeds()
+    hull_seeds()
