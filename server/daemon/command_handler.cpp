@@ -52,10 +52,11 @@ bool decodeWhole(Message& message, const void* data, std::size_t size) {
 
 }  // namespace
 
-CommandHandler::CommandHandler(Session& session, ServerSettings settings, std::string configDirectory)
+CommandHandler::CommandHandler(Session& session, ServerSettings settings,
+                               std::string spawnMeshDirectory)
     : m_session(session),
       m_settings(std::move(settings)),
-      m_configDirectory(std::move(configDirectory)),
+      m_spawnMeshDirectory(std::move(spawnMeshDirectory)),
       m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
       m_commandChannel(m_settings.channelPrefix + "COMMAND") {}
 
@@ -140,7 +141,7 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       return outcome;
     }
     case rbsim::command_t::SPAWN: {
-      const auto def = parseBodyDef(message.spawn_yaml, "spawn_yaml", m_configDirectory);
+      const auto def = parseSpawnedBodyDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory);
       if (!def) return reject(def.error().message);
       const auto id = world.createBody(*def);
       if (!id) return reject(id.error().message);

@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
   if (options->recordPath) settings->recordPath = *options->recordPath;
   if (options->stateRate) settings->stateRate = *options->stateRate;
   if (options->startPaused) settings->startPaused = true;
+  // The guard's limits live with the server's other limits in the config
+  // file; the world (and RESET's copy of it, made from this one) obeys them.
+  world->setStateLimits(settings->stateLimits);
   if (!isPlainChannelPrefix(settings->channelPrefix)) {
     std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
                  settings->channelPrefix.c_str());
@@ -93,7 +96,9 @@ int main(int argc, char** argv) {
   }
   const std::string configDirectory =
       std::filesystem::path(options->configPath).parent_path().string();
-  Server server(*settings, std::move(world).value(), configDirectory);
+  const std::string spawnMeshDirectory =
+      settings->spawnMeshDirectory.empty() ? configDirectory : settings->spawnMeshDirectory;
+  Server server(*settings, std::move(world).value(), spawnMeshDirectory);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());

@@ -46,7 +46,8 @@ void CollisionDetector::detect(const World& world) {
       geometry.shape = BroadPhaseShape::of(body);
     }
     geometry.pose = poseOf(body);
-    if (geometry.shape.hasGeometry()) {
+    // A frozen body is out of the simulation: nothing collides with it.
+    if (geometry.shape.hasGeometry() && !body.isFrozen()) {
       m_broadPhaseInputs.push_back(
           geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
     }

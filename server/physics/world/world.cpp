@@ -195,6 +195,7 @@ bool World::removeBody(BodyId id) {
   if (m_bodies[dense].description().collider) --m_collidingBodies;
   if (m_bodies[dense].description().continuousCollision && !m_bodies[dense].isStatic())
     --m_continuousBodies;
+  if (m_bodies[dense].isFrozen()) --m_frozenBodies;
   m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
   m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (size_t i = dense; i < m_denseIds.size(); ++i)
@@ -245,13 +246,63 @@ void World::step() {
   }
   if (!starts.empty()) applyContinuousCollision(starts);
   ++m_stepCount;
+  guardStates();
+}
+
+void World::guardStates() {
+  if (!m_freezeEvents.empty()) m_freezeEvents.clear();
+  const StateLimits& limits = m_settings.limits;
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    Body& body = m_bodies[i];
+    if (body.isStatic()) continue;
+    if (body.isFrozen()) {
+      holdFrozen(body);
+      continue;
+    }
+    if (body.m_sleeping) continue;  // it has not moved since it last passed
+    const StateVerdict verdict =
+        judgeState(body.m_state, body.m_linearVelocity, body.m_angularVelocity, limits);
+    if (verdict.reason == FreezeReason::None) {
+      body.m_lastGoodPosition = body.m_state.position;
+      body.m_lastGoodOrientation = body.m_state.orientation;
+      continue;
+    }
+    body.m_freezeReason = verdict.reason;
+    ++m_frozenBodies;
+    holdFrozen(body);
+    m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict});
+  }
+}
+
+void World::holdFrozen(Body& body) {
+  body.m_state.position = body.m_lastGoodPosition;
+  body.m_state.orientation = body.m_lastGoodOrientation;
+  body.m_state.linearMomentum.setZero();
+  body.m_state.angularMomentum.setZero();
+  body.m_load.clear();
+  // Never asleep: a frozen body is not at rest in an island, and waking it
+  // must not be what brings it back.
+  body.m_sleeping = false;
+  body.m_restTime = 0.0;
+  body.updateDerived();
+}
+
+bool World::freezeBody(BodyId id, FreezeReason reason) {
+  if (!isValid(id) || reason == FreezeReason::None) return false;
+  Body& frozen = body(id);
+  if (frozen.isStatic() || frozen.isFrozen()) return false;
+  frozen.m_freezeReason = reason;
+  ++m_frozenBodies;
+  holdFrozen(frozen);
+  return true;
 }
 
 void World::integrateFree(double h, const std::vector<char>& skip) {
   const IntegratorKind integrator = m_settings.integrator;
   for (std::size_t i = 0; i < m_bodies.size(); ++i) {
     Body& body = m_bodies[i];
-    if (body.isStatic() || body.m_sleeping || (!skip.empty() && skip[i])) continue;
+    if (body.isStatic() || body.m_sleeping || body.isFrozen() || (!skip.empty() && skip[i]))
+      continue;
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
     inputs.load = body.m_load.active ? &body.m_load : nullptr;
