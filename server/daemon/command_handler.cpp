@@ -1,11 +1,14 @@
 #include "daemon/command_handler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <rbsim/command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
 #include "config/config_loader.h"
+#include "daemon/checkpoint_file.h"
+#include "daemon/session_checkpoint.h"
 #include "daemon/wire_convert.h"
 
 namespace rbsim {
@@ -58,7 +61,22 @@ CommandHandler::CommandHandler(Session& session, ServerSettings settings,
       m_settings(std::move(settings)),
       m_spawnMeshDirectory(std::move(spawnMeshDirectory)),
       m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
-      m_commandChannel(m_settings.channelPrefix + "COMMAND") {}
+      m_commandChannel(m_settings.channelPrefix + "COMMAND"),
+      m_rateLimiter(m_settings.clientRate, m_settings.clientBurst) {}
+
+std::optional<std::string> CommandHandler::sizeRefusal(std::size_t size) const {
+  if (static_cast<int64_t>(size) <= m_settings.maxMessageBytes) return std::nullopt;
+  return "message of " + std::to_string(size) + " bytes exceeds limits.max_message_bytes (" +
+         std::to_string(m_settings.maxMessageBytes) + ")";
+}
+
+std::optional<std::string> CommandHandler::admissionRefusal(const std::string& client, int64_t receivedAt) {
+  if (m_settings.readOnly) return std::string("the server is read-only: it takes no wrenches or commands");
+  if (!m_rateLimiter.allow(client, receivedAt))
+    return "rate limit: client '" + client + "' sends more than " + std::to_string(m_settings.clientRate) +
+           " messages/s (burst " + std::to_string(m_settings.clientBurst) + "); message dropped";
+  return std::nullopt;
+}
 
 std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, const void* data,
                                                      std::size_t size, int64_t receivedAt) {
@@ -68,12 +86,18 @@ std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, c
 }
 
 CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, int64_t receivedAt) {
-  (void)receivedAt;
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1), *refusal);
   rbsim::wrench_t message;
   if (!decodeWhole(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1),
                     "undecodable wrench_t message (" + std::to_string(size) + " bytes)");
   rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
+  if (m_settings.wrenchBodies && !message.body.empty() &&
+      std::find(m_settings.wrenchBodies->begin(), m_settings.wrenchBodies->end(), message.body) ==
+          m_settings.wrenchBodies->end())
+    return rejected(std::move(ack), "body '" + message.body +
+                                        "' does not accept external wrenches (not in limits.wrench_bodies)");
   World& world = m_session.world();
   const auto request = wrenchRequestFrom(message, world, world.stepCount() + 1, m_settings.limits);
   if (!request) return rejected(std::move(ack), request.error().message);
@@ -82,6 +106,7 @@ CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, 
 }
 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1), *refusal);
   rbsim::command_t message;
   if (!decodeWhole(message, data, size))
     return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1),
@@ -90,8 +115,8 @@ CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size,
 }
 
 CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int64_t receivedAt) {
-  (void)receivedAt;
   rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
   World& world = m_session.world();
   const int64_t nextStep = world.stepCount() + 1;
   const auto reject = [&](std::string reason) { return rejected(std::move(ack), std::move(reason)); };
@@ -122,8 +147,15 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       return outcome;
     }
     case rbsim::command_t::RESET: {
-      if (!message.path.empty()) return reject("reset from a checkpoint file is not supported yet");
-      m_session.resetToInitialWorld();
+      if (message.path.empty()) {
+        m_session.resetToInitialWorld();
+      } else {
+        const auto path = checkpointPathIn(m_settings.checkpointDirectory, message.path);
+        if (!path) return reject(path.error().message);
+        auto state = loadSessionCheckpoint(*path, m_session.initialWorld().settings(), true);
+        if (!state) return reject(state.error().message);
+        m_session.replaceWorld(std::move(state->world), std::move(state->wrenches));
+      }
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.paceChanged = true;
       outcome.publishWorld = true;
@@ -141,6 +173,9 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       return outcome;
     }
     case rbsim::command_t::SPAWN: {
+      if (world.bodyCount() >= m_settings.maxBodies)
+        return reject("the world has " + std::to_string(world.bodyCount()) + " bodies, as many as " +
+                      "limits.max_bodies allows");
       const auto def = parseSpawnedBodyDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory);
       if (!def) return reject(def.error().message);
       const auto id = world.createBody(*def);
@@ -165,8 +200,15 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       outcome.publishWorld = true;
       return outcome;
     }
-    case rbsim::command_t::SAVE_CHECKPOINT:
-      return reject("checkpoints are not supported by this server version");
+    case rbsim::command_t::SAVE_CHECKPOINT: {
+      const std::string name =
+          message.path.empty() ? "checkpoint-" + std::to_string(world.stepCount()) + ".rbck" : message.path;
+      const auto path = checkpointPathIn(m_settings.checkpointDirectory, name);
+      if (!path) return reject(path.error().message);
+      const auto saved = saveSessionCheckpoint(m_session, *path);
+      if (!saved) return reject("checkpoint not saved: " + saved.error().message);
+      return accepted(std::move(ack), nextStep, "saved " + *path);
+    }
     default:
       return reject("unknown command " + std::to_string(message.command));
   }

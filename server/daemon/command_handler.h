@@ -6,6 +6,12 @@
 //
 // Every message gets exactly one ack, accepted or rejected with a reason;
 // nothing in the session changes unless the message is accepted.
+//
+// Limits and access control, in the order they are checked: the message
+// size (limits.max_message_bytes, before decoding), read-only mode
+// (server.read_only), the sender's rate (limits.client_rate/client_burst),
+// then per message: bodies that accept wrenches (limits.wrench_bodies),
+// the wrench limits, and the number of bodies for SPAWN (limits.max_bodies).
 
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +22,7 @@
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
 
+#include "daemon/client_rate_limiter.h"
 #include "daemon/server_settings.h"
 #include "daemon/session.h"
 
@@ -50,12 +57,17 @@ class CommandHandler {
 
  private:
   CommandOutcome applyCommand(const rbsim::command_t& message, int64_t receivedAt);
+  // The checks every message goes through before its content: read-only
+  // mode and the sender's rate. A reason when it must be rejected.
+  std::optional<std::string> admissionRefusal(const std::string& client, int64_t receivedAt);
+  std::optional<std::string> sizeRefusal(std::size_t size) const;
 
   Session& m_session;
   ServerSettings m_settings;
   std::string m_spawnMeshDirectory;
   std::string m_wrenchChannel;
   std::string m_commandChannel;
+  ClientRateLimiter m_rateLimiter;
 };
 
 }  // namespace rbsim

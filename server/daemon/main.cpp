@@ -9,8 +9,10 @@
 #include "daemon/log.h"
 #include "daemon/mass_properties_report.h"
 #include "daemon/options.h"
+#include "daemon/replay_runner.h"
 #include "daemon/server.h"
 #include "daemon/server_settings.h"
+#include "daemon/session_checkpoint.h"
 #include "daemon/signal_events.h"
 
 using namespace rbsim;
@@ -76,6 +78,9 @@ int main(int argc, char** argv) {
   if (options->recordPath) settings->recordPath = *options->recordPath;
   if (options->stateRate) settings->stateRate = *options->stateRate;
   if (options->startPaused) settings->startPaused = true;
+  if (options->readOnly) settings->readOnly = true;
+  if (options->checkpointDirectory) settings->checkpointDirectory = *options->checkpointDirectory;
+  if (options->checkpointEvery) settings->checkpointEvery = *options->checkpointEvery;
   // The guard's limits live with the server's other limits in the config
   // file; the world (and RESET's copy of it, made from this one) obeys them.
   world->setStateLimits(settings->stateLimits);
@@ -84,6 +89,24 @@ int main(int argc, char** argv) {
                  settings->channelPrefix.c_str());
     return 2;
   }
+
+  const std::string configDirectory =
+      std::filesystem::path(options->configPath).parent_path().string();
+  // A replay must take the same SPAWN decisions as the recorded server.
+  const std::string spawnMeshDirectory =
+      settings->spawnMeshDirectory.empty() ? configDirectory : settings->spawnMeshDirectory;
+  std::optional<SessionState> resumed;
+  if (options->resumePath) {
+    auto state = loadSessionCheckpoint(*options->resumePath, world->settings());
+    if (!state) {
+      std::fprintf(stderr, "rbserver: --resume: %s\n", state.error().message.c_str());
+      return 1;
+    }
+    resumed = std::move(state).value();
+  }
+  if (options->replayPath)
+    return runReplay(*options, *settings, std::move(world).value(), spawnMeshDirectory,
+                     std::move(resumed));
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.
@@ -94,15 +117,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
     return 1;
   }
-  const std::string configDirectory =
-      std::filesystem::path(options->configPath).parent_path().string();
-  const std::string spawnMeshDirectory =
-      settings->spawnMeshDirectory.empty() ? configDirectory : settings->spawnMeshDirectory;
   Server server(*settings, std::move(world).value(), spawnMeshDirectory);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());
     return 1;
+  }
+  if (resumed) {
+    logInfo("resuming from " + *options->resumePath + " at step " + std::to_string(resumed->world.stepCount()));
+    server.resumeFrom(std::move(*resumed));
   }
   return server.run(signals);
 }

@@ -37,7 +37,29 @@ options (each overrides the config file's key):
   --state-rate HZ          RBSIM_STATE rate in Hz of simulated time; 0 = every step (lcm.state_rate)
   --record FILE            write every published and received message to an LCM log (server.record)
   --paused                 start paused (server.start_paused)
+  --read-only              reject every wrench and command (with an ack saying so); state,
+                           status and world are still published (server.read_only)
+  --checkpoint-dir DIR     where SAVE_CHECKPOINT, RESET with a path and periodic checkpoints
+                           put and find their files; clients can only name plain files in
+                           it (server.checkpoint_dir; none: checkpoints disabled)
+  --checkpoint-every S     write the whole session to DIR/periodic.rbck every S s of
+                           simulated time, atomically (server.checkpoint_every; 0 = never)
+  --resume FILE            start from the checkpoint FILE instead of the config's world
+                           (the config's dt, gravity, integrator and contact model must match)
   --log-level LEVEL        debug, info, warning or error (default info)
+
+replay (instead of serving; as fast as possible, no pacing):
+  --replay LOG             re-simulate the session recorded in LOG (an rbserver --record
+                           file or an lcm-logger log of the bus), applying the wrenches
+                           and commands the server accepted at the steps it handled them;
+                           the states go to --replay-output, or are published on LCM
+                           when neither --replay-output nor --verify is given
+  --resume FILE            (with --replay) the checkpoint the recorded server resumed from
+  --replay-output FILE     write the replayed states and world descriptions to an LCM log
+  --verify                 compare every replayed state with the log's, bit for bit; exit 1
+                           naming the first step and body that differ (and by how much),
+                           0 when identical; 3 when the log cannot be read or followed
+                           (2: the output cannot be opened)
   --help                   this text
 )";
 }
@@ -56,9 +78,15 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       options.massProperties = true;
     } else if (arg == "--paused") {
       options.startPaused = true;
+    } else if (arg == "--read-only") {
+      options.readOnly = true;
+    } else if (arg == "--verify") {
+      options.verify = true;
     } else if (arg == "--config" || arg == "--lcm-url" || arg == "--channel-prefix" ||
                arg == "--record" || arg == "--log-level" || arg == "--real-time-factor" ||
-               arg == "--duration" || arg == "--state-rate") {
+               arg == "--duration" || arg == "--state-rate" || arg == "--replay" ||
+               arg == "--replay-output" || arg == "--checkpoint-dir" || arg == "--checkpoint-every" ||
+               arg == "--resume") {
       const auto text = value();
       if (!text) return text.error();
       if (arg == "--config") options.configPath = *text;
@@ -66,6 +94,15 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       if (arg == "--channel-prefix") options.channelPrefix = *text;
       if (arg == "--record") options.recordPath = *text;
       if (arg == "--log-level") options.logLevel = *text;
+      if (arg == "--replay") options.replayPath = *text;
+      if (arg == "--checkpoint-dir") options.checkpointDirectory = *text;
+      if (arg == "--resume") options.resumePath = *text;
+      if (arg == "--checkpoint-every") {
+        const auto number = parseNumber(arg, *text, true);
+        if (!number) return number.error();
+        options.checkpointEvery = *number;
+      }
+      if (arg == "--replay-output") options.replayOutputPath = *text;
       if (arg == "--real-time-factor" || arg == "--state-rate") {
         const auto number = parseNumber(arg, *text, true);
         if (!number) return number.error();
@@ -81,6 +118,8 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
     }
   }
   if (!options.help && options.configPath.empty()) return Error{"--config FILE is required (see --help)"};
+  if (!options.replayPath && (options.verify || options.replayOutputPath))
+    return Error{"--verify and --replay-output need --replay LOG"};
   return options;
 }
 

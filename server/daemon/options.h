@@ -21,6 +21,14 @@ struct Options {
   std::optional<double> stateRate;  // Hz
   std::optional<std::string> logLevel;
   bool startPaused = false;
+  bool readOnly = false;
+  std::optional<std::string> checkpointDirectory;
+  std::optional<double> checkpointEvery;  // s of simulated time
+  std::optional<std::string> resumePath;  // a checkpoint file to start from
+  // Replay of a recorded session instead of serving (see replay.h).
+  std::optional<std::string> replayPath;
+  std::optional<std::string> replayOutputPath;
+  bool verify = false;
 };
 
 // Parses argv[1..]; errors say which argument is wrong and why.

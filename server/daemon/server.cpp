@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
+#include <rbsim/handled_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
+#include "daemon/checkpoint_file.h"
 #include "daemon/log.h"
 #include "daemon/wire_convert.h"
 
@@ -58,6 +61,18 @@ Expected<bool> Server::open() {
   // Channel names are exact: the prefix was checked to hold no regex characters.
   m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
+  if (m_settings.checkpointEvery > 0.0) {
+    if (m_settings.checkpointDirectory.empty())
+      return Error{"checkpoint_every needs a checkpoint directory (server.checkpoint_dir or --checkpoint-dir)"};
+    m_checkpointEverySteps = std::max<int64_t>(1, std::llround(m_settings.checkpointEvery / dt));
+  }
+  if (!m_settings.checkpointDirectory.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(m_settings.checkpointDirectory, error);
+    if (error || !std::filesystem::is_directory(m_settings.checkpointDirectory))
+      return Error{"cannot use checkpoint directory '" + m_settings.checkpointDirectory + "': " +
+                   (error ? error.message() : std::string("not a directory"))};
+  }
   if (!m_settings.recordPath.empty()) {
     const auto opened = m_recorder.open(m_settings.recordPath);
     if (!opened) return opened.error();
@@ -151,6 +166,11 @@ int Server::run(SignalEvents& signals) {
   publishState();
   publishStatus(monotonicNow());
   m_recorder.close();
+  m_checkpoints.finish();
+  if (m_checkpointEverySteps > 0)
+    logInfo("periodic checkpoints: " + std::to_string(m_checkpoints.written()) + " written, " +
+            std::to_string(m_checkpoints.failed()) + " failed, " + std::to_string(m_checkpoints.superseded()) +
+            " superseded by a newer one before they were written");
   const auto micros = [](Nanoseconds ns) { return std::to_string(static_cast<double>(ns) * 1e-3); };
   const double wallSeconds = static_cast<double>(monotonicNow() - runStart) * 1e-9;
   const double achievedFactor =
@@ -174,6 +194,24 @@ void Server::drainMessages() {
   }
 }
 
+void Server::resumeFrom(SessionState state) {
+  m_session.resumeFrom(std::move(state.world), std::move(state.wrenches), state.worldRevision, state.paused,
+                       state.stepsRequested);
+  // --paused (server.start_paused) wins over the pause state saved.
+  if (m_settings.startPaused) m_session.pause();
+}
+
+void Server::checkpointIfDue() {
+  if (m_checkpointEverySteps <= 0 || world().stepCount() % m_checkpointEverySteps != 0) return;
+  auto payload = encodeSessionCheckpoint(m_session);
+  if (!payload) {
+    logWarning("periodic checkpoint skipped: " + payload.error().message);
+    return;
+  }
+  m_checkpoints.submit((std::filesystem::path(m_settings.checkpointDirectory) / kPeriodicCheckpointName).string(),
+                       checkpointFileBytes(*payload), world().stepCount());
+}
+
 void Server::stepOnce() {
   const bool requested = m_session.takeRequestedStep();
   if (!requested) m_lateness.add(m_clock.beginStep(monotonicNow()));
@@ -186,6 +224,7 @@ void Server::stepOnce() {
   ++m_stepTimes.count;
   m_worstStepEver = std::max(m_worstStepEver, seconds);
 
+  checkpointIfDue();
   const bool lastRequested = requested && m_session.stepsRequested() == 0;
   if (world().stepCount() % m_stateEverySteps == 0 || lastRequested) publishState();
   if (m_contactsEverySteps > 0 && (world().stepCount() % m_contactsEverySteps == 0 || lastRequested))
@@ -208,6 +247,16 @@ void Server::acknowledge(rbsim::ack_t ack) {
 
 void Server::onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName) {
   record(channelName, buffer->data, buffer->data_size, buffer->recv_utime);
+  if (m_recorder.isOpen()) {
+    // Where the message is handled, for an exact replay of the record file.
+    rbsim::handled_t handled;
+    handled.utime = wallMicroseconds();
+    handled.step = world().stepCount();
+    handled.world_revision = m_session.worldRevision();
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(handled.getEncodedSize()));
+    handled.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    record(channel("HANDLED"), bytes.data(), bytes.size(), handled.utime);
+  }
   auto outcome = m_commands.handle(channelName, buffer->data, buffer->data_size, monotonicNow());
   if (!outcome) return;
   if (outcome->realTimeFactor) m_clock.setRealTimeFactor(*outcome->realTimeFactor, monotonicNow());

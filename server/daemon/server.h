@@ -10,6 +10,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "daemon/checkpoint_writer.h"
 #include "daemon/command_handler.h"
 #include "daemon/event_recorder.h"
 #include "daemon/lateness_histogram.h"
@@ -17,6 +18,7 @@
 #include "daemon/signal_events.h"
 #include "daemon/step_clock.h"
 #include "daemon/session.h"
+#include "daemon/session_checkpoint.h"
 #include "physics/world/world.h"
 
 namespace rbsim {
@@ -30,6 +32,10 @@ class Server {
   // Connects to LCM, subscribes, opens the record file. A bad URL or an
   // unwritable record file is an error, before any stepping.
   Expected<bool> open();
+
+  // Continues a checkpointed session (--resume) instead of the config's
+  // world; call before run().
+  void resumeFrom(SessionState state);
 
   // Runs until SIGINT/SIGTERM or the configured duration; then publishes a
   // last status and closes the record file. Returns the process exit code.
@@ -51,6 +57,7 @@ class Server {
   bool durationReached() const;
   void stepOnce();
   void drainMessages();
+  void checkpointIfDue();
 
   // A wrench or command: recorded, handed to the command handler, answered.
   void onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
@@ -72,6 +79,8 @@ class Server {
   std::unique_ptr<lcm::LCM> m_lcm;
   EventRecorder m_recorder;
   StepClock m_clock;
+  CheckpointWriter m_checkpoints;
+  int64_t m_checkpointEverySteps = 0;  // 0: no periodic checkpoints
 
   int64_t m_stateEverySteps = 1;
   int64_t m_contactsEverySteps = 0;  // 0: not published

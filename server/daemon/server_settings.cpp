@@ -56,10 +56,10 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 }
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
-                                const std::filesystem::path& configDirectory, ServerSettings& out) {
-  static constexpr std::array<std::string_view, 8> kKeys = {
-      "real_time_factor", "duration", "catch_up",  "max_burst",
-      "record",           "start_paused", "spin_us", "spawn_mesh_directory"};
+                                ServerSettings& out) {
+  static constexpr std::array<std::string_view, 11> kKeys = {
+      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us",
+      "checkpoint_dir", "checkpoint_every", "read_only", "spawn_mesh_directory"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -95,12 +95,30 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
     if (!directory) return directory.error();
     if (directory->empty()) return reader.error(entry->value, "expected a directory");
     // Like mesh paths in the config file: relative to the file.
-    out.spawnMeshDirectory = (configDirectory / *directory).lexically_normal().string();
+    out.spawnMeshDirectory =
+        (std::filesystem::path(reader.sourceName()).parent_path() / *directory).lexically_normal().string();
   }
   const auto spin = reader.number(server, "spin_us", NumberRule::nonNegative(1e6),
                                   static_cast<double>(out.spinNanoseconds) * 1e-3);
   if (!spin) return spin.error();
   out.spinNanoseconds = static_cast<int64_t>(*spin * 1e3);
+  if (const auto* entry = server.find("checkpoint_dir")) {
+    const auto path = reader.string(entry->value);
+    if (!path) return path.error();
+    if (path->empty()) return reader.error(entry->value, "expected a directory path");
+    // Relative to the config file, like mesh files: the daemon's working
+    // directory is nobody's business (systemd starts it in /).
+    const std::filesystem::path directory(*path);
+    out.checkpointDirectory =
+        directory.is_absolute() ? *path
+                                : (std::filesystem::path(reader.sourceName()).parent_path() / directory).string();
+  }
+  const auto every = reader.number(server, "checkpoint_every", NumberRule::nonNegative(1e9), out.checkpointEvery);
+  if (!every) return every.error();
+  out.checkpointEvery = *every;
+  const auto readOnly = reader.boolean(server, "read_only", out.readOnly);
+  if (!readOnly) return readOnly.error();
+  out.readOnly = *readOnly;
   const auto paused = reader.boolean(server, "start_paused", out.startPaused);
   if (!paused) return paused.error();
   out.startPaused = *paused;
@@ -109,10 +127,10 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
 
 std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 9> kKeys = {
-      "max_force",           "max_torque",           "max_lever_arm",
-      "max_duration",        "max_steps_ahead",      "max_real_time_factor",
-      "max_steps_per_command", "max_linear_speed",   "max_angular_speed"};
+  static constexpr std::array<std::string_view, 14> kKeys = {
+      "max_force", "max_torque", "max_lever_arm", "max_duration", "max_steps_ahead",
+      "max_real_time_factor", "max_steps_per_command", "wrench_bodies", "client_rate", "client_burst",
+      "max_message_bytes", "max_bodies", "max_linear_speed", "max_angular_speed"};
   if (auto error = reader.checkKeys(limits, kKeys, "the limits section")) return error;
   struct Field {
     std::string_view key;
@@ -134,6 +152,31 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
     if (!value) return value.error();
     *field.value = *value;
   }
+  if (const auto* entry = limits.find("wrench_bodies")) {
+    const auto names = reader.list(entry->value);
+    if (!names) return names.error();
+    out.wrenchBodies.emplace();
+    for (const YamlNode& node : *names) {
+      const auto name = reader.string(node);
+      if (!name) return name.error();
+      out.wrenchBodies->push_back(*name);
+    }
+  }
+  const auto rate = reader.number(limits, "client_rate", NumberRule::nonNegative(1e9), out.clientRate);
+  if (!rate) return rate.error();
+  out.clientRate = *rate;
+  const auto burst = reader.number(limits, "client_burst", NumberRule::positive(1e9), out.clientBurst);
+  if (!burst) return burst.error();
+  if (*burst < 1.0) return Error{reader.sourceName() + ": limits.client_burst must be at least 1 message"};
+  out.clientBurst = *burst;
+  const auto bytes = reader.number(limits, "max_message_bytes", NumberRule::positive(268435456.0),
+                                   static_cast<double>(out.maxMessageBytes));
+  if (!bytes) return bytes.error();
+  out.maxMessageBytes = static_cast<int64_t>(*bytes);
+  const auto bodies = reader.number(limits, "max_bodies", NumberRule::positive(1e9),
+                                    static_cast<double>(out.maxBodies));
+  if (!bodies) return bodies.error();
+  out.maxBodies = static_cast<int64_t>(*bodies);
   out.limits.maxStepsAhead = static_cast<int64_t>(stepsAhead);
   out.maxStepsPerCommand = static_cast<int64_t>(stepsPerCommand);
   return std::nullopt;
@@ -163,9 +206,7 @@ Expected<ServerSettings> loadServerSettings(const std::string& configPath) {
     return *error;
   if (auto error = readSection(reader, *root, "server",
                                [&](const YamlMap& m) {
-                                 return readServer(reader, m,
-                                                   std::filesystem::path(configPath).parent_path(),
-                                                   settings);
+                                 return readServer(reader, m, settings);
                                }))
     return *error;
   if (auto error = readSection(reader, *root, "limits",

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "daemon/step_clock.h"
 #include "daemon/wire_convert.h"
@@ -32,6 +33,10 @@ struct ServerSettings {
   // 1 kHz); `server.spin_us: 0` turns it off.
   int64_t spinNanoseconds = 250000;
   std::string recordPath;                // empty: no recording
+  // Where SAVE_CHECKPOINT, RESET with a path and --checkpoint-every put and
+  // find checkpoint files; empty: checkpoints disabled.
+  std::string checkpointDirectory;
+  double checkpointEvery = 0.0;          // s of simulated time between periodic checkpoints; 0 = none
   // Where mesh files of bodies spawned over LCM must lie (`server:
   // spawn_mesh_directory`, relative to the config file); empty: the config
   // file's directory. Config files themselves may name meshes anywhere.
@@ -43,6 +48,15 @@ struct ServerSettings {
   StateLimits stateLimits;
   double maxRealTimeFactor = 1000.0;     // SET_REAL_TIME_FACTOR above this is rejected
   int64_t maxStepsPerCommand = 10000000; // STEP num_steps above this is rejected
+
+  // Access control and limits of the command path (CommandHandler).
+  bool readOnly = false;                 // every wrench and command is rejected; state still published
+  // Bodies that accept external wrenches; unset: every body.
+  std::optional<std::vector<std::string>> wrenchBodies;
+  double clientRate = 5000.0;            // wrenches + commands per second per client id; 0 = unlimited
+  double clientBurst = 5000.0;           // messages a client may send at once (token bucket size)
+  int64_t maxMessageBytes = 262144;      // bytes; larger wrench/command messages are rejected undecoded
+  int64_t maxBodies = 100000;            // SPAWN is rejected when the world has this many bodies
 };
 
 // Reads the `lcm`, `server` and `limits` sections of the config file (absent

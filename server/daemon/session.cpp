@@ -43,4 +43,12 @@ void Session::replaceWorld(World world, WrenchScheduler wrenches) {
   ++m_worldRevision;
 }
 
+void Session::resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
+                         int64_t stepsRequested) {
+  replaceWorld(std::move(world), std::move(wrenches));
+  m_worldRevision = worldRevision;
+  m_paused = paused;
+  m_stepsRequested = stepsRequested;
+}
+
 }  // namespace rbsim

@@ -42,12 +42,14 @@ class Session {
   // Replaces world and wrenches (a checkpoint), with the same rules for serials.
   void replaceWorld(World world, WrenchScheduler wrenches);
 
+  // Continues a checkpointed session: its world, wrenches, pause state and
+  // revision (serials continue after both worlds').
+  void resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
+                  int64_t stepsRequested);
+
   // world_t revision: bumped at every change of the set of bodies.
   int64_t worldRevision() const { return m_worldRevision; }
   void noteWorldChanged() { ++m_worldRevision; }
-  void setWorldRevision(int64_t revision) { m_worldRevision = revision; }
-  void setPaused(bool paused) { m_paused = paused; }
-  void setStepsRequested(int64_t count) { m_stepsRequested = count; }
 
  private:
   World m_initialWorld;

@@ -57,6 +57,11 @@ class WrenchScheduler {
     m_active.clear();
   }
   void removeBody(const std::string& body);
+  // Replaces both lists (a checkpoint being restored), orders kept.
+  void restore(std::vector<WrenchRequest> pending, std::vector<WrenchRequest> active) {
+    m_pending = std::move(pending);
+    m_active = std::move(active);
+  }
 
   int activeCount() const { return static_cast<int>(m_active.size()); }
   int pendingCount() const { return static_cast<int>(m_pending.size()); }

@@ -122,6 +122,7 @@ class Body {
   FreezeReason m_freezeReason = FreezeReason::None;
 
   friend class World;  // the stepping loop writes state and derived values in one pass
+  friend class WorldSnapshot;  // checkpoints restore the state bit for bit
 };
 
 }  // namespace rbsim

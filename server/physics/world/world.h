@@ -105,6 +105,9 @@ class World {
   uint64_t stateHash() const;
 
  private:
+  // Checkpoints (world_snapshot.h) save and rebuild the private state exactly.
+  friend class WorldSnapshot;
+
   struct Slot {
     uint32_t generation = 0;
     int32_t denseIndex = -1;  // -1: free

@@ -131,5 +131,87 @@ TEST(CommandHandler, RealTimeFactorIsPassedToTheCaller) {
   EXPECT_FALSE(send(f.handler, commandMessage("c", 2, 0)).ack.accepted) << "0 is not a command";
 }
 
+TEST(CommandHandlerLimits, ReadOnlyRejectsEveryWrenchAndCommand) {
+  ServerSettings settings;
+  settings.readOnly = true;
+  Fixture f(settings);
+  const CommandOutcome wrench = send(f.handler, wrenchMessage("c", 1, "a"));
+  EXPECT_FALSE(wrench.ack.accepted);
+  EXPECT_NE(wrench.ack.reason.find("read-only"), std::string::npos) << wrench.ack.reason;
+  for (const int8_t command : {rbsim::command_t::PAUSE, rbsim::command_t::RESET, rbsim::command_t::PUBLISH_WORLD}) {
+    const CommandOutcome outcome = send(f.handler, commandMessage("c", 2, command));
+    EXPECT_FALSE(outcome.ack.accepted);
+    EXPECT_FALSE(outcome.publishWorld);
+  }
+  EXPECT_FALSE(f.session.paused());
+  EXPECT_EQ(f.session.wrenches().pendingCount(), 0);
+}
+
+TEST(CommandHandlerLimits, OnlyListedBodiesAcceptWrenches) {
+  ServerSettings settings;
+  settings.wrenchBodies = std::vector<std::string>{"b"};
+  Fixture f(settings);
+  const CommandOutcome onA = send(f.handler, wrenchMessage("c", 1, "a"));
+  EXPECT_FALSE(onA.ack.accepted);
+  EXPECT_NE(onA.ack.reason.find("'a' does not accept external wrenches"), std::string::npos) << onA.ack.reason;
+  EXPECT_TRUE(send(f.handler, wrenchMessage("c", 2, "b")).ack.accepted);
+  auto clearAll = wrenchMessage("c", 3, "");
+  clearAll.mode = rbsim::wrench_t::MODE_CLEAR;
+  EXPECT_TRUE(send(f.handler, clearAll).ack.accepted) << "clearing one's own wrenches is always allowed";
+}
+
+TEST(CommandHandlerLimits, RateIsLimitedPerClientWithoutQueueing) {
+  ServerSettings settings;
+  settings.clientRate = 10.0;  // messages/s
+  settings.clientBurst = 3.0;
+  Fixture f(settings);
+  constexpr int64_t kSecond = 1000000000;
+  int64_t now = 5 * kSecond;
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(send(f.handler, wrenchMessage("fast", i, "a"), now).ack.accepted);
+  const CommandOutcome excess = send(f.handler, commandMessage("fast", 3, rbsim::command_t::PAUSE), now);
+  EXPECT_FALSE(excess.ack.accepted);
+  EXPECT_NE(excess.ack.reason.find("rate limit"), std::string::npos) << excess.ack.reason;
+  EXPECT_FALSE(f.session.paused());
+  EXPECT_TRUE(send(f.handler, wrenchMessage("other", 0, "a"), now).ack.accepted) << "per client";
+  now += kSecond / 10;  // one token back
+  EXPECT_TRUE(send(f.handler, wrenchMessage("fast", 4, "a"), now).ack.accepted);
+  EXPECT_FALSE(send(f.handler, wrenchMessage("fast", 5, "a"), now).ack.accepted);
+  EXPECT_EQ(f.session.wrenches().pendingCount(), 5) << "rejected messages leave nothing behind";
+}
+
+TEST(CommandHandlerLimits, RateLimiterForgetsClientsBeyondItsTable) {
+  ClientRateLimiter limiter(1.0, 1.0);
+  for (std::size_t i = 0; i < ClientRateLimiter::kMaxClients + 100; ++i)
+    EXPECT_TRUE(limiter.allow("client" + std::to_string(i), static_cast<int64_t>(i)));
+  EXPECT_LE(limiter.trackedClients(), ClientRateLimiter::kMaxClients);
+}
+
+TEST(CommandHandlerLimits, OversizedMessagesAreRejectedUndecoded) {
+  ServerSettings settings;
+  settings.maxMessageBytes = 200;
+  Fixture f(settings);
+  auto spawn = commandMessage("c", 1, rbsim::command_t::SPAWN);
+  spawn.spawn_yaml = "{name: big, shape: {type: sphere, radius: 0.1}}" + std::string(300, ' ');
+  const CommandOutcome outcome = send(f.handler, spawn);
+  EXPECT_FALSE(outcome.ack.accepted);
+  EXPECT_NE(outcome.ack.reason.find("max_message_bytes"), std::string::npos) << outcome.ack.reason;
+  EXPECT_EQ(f.session.world().bodyCount(), 2);
+}
+
+TEST(CommandHandlerLimits, SpawnStopsAtTheMaximumNumberOfBodies) {
+  ServerSettings settings;
+  settings.maxBodies = 3;
+  Fixture f(settings);
+  auto spawn = commandMessage("c", 1, rbsim::command_t::SPAWN);
+  spawn.spawn_yaml = "{name: third, shape: {type: sphere, radius: 0.1}, position: [0, 9, 0]}";
+  EXPECT_TRUE(send(f.handler, spawn).ack.accepted);
+  spawn.seq = 2;
+  spawn.spawn_yaml = "{name: fourth, shape: {type: sphere, radius: 0.1}, position: [0, -9, 0]}";
+  const CommandOutcome outcome = send(f.handler, spawn);
+  EXPECT_FALSE(outcome.ack.accepted);
+  EXPECT_NE(outcome.ack.reason.find("max_bodies"), std::string::npos) << outcome.ack.reason;
+  EXPECT_EQ(f.session.world().bodyCount(), 3);
+}
+
 }  // namespace
 }  // namespace rbsim

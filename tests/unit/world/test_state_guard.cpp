@@ -9,6 +9,7 @@
 #include <string>
 
 #include "physics/world/world.h"
+#include "physics/world/world_snapshot.h"
 
 namespace rbsim {
 namespace {
@@ -270,6 +271,27 @@ TEST(StateGuard, RemovingOrResettingClearsTheFrozenState) {
   world.step();
   EXPECT_FALSE(world.body(again).isFrozen());
   EXPECT_TRUE(world.freezeEvents().empty());
+}
+
+TEST(StateGuard, ACheckpointKeepsABodyFrozenAndTheRunBitIdentical) {
+  World world = stackWorld(true);
+  for (int s = 0; s < 5; ++s) world.step();
+  world.body(world.findBody("victim")).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), Vec3::Zero());
+  world.step();
+  ASSERT_EQ(world.frozenBodyCount(), 1);
+
+  const auto bytes = WorldSnapshot::encode(world);
+  ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+  auto restored = WorldSnapshot::decode(*bytes, world.settings());
+  ASSERT_TRUE(restored.ok()) << restored.error().message;
+  EXPECT_EQ(restored->frozenBodyCount(), 1);
+  EXPECT_EQ(restored->body(restored->findBody("victim")).freezeReason(), FreezeReason::NonFiniteState);
+  for (int s = 0; s < 100; ++s) {
+    world.step();
+    restored->step();
+  }
+  EXPECT_EQ(restored->stateHash(), world.stateHash());
+  EXPECT_TRUE(restored->body(restored->findBody("victim")).isFrozen());
 }
 
 }  // namespace

@@ -1,0 +1,21 @@
+#pragma once
+// `rbserver --replay LOG`: the session set up as the recorded server had it,
+// the replay run into the requested output, a report on stdout. Returns the
+// process exit code: 0 done (identical, with --verify), 1 a difference,
+// 3 a log that cannot be read or followed, 2 an output that cannot be opened.
+
+#include <optional>
+#include <string>
+
+#include "daemon/options.h"
+#include "daemon/server_settings.h"
+#include "daemon/session_checkpoint.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+// `resumed`: the checkpoint the recorded server started from (--resume).
+int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
+              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed);
+
+}  // namespace rbsim

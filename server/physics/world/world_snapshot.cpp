@@ -1,0 +1,457 @@
+#include "physics/world/world_snapshot.h"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <variant>
+
+#include "physics/collision/collider.h"
+
+namespace rbsim {
+
+namespace {
+
+constexpr uint32_t kMaxNameLength = 4096;
+constexpr uint32_t kMaxFileNameLength = 65536;
+
+enum class ShapeTag : uint8_t { Sphere = 1, Box = 2, Cylinder = 3, Capsule = 4, Mesh = 5, Plane = 6 };
+
+Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWriter& out) {
+  if (const auto* s = std::get_if<SphereShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Sphere));
+    out.f64(s->radius);
+  } else if (const auto* b = std::get_if<BoxShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Box));
+    out.vec3(b->halfExtents);
+  } else if (const auto* c = std::get_if<CylinderShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Cylinder));
+    out.f64(c->radius);
+    out.f64(c->halfLength);
+  } else if (const auto* p = std::get_if<CapsuleShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Capsule));
+    out.f64(p->radius);
+    out.f64(p->halfLength);
+  } else if (const auto* m = std::get_if<MeshShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Mesh));
+    out.string(m->file);
+    // The vertices themselves: a checkpoint must not depend on files that
+    // may have changed since.
+    out.u32(static_cast<uint32_t>(m->mesh->vertices.size()));
+    for (const Vec3& v : m->mesh->vertices) out.vec3(v);
+    out.u32(static_cast<uint32_t>(m->mesh->triangles.size()));
+    for (const auto& t : m->mesh->triangles)
+      for (const int index : t) out.i32(index);
+  } else if (const auto* h = std::get_if<PlaneShape>(&shape)) {
+    out.u8(static_cast<uint8_t>(ShapeTag::Plane));
+    out.vec3(h->normal);
+    out.f64(h->offset);
+  } else {
+    return Error{"body '" + body + "': a " + shapeTypeName(shape) +
+                 " shape cannot be saved in a checkpoint (format version " +
+                 std::to_string(WorldSnapshot::kVersion) + ")"};
+  }
+  return true;
+}
+
+Shape readShape(ByteReader& in, const std::string& body) {
+  const std::size_t at = in.offset();
+  switch (static_cast<ShapeTag>(in.u8("shape type"))) {
+    case ShapeTag::Sphere:
+      return SphereShape{in.f64("sphere radius")};
+    case ShapeTag::Box:
+      return BoxShape{in.vec3("box half extents")};
+    case ShapeTag::Cylinder: {
+      CylinderShape c;
+      c.radius = in.f64("cylinder radius");
+      c.halfLength = in.f64("cylinder half length");
+      return c;
+    }
+    case ShapeTag::Capsule: {
+      CapsuleShape c;
+      c.radius = in.f64("capsule radius");
+      c.halfLength = in.f64("capsule half length");
+      return c;
+    }
+    case ShapeTag::Mesh: {
+      MeshShape m;
+      m.file = in.string("mesh file name", kMaxFileNameLength);
+      auto mesh = std::make_shared<TriangleMesh>();
+      const uint32_t vertices = in.count("mesh vertex count", 24);
+      mesh->vertices.reserve(vertices);
+      for (uint32_t i = 0; i < vertices && !in.failed(); ++i) mesh->vertices.push_back(in.vec3("mesh vertex"));
+      const uint32_t triangles = in.count("mesh triangle count", 12);
+      mesh->triangles.reserve(triangles);
+      for (uint32_t i = 0; i < triangles && !in.failed(); ++i) {
+        std::array<int, 3> t{};
+        for (int& index : t) {
+          index = in.i32("mesh triangle index");
+          if (index < 0 || static_cast<uint32_t>(index) >= vertices)
+            in.fail("body '" + body + "': mesh triangle " + std::to_string(i) + " has vertex index " +
+                    std::to_string(index) + " of " + std::to_string(vertices));
+        }
+        mesh->triangles.push_back(t);
+      }
+      m.mesh = std::move(mesh);
+      return m;
+    }
+    case ShapeTag::Plane: {
+      PlaneShape p;
+      p.normal = in.vec3("plane normal");
+      p.offset = in.f64("plane offset");
+      return p;
+    }
+  }
+  in.fail("body '" + body + "': unknown shape type at byte " + std::to_string(at));
+  return SphereShape{};
+}
+
+void writeLoad(const ExternalLoad& load, ByteWriter& out) {
+  out.vec3(load.referencePoint);
+  out.vec3(load.worldForce);
+  out.vec3(load.worldTorque);
+  out.vec3(load.bodyForce);
+  out.vec3(load.bodyTorque);
+  out.boolean(load.active);
+}
+
+ExternalLoad readLoad(ByteReader& in) {
+  ExternalLoad load;
+  load.referencePoint = in.vec3("load reference point");
+  load.worldForce = in.vec3("load world force");
+  load.worldTorque = in.vec3("load world torque");
+  load.bodyForce = in.vec3("load body force");
+  load.bodyTorque = in.vec3("load body torque");
+  load.active = in.boolean("load active");
+  return load;
+}
+
+// The settings a resumed run must share with the run it continues.
+void writeSettings(const WorldSettings& s, ByteWriter& out) {
+  out.f64(s.dt);
+  out.vec3(s.gravity);
+  out.u8(static_cast<uint8_t>(s.integrator));
+  out.boolean(s.contact.enabled);
+  out.u8(static_cast<uint8_t>(s.contact.model));
+  out.boolean(s.contact.backtracking);
+  out.boolean(s.contact.sleeping);
+}
+
+void checkSettings(ByteReader& in, const WorldSettings& s) {
+  const auto differs = [&](const std::string& what, const std::string& saved, const std::string& now) {
+    in.fail("the checkpoint was taken with " + what + " " + saved + ", the config has " + now +
+            ": a resumed run would not continue the same simulation");
+  };
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return std::string(buffer);
+  };
+  const double dt = in.f64("dt");
+  const Vec3 gravity = in.vec3("gravity");
+  const uint8_t integrator = in.u8("integrator");
+  const bool enabled = in.boolean("contact enabled");
+  const uint8_t model = in.u8("contact model");
+  const bool backtracking = in.boolean("backtracking");
+  const bool sleeping = in.boolean("sleeping");
+  if (in.failed()) return;
+  if (std::bit_cast<uint64_t>(dt) != std::bit_cast<uint64_t>(s.dt)) differs("dt", text(dt) + " s", text(s.dt) + " s");
+  if (gravity != s.gravity)
+    differs("gravity", "[" + text(gravity.x()) + ", " + text(gravity.y()) + ", " + text(gravity.z()) + "]",
+            "[" + text(s.gravity.x()) + ", " + text(s.gravity.y()) + ", " + text(s.gravity.z()) + "]");
+  if (integrator != static_cast<uint8_t>(s.integrator))
+    differs("integrator", std::to_string(integrator), std::string(integratorName(s.integrator)));
+  if (enabled != s.contact.enabled || model != static_cast<uint8_t>(s.contact.model) ||
+      backtracking != s.contact.backtracking || sleeping != s.contact.sleeping)
+    differs("contact settings (enabled, model, backtracking, sleeping)",
+            std::to_string(enabled) + "," + std::to_string(model) + "," + std::to_string(backtracking) +
+                "," + std::to_string(sleeping),
+            std::to_string(s.contact.enabled) + "," + std::to_string(static_cast<int>(s.contact.model)) +
+                "," + std::to_string(s.contact.backtracking) + "," + std::to_string(s.contact.sleeping));
+}
+
+bool allFinite(std::initializer_list<double> values) {
+  for (const double v : values)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+}  // namespace
+
+void WorldSnapshot::writeWarmStart(const std::vector<SolvedManifold>& manifolds, ByteWriter& out) {
+  out.u32(static_cast<uint32_t>(manifolds.size()));
+  for (const SolvedManifold& m : manifolds) {
+    out.i32(m.serialA);
+    out.i32(m.serialB);
+    out.i32(m.pieceA);
+    out.i32(m.pieceB);
+    out.i32(m.bodyA);
+    out.i32(m.bodyB);
+    out.vec3(m.normal);
+    out.vec3(m.frictionImpulse);
+    out.f64(m.twistImpulse);
+    out.boolean(m.sticking);
+    out.i32(m.pointCount);
+    for (int p = 0; p < m.pointCount; ++p) {
+      const SolvedContactPoint& point = m.points[p];
+      out.vec3(point.point);
+      out.f64(point.depth);
+      out.f64(point.normalImpulse);
+      out.vec3(point.tangentImpulse);
+      out.f64(point.relativeNormalVelocity);
+      out.boolean(point.sticking);
+      out.u32(point.featureId);
+    }
+  }
+}
+
+std::vector<SolvedManifold> WorldSnapshot::readWarmStart(ByteReader& in, int bodyCount) {
+  std::vector<SolvedManifold> manifolds;
+  const uint32_t count = in.count("warm-start manifold count", 101);
+  manifolds.reserve(count);
+  for (uint32_t i = 0; i < count && !in.failed(); ++i) {
+    SolvedManifold m;
+    m.serialA = in.i32("manifold serial A");
+    m.serialB = in.i32("manifold serial B");
+    m.pieceA = in.i32("manifold piece A");
+    m.pieceB = in.i32("manifold piece B");
+    m.bodyA = in.i32("manifold body A");
+    m.bodyB = in.i32("manifold body B");
+    m.normal = in.vec3("manifold normal");
+    m.frictionImpulse = in.vec3("manifold friction impulse");
+    m.twistImpulse = in.f64("manifold twist impulse");
+    m.sticking = in.boolean("manifold sticking");
+    m.pointCount = in.i32("manifold point count");
+    if (m.pointCount < 0 || m.pointCount > 4 || m.bodyA < 0 || m.bodyA >= bodyCount || m.bodyB < 0 ||
+        m.bodyB >= bodyCount) {
+      in.fail("warm-start manifold " + std::to_string(i) + " has " + std::to_string(m.pointCount) +
+              " points or bodies out of range");
+      break;
+    }
+    for (int p = 0; p < m.pointCount; ++p) {
+      SolvedContactPoint& point = m.points[p];
+      point.point = in.vec3("contact point");
+      point.depth = in.f64("contact depth");
+      point.normalImpulse = in.f64("contact normal impulse");
+      point.tangentImpulse = in.vec3("contact tangent impulse");
+      point.relativeNormalVelocity = in.f64("contact normal velocity");
+      point.sticking = in.boolean("contact sticking");
+      point.featureId = in.u32("contact feature id");
+    }
+    manifolds.push_back(m);
+  }
+  return manifolds;
+}
+
+Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
+  out.u32(kMagic);
+  out.u32(kVersion);
+  writeSettings(world.m_settings, out);
+  out.i64(world.m_stepCount);
+  out.i32(world.m_lastSerial);
+  out.u32(static_cast<uint32_t>(world.m_slots.size()));
+  for (const World::Slot& slot : world.m_slots) {
+    out.u32(slot.generation);
+    out.i32(slot.denseIndex);
+  }
+  out.u32(static_cast<uint32_t>(world.m_freeSlots.size()));
+  for (const int32_t slot : world.m_freeSlots) out.i32(slot);
+
+  out.u32(static_cast<uint32_t>(world.m_bodies.size()));
+  for (std::size_t i = 0; i < world.m_bodies.size(); ++i) {
+    const Body& body = world.m_bodies[i];
+    const BodyDescription& d = body.description();
+    out.i32(world.m_denseIds[i].index);
+    out.i32(body.m_serial);
+    out.string(d.name);
+    out.boolean(d.isStatic);
+    out.boolean(d.continuousCollision);
+    if (auto shape = writeShape(d.shape, d.name, out); !shape) return shape;
+    out.f64(d.massProperties.mass);
+    out.f64(d.massProperties.volume);
+    out.vec3(d.massProperties.centerOfMass);
+    out.mat3(d.massProperties.inertia);
+    out.mat3(d.shapeRotation);
+    out.vec3(d.shapeTranslation);
+    out.f64(d.material.restitution);
+    out.f64(d.material.friction);
+    out.f64(d.material.staticFriction);
+    const BodyDynamics& dyn = body.m_dynamics;
+    out.f64(dyn.mass);
+    out.f64(dyn.inverseMass);
+    out.vec3(dyn.inertiaBody);
+    out.vec3(dyn.inverseInertiaBody);
+    out.f64(dyn.linearDamping);
+    out.f64(dyn.angularDamping);
+    out.vec3(body.m_state.position);
+    out.quaternion(body.m_state.orientation);
+    out.vec3(body.m_state.linearMomentum);
+    out.vec3(body.m_state.angularMomentum);
+    writeLoad(body.m_load, out);
+    out.boolean(body.m_sleeping);
+    out.f64(body.m_restTime);
+    // A frozen body's state is the pose it is held at (state_guard.h).
+    out.u8(static_cast<uint8_t>(body.m_freezeReason));
+  }
+  writeWarmStart(world.contacts(), out);
+  return true;
+}
+
+Expected<std::vector<uint8_t>> WorldSnapshot::encode(const World& world) {
+  ByteWriter out;
+  if (auto written = write(world, out); !written) return written.error();
+  return out.take();
+}
+
+Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& settings) {
+  const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
+  const uint32_t magic = in.u32("snapshot magic");
+  const uint32_t version = in.u32("snapshot version");
+  if (in.failed()) return failure();
+  if (magic != kMagic) return Error{"world snapshot: not a world snapshot (bad magic number)"};
+  if (version != kVersion)
+    return Error{"world snapshot: format version " + std::to_string(version) +
+                 " is not supported (this build reads version " + std::to_string(kVersion) + ")"};
+  checkSettings(in, settings);
+  if (in.failed()) return failure();
+
+  World world(settings);
+  world.m_stepCount = in.i64("step count");
+  world.m_lastSerial = in.i32("last serial");
+  if (world.m_stepCount < 0 || world.m_lastSerial < 0) in.fail("negative step count or serial");
+  const uint32_t slotCount = in.count("slot count", 8);
+  for (uint32_t i = 0; i < slotCount && !in.failed(); ++i) {
+    World::Slot slot;
+    slot.generation = in.u32("slot generation");
+    slot.denseIndex = in.i32("slot dense index");
+    world.m_slots.push_back(slot);
+  }
+  const uint32_t freeCount = in.count("free slot count", 4);
+  for (uint32_t i = 0; i < freeCount && !in.failed(); ++i) {
+    const int32_t slot = in.i32("free slot");
+    if (slot < 0 || static_cast<uint32_t>(slot) >= slotCount ||
+        world.m_slots[static_cast<std::size_t>(slot)].denseIndex != -1)
+      in.fail("free slot " + std::to_string(slot) + " is not a free slot of the table");
+    world.m_freeSlots.push_back(slot);
+  }
+  if (in.failed()) return failure();
+
+  const uint32_t bodyCount = in.count("body count", 200);
+  int32_t previousSerial = 0;
+  for (uint32_t i = 0; i < bodyCount && !in.failed(); ++i) {
+    const int32_t slotIndex = in.i32("body slot");
+    const int32_t serial = in.i32("body serial");
+    auto description = std::make_shared<BodyDescription>();
+    description->name = in.string("body name", kMaxNameLength);
+    const std::string where = "body " + std::to_string(i) + " ('" + description->name + "')";
+    if (in.failed()) break;
+    if (slotIndex < 1 || static_cast<uint32_t>(slotIndex) > slotCount ||
+        world.m_slots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(i))
+      return Error{"world snapshot: " + where + " is not where the slot table puts it"};
+    if (serial <= previousSerial || serial > world.m_lastSerial)
+      return Error{"world snapshot: " + where + " has serial " + std::to_string(serial) +
+                   " out of order (previous " + std::to_string(previousSerial) + ", last " +
+                   std::to_string(world.m_lastSerial) + ")"};
+    previousSerial = serial;
+    if (description->name.empty() || !world.findBody(description->name).isNull())
+      return Error{"world snapshot: " + where + ": empty or duplicate name"};
+    description->isStatic = in.boolean("static flag");
+    description->continuousCollision = in.boolean("continuous collision flag");
+    description->shape = readShape(in, description->name);
+    description->massProperties.mass = in.f64("mass");
+    description->massProperties.volume = in.f64("volume");
+    description->massProperties.centerOfMass = in.vec3("centre of mass");
+    description->massProperties.inertia = in.mat3("inertia");
+    description->shapeRotation = in.mat3("shape rotation");
+    description->shapeTranslation = in.vec3("shape translation");
+    description->material.restitution = in.f64("restitution");
+    description->material.friction = in.f64("friction");
+    description->material.staticFriction = in.f64("static friction");
+    BodyDynamics dynamics;
+    dynamics.mass = in.f64("body mass");
+    dynamics.inverseMass = in.f64("inverse mass");
+    dynamics.inertiaBody = in.vec3("principal moments");
+    dynamics.inverseInertiaBody = in.vec3("inverse principal moments");
+    dynamics.linearDamping = in.f64("linear damping");
+    dynamics.angularDamping = in.f64("angular damping");
+    RigidState state;
+    state.position = in.vec3("position");
+    state.orientation = in.quaternion("orientation");
+    state.linearMomentum = in.vec3("linear momentum");
+    state.angularMomentum = in.vec3("angular momentum");
+    const ExternalLoad load = readLoad(in);
+    const bool sleeping = in.boolean("sleeping flag");
+    const double restTime = in.f64("rest time");
+    const uint8_t freezeReason = in.u8("freeze reason");
+    if (in.failed()) break;
+    if (freezeReason > static_cast<uint8_t>(FreezeReason::Requested))
+      return Error{"world snapshot: " + where + " has an unknown freeze reason " +
+                   std::to_string(freezeReason)};
+
+    // Values a step would turn into NaNs or worse: refuse them here.
+    if (!state.position.allFinite() || !state.orientation.isFinite() || !state.linearMomentum.allFinite() ||
+        !state.angularMomentum.allFinite() || std::fabs(state.orientation.norm() - 1.0) > 1e-6 ||
+        !allFinite({dynamics.mass, dynamics.inverseMass, dynamics.linearDamping, dynamics.angularDamping,
+                    restTime}) ||
+        !dynamics.inertiaBody.allFinite() || !dynamics.inverseInertiaBody.allFinite() ||
+        !description->shapeRotation.allFinite() || !description->shapeTranslation.allFinite())
+      return Error{"world snapshot: " + where + " has a non-finite or non-unit state"};
+    const bool isPlane = std::holds_alternative<PlaneShape>(description->shape);
+    if (isPlane && !description->isStatic)
+      return Error{"world snapshot: " + where + ": a plane can only be static"};
+    if (const auto* mesh = std::get_if<MeshShape>(&description->shape)) {
+      const auto valid = validateClosedMesh(*mesh->mesh, description->name);
+      if (!valid) return Error{"world snapshot: " + where + ": " + valid.error().message};
+      description->bodySpaceMesh = std::make_shared<TriangleMesh>(
+          transformed(*mesh->mesh, description->shapeRotation, description->shapeTranslation));
+    }
+    auto collider = buildCollider(description->shape,
+                                  Transform{description->shapeRotation, description->shapeTranslation},
+                                  "body '" + description->name + "'");
+    if (!collider) return Error{"world snapshot: " + where + ": " + collider.error().message};
+    description->collider = std::make_shared<const Collider>(std::move(collider).value());
+
+    // The state exactly as saved: Body's constructor would normalise the
+    // quaternion, which can move its last bit.
+    Body body(description, dynamics, state);
+    body.m_state = state;
+    body.updateDerived();
+    body.m_serial = serial;
+    body.m_load = load;
+    body.m_sleeping = sleeping;
+    body.m_restTime = restTime;
+    // The guard's last good pose is the state as saved: it was set from it
+    // at the end of the step before the snapshot (and a frozen body is held
+    // exactly there).
+    body.m_lastGoodPosition = state.position;
+    body.m_lastGoodOrientation = state.orientation;
+    body.m_freezeReason = static_cast<FreezeReason>(freezeReason);
+    if (body.isFrozen()) ++world.m_frozenBodies;
+    const BodyId id{slotIndex, world.m_slots[static_cast<std::size_t>(slotIndex - 1)].generation};
+    world.m_idByName.emplace(description->name, id);
+    if (description->collider) ++world.m_collidingBodies;
+    if (description->continuousCollision && !description->isStatic) ++world.m_continuousBodies;
+    world.m_bodies.push_back(std::move(body));
+    world.m_denseIds.push_back(id);
+  }
+  if (in.failed()) return failure();
+  std::size_t slotsInUse = 0;
+  for (const World::Slot& slot : world.m_slots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
+  if (slotsInUse != world.m_bodies.size() || slotsInUse + world.m_freeSlots.size() != world.m_slots.size())
+    return Error{"world snapshot: the slot table does not match the " +
+                 std::to_string(world.m_bodies.size()) + " bodies"};
+
+  world.m_contacts = readWarmStart(in, world.bodyCount());
+  if (in.failed()) return failure();
+  return world;
+}
+
+Expected<World> WorldSnapshot::decode(std::span<const uint8_t> bytes, const WorldSettings& settings) {
+  ByteReader in(bytes);
+  auto world = read(in, settings);
+  if (world && in.remaining() != 0)
+    return Error{"world snapshot: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
+  return world;
+}
+
+}  // namespace rbsim
