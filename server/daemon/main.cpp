@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "config/config_loader.h"
+#include "daemon/lcm_url_reach.h"
 #include "daemon/log.h"
 #include "daemon/mass_properties_report.h"
 #include "daemon/options.h"
@@ -117,6 +118,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
     return 1;
   }
+  if (const std::string warning = reachWarning(settings->lcmUrl); !warning.empty()) logWarning(warning);
   Server server(*settings, std::move(world).value(), spawnMeshDirectory);
   const auto opened = server.open();
   if (!opened) {
