@@ -11,8 +11,12 @@
 // or removing it brings the slot back. Thawing it in place would put back
 // into the world whatever made it blow up.
 //
-// The check reads 19 numbers a body and branches once; it costs a few
-// nanoseconds a body next to the integration it guards.
+// Cost: bodies that fly free are cleared inside the integration loop on the
+// momenta the integrator just returned (surelyHealthy: two squared norms);
+// the others (in contact, swept by continuous collision, or near a limit)
+// are judged after the step. On bench_free_bodies (1000 bodies) that is
+// under 1 ns of ~113 ns a body-step with semi-implicit Euler and ~4 ns of
+// ~212 with RK4.
 
 #include <cstdint>
 #include <string>
@@ -47,6 +51,43 @@ struct FreezeEvent {
   int64_t step = 0;  // the step that went bad (numbered as on the wire)
   StateVerdict verdict;
 };
+
+// The guard's test on the stepping path: true when the state is healthy.
+// NaN or ±inf in P or L always reaches v = P/M or ω = I⁻¹L (an infinity times
+// a zero of the rotation is NaN), and NaN compares false, so two squared
+// speeds cover the momenta; the pose is finite when the sum of its seven
+// numbers is (a sum of poses cannot overflow: |x| is nowhere near 1e308).
+// Eleven additions and six multiplications, three comparisons, no square
+// root. judgeState says why a state failed.
+inline bool isHealthy(const RigidState& state, const Vec3& linearVelocity, const Vec3& angularVelocity,
+                      double maxLinearSpeedSquared, double maxAngularSpeedSquared) {
+  const Quaternion& q = state.orientation;
+  const double pose = state.position.x() + state.position.y() + state.position.z() + q.w + q.x + q.y + q.z;
+  return pose - pose == 0.0 && linearVelocity.squaredNorm() <= maxLinearSpeedSquared &&
+         angularVelocity.squaredNorm() <= maxAngularSpeedSquared;
+}
+
+// The guard's test inside a free integration step, on the state the
+// integrator returned, before it is stored and before the velocities are
+// derived from it: true means healthy for certain, false means "judge it
+// properly" (judgeState, after the velocities are known).
+// - Starting from a healthy state, the new pose is the old one moved by the
+//   new (or stage) velocities, which are finite when the new momenta are: a
+//   non-finite force leaves a NaN or an infinity in P or L, and NaN compares
+//   false. So the momenta say it all.
+// - |v| = |P| / M exactly; |ω| = |R I⁻¹ Rᵀ L| <= |L| max(I⁻¹), so a bound
+//   within the limit proves ω is too. Only a body spinning near the limit
+//   (or a long thin one spinning about its long axis at a tenth of it) is
+//   judged the slow way.
+// Two squared norms on values the integrator just produced: the step does
+// not wait on the velocities' matrix products.
+inline bool surelyHealthy(const RigidState& next, double inverseMass, const Vec3& inverseInertiaBody,
+                          double maxLinearSpeedSquared, double maxAngularSpeedSquared) {
+  const double maxInverseInertia = inverseInertiaBody.maxCoeff();
+  return next.linearMomentum.squaredNorm() * (inverseMass * inverseMass) <= maxLinearSpeedSquared &&
+         next.angularMomentum.squaredNorm() * (maxInverseInertia * maxInverseInertia) <=
+             maxAngularSpeedSquared;
+}
 
 // Judges a state and its derived velocities (world frame) against the limits.
 inline StateVerdict judgeState(const RigidState& state, const Vec3& linearVelocity,

@@ -115,7 +115,7 @@ class World {
 
   // Integrates the awake dynamic bodies not marked in `skip` (all when it is
   // empty) over h with the world's integrator, loads applied, and clears
-  // their loads.
+  // their loads; judges each for the guard as it goes (m_judged).
   void integrateFree(double h, const std::vector<char>& skip);
   // The numerical guard, once per step after everything else has moved.
   void guardStates();
@@ -163,6 +163,9 @@ class World {
   int m_continuousBodies = 0; // dynamic bodies flagged for continuous collision
   int m_frozenBodies = 0;
   std::vector<FreezeEvent> m_freezeEvents;  // of the last step
+  // Per dense index, during a step: 1 when the guard has nothing left to do
+  // for the body (judged and passed in integrateFree, static, asleep).
+  std::vector<char> m_judged;
 };
 
 }  // namespace rbsim

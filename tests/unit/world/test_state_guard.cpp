@@ -216,6 +216,39 @@ TEST(StateGuard, OverSpeedFreezesWithTheSpeedInTheReport) {
   EXPECT_EQ(world.frozenBodyCount(), 2);
 }
 
+TEST(StateGuard, ALongThinBodySpinningBelowTheLimitStaysFree) {
+  // Spun about its long-inertia axis, its |L| max(I⁻¹) is 30 times its |ω|:
+  // the quick bound cannot clear it, the exact check must.
+  World world;
+  StateLimits limits;
+  limits.maxAngularSpeed = 100.0;
+  world.setStateLimits(limits);
+  world.setGravity(Vec3::Zero());
+  BodyDef rod = boxAt("rod", Vec3::Zero());
+  rod.shape = BoxShape{Vec3(0.5, 0.01, 0.01)};
+  rod.angularVelocity = Vec3(0.0, 0.0, 90.0);
+  const BodyId id = world.createBody(rod).value();
+  for (int s = 0; s < 100; ++s) world.step();
+  EXPECT_FALSE(world.body(id).isFrozen());
+  EXPECT_NEAR(world.body(id).angularVelocity().norm(), 90.0, 1e-6);
+  world.body(id).applyBodyWrench(Vec3::Zero(), Vec3(0, 0, 1e3), Vec3::Zero());
+  world.step();
+  EXPECT_TRUE(world.body(id).isFrozen());
+}
+
+TEST(StateGuard, AContinuousCollisionBodyIsJudgedAfterItsSweep) {
+  World world = stackWorld(false);
+  BodyDef bullet = sphereAt("bullet", Vec3(3, 0, 2), Vec3(20, 0, 0));
+  bullet.continuousCollision = true;
+  const BodyId id = world.createBody(bullet).value();
+  for (int s = 0; s < 3; ++s) world.step();
+  const Vec3 before = world.body(id).position();
+  world.body(id).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), before);
+  world.step();
+  ASSERT_EQ(world.freezeEvents().size(), 1u);
+  EXPECT_EQ(world.body(id).position(), before);
+}
+
 TEST(StateGuard, ABodyCreatedTooFastFreezesOnItsFirstStepWhereItWasPlaced) {
   World world;
   StateLimits limits;
