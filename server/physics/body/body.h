@@ -77,7 +77,9 @@ class Body {
 
   // Replaces the whole state (normalising the quaternion) and the derived
   // values. A finite state also becomes the guard's last good pose (unless
-  // the body is frozen: then it is held where it was frozen).
+  // the body is frozen: then it is held where it was frozen). Give a finite
+  // state: the guard clears free bodies on their momenta and would not see a
+  // NaN put straight into the pose.
   void setState(const RigidState& state);
   void setVelocities(const Vec3& linearVelocity, const Vec3& angularVelocity);
   void setDamping(double linear, double angular);
