@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "config/yaml_document_count.h"
+#include "config/contained_path.h"
 #include "config/yaml_reader.h"
 #include "physics/geometry/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
@@ -73,10 +74,20 @@ const YamlMap::Entry& later(const YamlMap::Entry& a, const YamlMap::Entry& b) {
   return aFirst ? b : a;
 }
 
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
 class ConfigParser {
  public:
-  ConfigParser(std::string sourceName, const std::string& baseDirectory)
-      : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory) {}
+  // How far mesh paths may reach: anywhere (a trusted config file), or only
+  // files under the base directory (a body spawned over the network).
+  enum class MeshPaths { Anywhere, InsideBaseDirectory };
+
+  ConfigParser(std::string sourceName, const std::string& baseDirectory,
+               MeshPaths meshPaths = MeshPaths::Anywhere)
+      : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory), m_meshPaths(meshPaths) {}
 
   Expected<WorldDef> parseWorld(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
@@ -96,8 +107,12 @@ class ConfigParser {
   Expected<Shape> parseCompound(const YamlMap& shape, bool isStatic) const;
   Expected<CompoundPart> parseCompoundPart(const YamlNode& node, bool isStatic) const;
 
+  // Where the mesh named `file` is read from, or why it may not be.
+  Expected<std::string> meshPath(const std::string& file) const;
+
   YamlReader m_reader;
   std::filesystem::path m_baseDirectory;
+  MeshPaths m_meshPaths;
 };
 
 Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
@@ -389,13 +404,19 @@ Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
   if (!file) return file.error();
   if (file->empty()) return m_reader.error(*fileNode, "expected a mesh file path");
 
-  // Relative to the config file, so that a world and its meshes move together.
-  std::filesystem::path path(*file);
-  if (path.is_relative() && !m_baseDirectory.empty()) path = m_baseDirectory / path;
-  const std::string resolved = path.lexically_normal().string();
+  const Expected<std::string> path = meshPath(*file);
+  if (!path) return m_reader.error(*fileNode, path.error().message);
+  const bool contained = m_meshPaths == MeshPaths::InsideBaseDirectory;
+  // A spawned body's mesh is named as its sender named it (in messages and in
+  // the world description): the host's directory layout is none of its business.
+  const std::string resolved = contained ? *file : *path;
 
-  Expected<TriangleMesh> mesh = loadMesh(resolved);
-  if (!mesh) return m_reader.error(*fileNode, mesh.error().message);
+  Expected<TriangleMesh> mesh = loadMesh(*path);
+  if (!mesh) {
+    std::string message = mesh.error().message;
+    if (contained) replaceAll(message, *path, *file);
+    return m_reader.error(*fileNode, message);
+  }
   Expected<bool> closed = validateClosedMesh(*mesh, resolved);
   if (!closed) return m_reader.error(*fileNode, closed.error().message);
   for (const Vec3& vertex : mesh->vertices) {
@@ -406,6 +427,15 @@ Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
     }
   }
   return Shape{MeshShape{resolved, std::make_shared<const TriangleMesh>(std::move(*mesh))}};
+}
+
+Expected<std::string> ConfigParser::meshPath(const std::string& file) const {
+  if (m_meshPaths == MeshPaths::InsideBaseDirectory)
+    return resolveContainedFile(file, m_baseDirectory.string());
+  // Relative to the config file, so that a world and its meshes move together.
+  std::filesystem::path path(file);
+  if (path.is_relative() && !m_baseDirectory.empty()) path = m_baseDirectory / path;
+  return path.lexically_normal().string();
 }
 
 Expected<Shape> ConfigParser::parsePlane(const YamlMap& shape, const YamlNode& type,
@@ -530,6 +560,13 @@ Expected<WorldDef> parseWorldConfig(const std::string& yamlText, const std::stri
 Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& sourceName,
                                const std::string& baseDirectory) {
   const ConfigParser parser(sourceName, baseDirectory);
+  return parseDocument<BodyDef>(yamlText, sourceName,
+                                [&](const YamlNode& root) { return parser.parseBody(root); });
+}
+
+Expected<BodyDef> parseSpawnedBodyDef(const std::string& yamlText, const std::string& sourceName,
+                                      const std::string& meshDirectory) {
+  const ConfigParser parser(sourceName, meshDirectory, ConfigParser::MeshPaths::InsideBaseDirectory);
   return parseDocument<BodyDef>(yamlText, sourceName,
                                 [&](const YamlNode& root) { return parser.parseBody(root); });
 }

@@ -30,4 +30,12 @@ Expected<WorldDef> parseWorldConfig(const std::string& yamlText, const std::stri
 Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& sourceName,
                                const std::string& baseDirectory);
 
+// The same for a body spawned over the network (SPAWN's spawn_yaml), whose
+// sender is not trusted with the server's file system: a mesh file must be a
+// relative path to a regular file under `meshDirectory`, with no '..' and no
+// symbolic link leading out (config/contained_path.h has the rules). Messages
+// name the mesh as the sender did, never by the host's path.
+Expected<BodyDef> parseSpawnedBodyDef(const std::string& yamlText, const std::string& sourceName,
+                                      const std::string& meshDirectory);
+
 }  // namespace rbsim

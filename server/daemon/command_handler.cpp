@@ -48,10 +48,11 @@ CommandOutcome accepted(rbsim::ack_t ack, int64_t effectiveStep, std::string not
 
 }  // namespace
 
-CommandHandler::CommandHandler(Session& session, ServerSettings settings, std::string configDirectory)
+CommandHandler::CommandHandler(Session& session, ServerSettings settings,
+                               std::string spawnMeshDirectory)
     : m_session(session),
       m_settings(std::move(settings)),
-      m_configDirectory(std::move(configDirectory)),
+      m_spawnMeshDirectory(std::move(spawnMeshDirectory)),
       m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
       m_commandChannel(m_settings.channelPrefix + "COMMAND"),
       m_rateLimiter(m_settings.clientRate, m_settings.clientBurst) {}
@@ -168,7 +169,7 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       if (world.bodyCount() >= m_settings.maxBodies)
         return reject("the world has " + std::to_string(world.bodyCount()) + " bodies, as many as " +
                       "limits.max_bodies allows");
-      const auto def = parseBodyDef(message.spawn_yaml, "spawn_yaml", m_configDirectory);
+      const auto def = parseSpawnedBodyDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory);
       if (!def) return reject(def.error().message);
       const auto id = world.createBody(*def);
       if (!id) return reject(id.error().message);

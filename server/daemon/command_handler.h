@@ -39,9 +39,10 @@ struct CommandOutcome {
 
 class CommandHandler {
  public:
-  // `settings` gives the channel prefix and the limits; `configDirectory`
-  // resolves mesh files of spawned bodies. The session must outlive the handler.
-  CommandHandler(Session& session, ServerSettings settings, std::string configDirectory);
+  // `settings` gives the channel prefix and the limits; mesh files of spawned
+  // bodies must lie under `spawnMeshDirectory` (see parseSpawnedBodyDef). The
+  // session must outlive the handler.
+  CommandHandler(Session& session, ServerSettings settings, std::string spawnMeshDirectory);
 
   // A message received on `channel`: <prefix>WRENCH or <prefix>COMMAND.
   // Nullopt for any other channel (no ack is due). `receivedAt` (ns of a
@@ -63,7 +64,7 @@ class CommandHandler {
 
   Session& m_session;
   ServerSettings m_settings;
-  std::string m_configDirectory;
+  std::string m_spawnMeshDirectory;
   std::string m_wrenchChannel;
   std::string m_commandChannel;
   ClientRateLimiter m_rateLimiter;

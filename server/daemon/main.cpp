@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "config/config_loader.h"
+#include "daemon/lcm_url_reach.h"
 #include "daemon/log.h"
 #include "daemon/mass_properties_report.h"
 #include "daemon/options.h"
@@ -81,6 +82,9 @@ int main(int argc, char** argv) {
   if (options->readOnly) settings->readOnly = true;
   if (options->checkpointDirectory) settings->checkpointDirectory = *options->checkpointDirectory;
   if (options->checkpointEvery) settings->checkpointEvery = *options->checkpointEvery;
+  // The guard's limits live with the server's other limits in the config
+  // file; the world (and RESET's copy of it, made from this one) obeys them.
+  world->setStateLimits(settings->stateLimits);
   if (!isPlainChannelPrefix(settings->channelPrefix)) {
     std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
                  settings->channelPrefix.c_str());
@@ -89,6 +93,9 @@ int main(int argc, char** argv) {
 
   const std::string configDirectory =
       std::filesystem::path(options->configPath).parent_path().string();
+  // A replay must take the same SPAWN decisions as the recorded server.
+  const std::string spawnMeshDirectory =
+      settings->spawnMeshDirectory.empty() ? configDirectory : settings->spawnMeshDirectory;
   std::optional<SessionState> resumed;
   if (options->resumePath) {
     auto state = loadSessionCheckpoint(*options->resumePath, world->settings());
@@ -99,7 +106,8 @@ int main(int argc, char** argv) {
     resumed = std::move(state).value();
   }
   if (options->replayPath)
-    return runReplay(*options, *settings, std::move(world).value(), configDirectory, std::move(resumed));
+    return runReplay(*options, *settings, std::move(world).value(), spawnMeshDirectory,
+                     std::move(resumed));
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.
@@ -110,7 +118,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
     return 1;
   }
-  Server server(*settings, std::move(world).value(), configDirectory);
+  if (const std::string warning = reachWarning(settings->lcmUrl); !warning.empty()) logWarning(warning);
+  Server server(*settings, std::move(world).value(), spawnMeshDirectory);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());

@@ -15,7 +15,7 @@
 namespace rbsim {
 
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& configDirectory, std::optional<SessionState> resumed) {
+              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed) {
   // The log says which messages were accepted: admission rules that depend
   // on the moment (read-only mode, rate limits) must not second-guess it.
   ServerSettings replaySettings = settings;
@@ -25,7 +25,7 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
   if (resumed)
     session.resumeFrom(std::move(resumed->world), std::move(resumed->wrenches), resumed->worldRevision,
                        resumed->paused, resumed->stepsRequested);
-  CommandHandler handler(session, replaySettings, configDirectory);
+  CommandHandler handler(session, replaySettings, spawnMeshDirectory);
 
   EventRecorder file;
   std::unique_ptr<lcm::LCM> lcm;

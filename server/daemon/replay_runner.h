@@ -16,6 +16,6 @@ namespace rbsim {
 
 // `resumed`: the checkpoint the recorded server started from (--resume).
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& configDirectory, std::optional<SessionState> resumed);
+              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed);
 
 }  // namespace rbsim

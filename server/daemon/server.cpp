@@ -35,10 +35,10 @@ Nanoseconds periodOf(double hertz) {
 
 }  // namespace
 
-Server::Server(ServerSettings settings, World initialWorld, std::string configDirectory)
+Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory)
     : m_settings(std::move(settings)),
       m_session(std::move(initialWorld), m_settings.startPaused),
-      m_commands(m_session, m_settings, std::move(configDirectory)),
+      m_commands(m_session, m_settings, std::move(spawnMeshDirectory)),
       m_clock(m_session.world().settings().dt, m_settings.realTimeFactor, m_settings.catchUp,
               m_settings.maxBurst) {
   const double dt = world().settings().dt;
@@ -218,6 +218,7 @@ void Server::stepOnce() {
   const Nanoseconds start = monotonicNow();
   m_session.step();
   const double seconds = static_cast<double>(monotonicNow() - start) * 1e-9;
+  for (const FreezeEvent& event : world().freezeEvents()) logWarning(describeFreeze(event));
   m_stepTimes.sum += seconds;
   m_stepTimes.worst = std::max(m_stepTimes.worst, seconds);
   ++m_stepTimes.count;
@@ -314,7 +315,7 @@ void Server::publishStatus(Nanoseconds now) {
   status.commands_accepted = m_counters.accepted;
   status.commands_rejected = m_counters.rejected;
   status.num_bodies = world().bodyCount();
-  status.num_frozen_bodies = 0;
+  status.num_frozen_bodies = world().frozenBodyCount();
   status.num_active_wrenches = m_session.wrenches().activeCount();
   status.num_contacts = world().contactPointCount();
   publish(channel("STATUS"), status);

@@ -25,9 +25,9 @@ namespace rbsim {
 
 class Server {
  public:
-  // `initialWorld` is what RESET returns to; `configDirectory` resolves mesh
-  // paths of spawned bodies.
-  Server(ServerSettings settings, World initialWorld, std::string configDirectory);
+  // `initialWorld` is what RESET returns to; mesh files of spawned bodies
+  // must lie under `spawnMeshDirectory`.
+  Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory);
 
   // Connects to LCM, subscribes, opens the record file. A bad URL or an
   // unwritable record file is an error, before any stepping.

@@ -57,9 +57,9 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 10> kKeys = {
+  static constexpr std::array<std::string_view, 11> kKeys = {
       "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us",
-      "checkpoint_dir", "checkpoint_every", "read_only"};
+      "checkpoint_dir", "checkpoint_every", "read_only", "spawn_mesh_directory"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -90,6 +90,14 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
     if (!path) return path.error();
     out.recordPath = *path;
   }
+  if (const auto* entry = server.find("spawn_mesh_directory")) {
+    const auto directory = reader.string(entry->value);
+    if (!directory) return directory.error();
+    if (directory->empty()) return reader.error(entry->value, "expected a directory");
+    // Like mesh paths in the config file: relative to the file.
+    out.spawnMeshDirectory =
+        (std::filesystem::path(reader.sourceName()).parent_path() / *directory).lexically_normal().string();
+  }
   const auto spin = reader.number(server, "spin_us", NumberRule::nonNegative(1e6),
                                   static_cast<double>(out.spinNanoseconds) * 1e-3);
   if (!spin) return spin.error();
@@ -119,10 +127,10 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
 
 std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 12> kKeys = {
+  static constexpr std::array<std::string_view, 14> kKeys = {
       "max_force", "max_torque", "max_lever_arm", "max_duration", "max_steps_ahead",
       "max_real_time_factor", "max_steps_per_command", "wrench_bodies", "client_rate", "client_burst",
-      "max_message_bytes", "max_bodies"};
+      "max_message_bytes", "max_bodies", "max_linear_speed", "max_angular_speed"};
   if (auto error = reader.checkKeys(limits, kKeys, "the limits section")) return error;
   struct Field {
     std::string_view key;
@@ -130,13 +138,15 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
   };
   double stepsAhead = static_cast<double>(out.limits.maxStepsAhead);
   double stepsPerCommand = static_cast<double>(out.maxStepsPerCommand);
-  const std::array<Field, 7> fields = {{{"max_force", &out.limits.maxForce},
+  const std::array<Field, 9> fields = {{{"max_force", &out.limits.maxForce},
                                         {"max_torque", &out.limits.maxTorque},
                                         {"max_lever_arm", &out.limits.maxLeverArm},
                                         {"max_duration", &out.limits.maxDuration},
                                         {"max_steps_ahead", &stepsAhead},
                                         {"max_real_time_factor", &out.maxRealTimeFactor},
-                                        {"max_steps_per_command", &stepsPerCommand}}};
+                                        {"max_steps_per_command", &stepsPerCommand},
+                                        {"max_linear_speed", &out.stateLimits.maxLinearSpeed},
+                                        {"max_angular_speed", &out.stateLimits.maxAngularSpeed}}};
   for (const Field& field : fields) {
     const auto value = reader.number(limits, field.key, NumberRule::positive(1e15), *field.value);
     if (!value) return value.error();
@@ -195,7 +205,9 @@ Expected<ServerSettings> loadServerSettings(const std::string& configPath) {
                                [&](const YamlMap& m) { return readLcm(reader, m, settings); }))
     return *error;
   if (auto error = readSection(reader, *root, "server",
-                               [&](const YamlMap& m) { return readServer(reader, m, settings); }))
+                               [&](const YamlMap& m) {
+                                 return readServer(reader, m, settings);
+                               }))
     return *error;
   if (auto error = readSection(reader, *root, "limits",
                                [&](const YamlMap& m) { return readLimits(reader, m, settings); }))

@@ -9,6 +9,7 @@
 #include "daemon/step_clock.h"
 #include "daemon/wire_convert.h"
 #include "physics/common/expected.h"
+#include "physics/world/state_guard.h"
 
 namespace rbsim {
 
@@ -36,8 +37,15 @@ struct ServerSettings {
   // find checkpoint files; empty: checkpoints disabled.
   std::string checkpointDirectory;
   double checkpointEvery = 0.0;          // s of simulated time between periodic checkpoints; 0 = none
+  // Where mesh files of bodies spawned over LCM must lie (`server:
+  // spawn_mesh_directory`, relative to the config file); empty: the config
+  // file's directory. Config files themselves may name meshes anywhere.
+  std::string spawnMeshDirectory;
 
   WrenchLimits limits;
+  // The numerical guard's speed limits, handed to the world (main.cpp): a
+  // body faster than these is frozen and reported.
+  StateLimits stateLimits;
   double maxRealTimeFactor = 1000.0;     // SET_REAL_TIME_FACTOR above this is rejected
   int64_t maxStepsPerCommand = 10000000; // STEP num_steps above this is rejected
 

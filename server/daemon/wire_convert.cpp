@@ -311,6 +311,10 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
                  " N·m exceeds the limit of " + std::to_string(limits.maxTorque) + " N·m"};
   const Body& body = world.body(id);
   if (body.isStatic()) return Error{"body '" + message.body + "' is static"};
+  if (body.isFrozen())
+    return Error{"body '" + message.body + "' is frozen (" +
+                 std::string(freezeReasonName(body.freezeReason())) +
+                 "); RESET or REMOVE it"};
   const double leverArm = request.frame == WrenchFrame::World
                               ? (request.point - body.position()).norm()
                               : request.point.norm();

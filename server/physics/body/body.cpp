@@ -8,6 +8,8 @@ Body::Body(std::shared_ptr<const BodyDescription> description, const BodyDynamic
            const RigidState& state)
     : m_description(std::move(description)), m_dynamics(dynamics), m_state(state) {
   m_state.orientation = m_state.orientation.normalized();
+  m_lastGoodPosition = m_state.position;
+  m_lastGoodOrientation = m_state.orientation;
   updateDerived();
 }
 
@@ -27,6 +29,12 @@ double Body::kineticEnergy() const {
 void Body::setState(const RigidState& state) {
   m_state = state;
   m_state.orientation = m_state.orientation.normalized();
+  // A frozen body's pose is the one it is held at: the stepping paths that
+  // move every dynamic body through setState must not shift it.
+  if (!isFrozen() && m_state.position.allFinite() && m_state.orientation.isFinite()) {
+    m_lastGoodPosition = m_state.position;
+    m_lastGoodOrientation = m_state.orientation;
+  }
   updateDerived();
 }
 

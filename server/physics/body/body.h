@@ -7,6 +7,7 @@
 
 #include "physics/body/body_def.h"
 #include "physics/body/external_load.h"
+#include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
 #include "physics/collision/collider.h"
 #include "physics/geometry/shape.h"
@@ -74,7 +75,11 @@ class Body {
   }
   double kineticEnergy() const;  // J: ½ P·v + ½ L·ω
 
-  // Replaces the whole state (normalising the quaternion) and the derived values.
+  // Replaces the whole state (normalising the quaternion) and the derived
+  // values. A finite state also becomes the guard's last good pose (unless
+  // the body is frozen: then it is held where it was frozen). Give a finite
+  // state: the guard clears free bodies on their momenta and would not see a
+  // NaN put straight into the pose.
   void setState(const RigidState& state);
   void setVelocities(const Vec3& linearVelocity, const Vec3& angularVelocity);
   void setDamping(double linear, double angular);
@@ -93,6 +98,11 @@ class Body {
   // integrated until something touches or pushes it.
   bool isSleeping() const { return m_sleeping; }
 
+  // Frozen by the numerical guard (world/state_guard.h): held still at its
+  // last good pose, never integrated or collided again.
+  bool isFrozen() const { return m_freezeReason != FreezeReason::None; }
+  FreezeReason freezeReason() const { return m_freezeReason; }
+
  private:
   void updateDerived();
 
@@ -107,6 +117,11 @@ class Body {
   int32_t m_serial = 0;
   bool m_sleeping = false;
   double m_restTime = 0.0;  // s spent below the sleep velocities
+  // The pose that last passed the guard's check: where a body that goes bad
+  // is put back. Kept by the world after every step and by setState.
+  Vec3 m_lastGoodPosition = Vec3::Zero();
+  Quaternion m_lastGoodOrientation = Quaternion::identity();
+  FreezeReason m_freezeReason = FreezeReason::None;
 
   friend class World;  // the stepping loop writes state and derived values in one pass
   friend class WorldSnapshot;  // checkpoints restore the state bit for bit

@@ -52,7 +52,7 @@ void BroadPhase::update(const World& world) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const BroadPhaseShape shape = BroadPhaseShape::of(body);
-    if (shape.hasGeometry())
+    if (shape.hasGeometry() && !body.isFrozen())  // frozen: out of the simulation
       m_inputs.push_back(
           shape.placed(body.serial(), static_cast<int>(i), {body.rotation(), body.position()}));
   }

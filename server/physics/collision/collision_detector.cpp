@@ -59,7 +59,8 @@ void CollisionDetector::detect(const World& world) {
     }
     geometry.serial = body.serial();
     geometry.pose = pose;
-    if (geometry.shape.hasGeometry()) {
+    // A frozen body is out of the simulation: nothing collides with it.
+    if (geometry.shape.hasGeometry() && !body.isFrozen()) {
       m_broadPhaseInputs.push_back(
           geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
     }

@@ -224,6 +224,7 @@ bool World::removeBody(BodyId id) {
   if (m_bodies[dense].description().collider) --m_collidingBodies;
   if (m_bodies[dense].description().continuousCollision && !m_bodies[dense].isStatic())
     --m_continuousBodies;
+  if (m_bodies[dense].isFrozen()) --m_frozenBodies;
   m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
   m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (size_t i = dense; i < m_denseIds.size(); ++i)
@@ -256,6 +257,7 @@ Body& World::body(BodyId id) {
 }
 
 void World::step() {
+  m_judged.assign(m_bodies.size(), 0);
   const bool anyContact = m_settings.contact.enabled && m_collidingBodies > 0;
   std::vector<RigidState> starts;
   if (anyContact && m_continuousBodies > 0) {
@@ -274,18 +276,102 @@ void World::step() {
   }
   if (!starts.empty()) applyContinuousCollision(starts);
   ++m_stepCount;
+  guardStates();
+}
+
+void World::guardStates() {
+  if (!m_freezeEvents.empty()) m_freezeEvents.clear();
+  const StateLimits& limits = m_settings.limits;
+  const double maxLinear2 = limits.maxLinearSpeed * limits.maxLinearSpeed;
+  const double maxAngular2 = limits.maxAngularSpeed * limits.maxAngularSpeed;
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    // Most bodies were judged by integrateFree while they were in cache; a
+    // byte per body is all this pass reads of them.
+    if (m_judged[i]) continue;
+    Body& body = m_bodies[i];
+    if (body.isStatic()) continue;
+    if (body.isFrozen()) {
+      holdFrozen(body);
+      continue;
+    }
+    if (body.m_sleeping) continue;  // it has not moved since it last passed
+    if (isHealthy(body.m_state, body.m_linearVelocity, body.m_angularVelocity, maxLinear2, maxAngular2)) {
+      body.m_lastGoodPosition = body.m_state.position;
+      body.m_lastGoodOrientation = body.m_state.orientation;
+      continue;
+    }
+    const StateVerdict verdict =
+        judgeState(body.m_state, body.m_linearVelocity, body.m_angularVelocity, limits);
+    if (verdict.reason == FreezeReason::None) continue;  // a pose sum that overflowed: none does
+    body.m_freezeReason = verdict.reason;
+    ++m_frozenBodies;
+    holdFrozen(body);
+    m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict});
+  }
+}
+
+void World::holdFrozen(Body& body) {
+  body.m_state.position = body.m_lastGoodPosition;
+  body.m_state.orientation = body.m_lastGoodOrientation;
+  body.m_state.linearMomentum.setZero();
+  body.m_state.angularMomentum.setZero();
+  body.m_load.clear();
+  // Never asleep: a frozen body is not at rest in an island, and waking it
+  // must not be what brings it back.
+  body.m_sleeping = false;
+  body.m_restTime = 0.0;
+  body.updateDerived();
+}
+
+bool World::freezeBody(BodyId id, FreezeReason reason) {
+  if (!isValid(id) || reason == FreezeReason::None) return false;
+  Body& frozen = body(id);
+  if (frozen.isStatic() || frozen.isFrozen()) return false;
+  frozen.m_freezeReason = reason;
+  ++m_frozenBodies;
+  holdFrozen(frozen);
+  return true;
 }
 
 void World::integrateFree(double h, const std::vector<char>& skip) {
   const IntegratorKind integrator = m_settings.integrator;
+  const double maxLinear2 = m_settings.limits.maxLinearSpeed * m_settings.limits.maxLinearSpeed;
+  const double maxAngular2 = m_settings.limits.maxAngularSpeed * m_settings.limits.maxAngularSpeed;
+  // Continuous collision may still move flagged bodies after this: those are
+  // judged in guardStates, after it.
+  const bool laterMoves = m_continuousBodies > 0;
   for (std::size_t i = 0; i < m_bodies.size(); ++i) {
     Body& body = m_bodies[i];
-    if (body.isStatic() || body.m_sleeping || (!skip.empty() && skip[i])) continue;
+    if (body.isStatic() || body.m_sleeping) {
+      m_judged[i] = 1;  // nothing to check: it does not move this step
+      continue;
+    }
+    if (body.isFrozen()) continue;
+    if (!skip.empty() && skip[i]) {
+      // In contact: the solver moves it later in this step, and guardStates
+      // judges it then, against the pose it has now.
+      body.m_lastGoodPosition = body.m_state.position;
+      body.m_lastGoodOrientation = body.m_state.orientation;
+      continue;
+    }
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
     inputs.load = body.m_load.active ? &body.m_load : nullptr;
-    body.m_state =
+    const RigidState next =
         integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
+    // The guard's check, on the new state while it is at hand. A body it
+    // cannot clear (or that continuous collision may still move) is judged
+    // again in guardStates, and frozen there at the pose it has now.
+    const bool judgedHere =
+        surelyHealthy(next, body.m_dynamics.inverseMass, body.m_dynamics.inverseInertiaBody,
+                      maxLinear2, maxAngular2) &&
+        !(laterMoves && body.description().continuousCollision);
+    if (!judgedHere) {
+      body.m_lastGoodPosition = body.m_state.position;
+      body.m_lastGoodOrientation = body.m_state.orientation;
+    }
+    m_judged[i] = judgedHere ? 1 : 0;
+    body.m_state = next;
     body.updateDerived();
     if (body.m_load.active) body.m_load.clear();
   }

@@ -18,6 +18,7 @@
 #include "physics/common/expected.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/world/body_id.h"
+#include "physics/world/state_guard.h"
 #include "physics/world/world_settings.h"
 
 namespace rbsim {
@@ -62,7 +63,18 @@ class World {
   // says. Bodies that touch nothing are integrated with the world's
   // integrator; with the impulse model, bodies in contact take the solver's
   // semi-implicit Euler step (velocities, contact impulses, then positions).
+  // Then the numerical guard checks every awake dynamic body and freezes
+  // those whose state went non-finite or too fast (see state_guard.h).
   void step();
+
+  // Bodies frozen during the last step, in body order (empty most of the time).
+  const std::vector<FreezeEvent>& freezeEvents() const { return m_freezeEvents; }
+  int frozenBodyCount() const { return m_frozenBodies; }
+  // Freezes a dynamic body at its last good pose now (for tests and for
+  // restoring a saved world); false for a null, stale, static or already
+  // frozen body. Not reported in freezeEvents().
+  bool freezeBody(BodyId id, FreezeReason reason = FreezeReason::Requested);
+  void setStateLimits(const StateLimits& limits) { m_settings.limits = limits; }
 
   // The contacts of the last step (solved impulses included), sorted by
   // (serial A, serial B, piece A, piece B).
@@ -104,8 +116,13 @@ class World {
 
   // Integrates the awake dynamic bodies not marked in `skip` (all when it is
   // empty) over h with the world's integrator, loads applied, and clears
-  // their loads.
+  // their loads; judges each for the guard as it goes (m_judged).
   void integrateFree(double h, const std::vector<char>& skip);
+  // The numerical guard, once per step after everything else has moved.
+  void guardStates();
+  // Puts a frozen body back at its last good pose with zero momenta, whatever
+  // a contact path did to it during the step.
+  static void holdFrozen(Body& body);
   void stepImpulse();
   void stepPenalty();
   void stepBacktracking();
@@ -147,6 +164,11 @@ class World {
   int32_t m_lastSerial = 0;
   int m_collidingBodies = 0;  // bodies with collision geometry
   int m_continuousBodies = 0; // dynamic bodies flagged for continuous collision
+  int m_frozenBodies = 0;
+  std::vector<FreezeEvent> m_freezeEvents;  // of the last step
+  // Per dense index, during a step: 1 when the guard has nothing left to do
+  // for the body (judged and passed in integrateFree, static, asleep).
+  std::vector<char> m_judged;
 };
 
 }  // namespace rbsim

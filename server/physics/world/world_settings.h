@@ -11,6 +11,7 @@
 #include "physics/math/types.h"
 #include "physics/solver/contact_solver_settings.h"
 #include "physics/solver/material.h"
+#include "physics/world/state_guard.h"
 
 namespace rbsim {
 
@@ -58,6 +59,7 @@ struct WorldSettings {
   double linearDamping = 0.0;              // 1/s, default for bodies that set none
   double angularDamping = 0.0;             // 1/s, default for bodies that set none
   ContactConfig contact;
+  StateLimits limits;                      // the numerical guard's speed limits
 };
 
 // A whole world as loaded from a config file, before it is built.

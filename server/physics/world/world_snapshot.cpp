@@ -327,6 +327,8 @@ Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
     writeLoad(body.m_load, out);
     out.boolean(body.m_sleeping);
     out.f64(body.m_restTime);
+    // A frozen body's state is the pose it is held at (state_guard.h).
+    out.u8(static_cast<uint8_t>(body.m_freezeReason));
   }
   writeWarmStart(world.contacts(), out);
   return true;
@@ -417,7 +419,11 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
     const ExternalLoad load = readLoad(in);
     const bool sleeping = in.boolean("sleeping flag");
     const double restTime = in.f64("rest time");
+    const uint8_t freezeReason = in.u8("freeze reason");
     if (in.failed()) break;
+    if (freezeReason > static_cast<uint8_t>(FreezeReason::Requested))
+      return Error{"world snapshot: " + where + " has an unknown freeze reason " +
+                   std::to_string(freezeReason)};
 
     // Values a step would turn into NaNs or worse: refuse them here.
     if (!state.position.allFinite() || !state.orientation.isFinite() || !state.linearMomentum.allFinite() ||
@@ -459,6 +465,13 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
     body.m_load = load;
     body.m_sleeping = sleeping;
     body.m_restTime = restTime;
+    // The guard's last good pose is the state as saved: it was set from it
+    // at the end of the step before the snapshot (and a frozen body is held
+    // exactly there).
+    body.m_lastGoodPosition = state.position;
+    body.m_lastGoodOrientation = state.orientation;
+    body.m_freezeReason = static_cast<FreezeReason>(freezeReason);
+    if (body.isFrozen()) ++world.m_frozenBodies;
     const BodyId id{slotIndex, world.m_slots[static_cast<std::size_t>(slotIndex - 1)].generation};
     world.m_idByName.emplace(description->name, id);
     if (description->collider) ++world.m_collidingBodies;

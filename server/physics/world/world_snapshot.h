@@ -5,8 +5,9 @@
 // What it holds: the step count and serial counter; every body with the 13
 // state numbers as bit patterns, its description (shape with mesh vertices,
 // mass properties, placement of the shape in body space, material, flags),
-// its dynamics, the load given for the coming step, and its sleep state
-// (asleep, time at rest); the slot table behind BodyIds; and the contact
+// its dynamics, the load given for the coming step, its sleep state
+// (asleep, time at rest) and whether the numerical guard froze it; the slot
+// table behind BodyIds; and the contact
 // solver's warm-start cache (last step's solved manifolds), because the
 // next step's impulses start from it. Colliders, body-space meshes and the
 // broad phase are rebuilt from the above: they are functions of it.
@@ -32,7 +33,7 @@ namespace rbsim {
 class WorldSnapshot {
  public:
   static constexpr uint32_t kMagic = 0x53574252u;  // "RBWS" in file order
-  static constexpr uint32_t kVersion = 1;
+  static constexpr uint32_t kVersion = 2;  // 2: a body's freeze reason (numerical guard)
 
   // Errors only for a body whose shape the format cannot hold.
   static Expected<bool> write(const World& world, ByteWriter& out);

@@ -1,0 +1,115 @@
+#pragma once
+// The numerical guard. After every step the world checks each awake dynamic
+// body once: a state that holds a NaN or an infinity, or moves faster than
+// the world's StateLimits, is never integrated again. Such a body is frozen:
+// put back at its pose from before the bad step (the last pose that passed
+// this check), with zero momenta, and excluded from integration and from
+// collision detection, so the rest of the world steps on exactly as if the
+// body were not there (as long as nothing touched it in the bad step).
+//
+// A frozen body stays frozen: only RESET (a fresh copy of the initial world)
+// or removing it brings the slot back. Thawing it in place would put back
+// into the world whatever made it blow up.
+//
+// Cost: bodies that fly free are cleared inside the integration loop on the
+// momenta the integrator just returned (surelyHealthy: two squared norms);
+// the others (in contact, swept by continuous collision, or near a limit)
+// are judged after the step. On bench_free_bodies (1000 bodies) that is
+// under 1 ns of ~113 ns a body-step with semi-implicit Euler and ~4 ns of
+// ~212 with RK4.
+
+#include <cstdint>
+#include <string>
+
+#include "physics/body/freeze_reason.h"
+#include "physics/body/rigid_state.h"
+#include "physics/math/types.h"
+#include "physics/world/body_id.h"
+
+namespace rbsim {
+
+// The bounds a healthy body stays within (config: the `limits:` section).
+// Generous on purpose: they catch runaway states, not fast bodies. At the
+// default dt of 1 ms, 1e4 m/s is 10 m a step and 1e4 rad/s 1.6 turns a step,
+// beyond anything the integrators or the contact solver resolve.
+struct StateLimits {
+  double maxLinearSpeed = 1e4;   // m/s, of the centre of mass
+  double maxAngularSpeed = 1e4;  // rad/s
+};
+
+// What the check found for one body.
+struct StateVerdict {
+  FreezeReason reason = FreezeReason::None;
+  double measured = 0.0;  // the offending speed (m/s or rad/s); 0 for non-finite states
+  double limit = 0.0;     // the limit it broke
+};
+
+// A body frozen during a step, for the caller to report.
+struct FreezeEvent {
+  BodyId id;
+  std::string name;
+  int64_t step = 0;  // the step that went bad (numbered as on the wire)
+  StateVerdict verdict;
+};
+
+// The guard's test on the stepping path: true when the state is healthy.
+// NaN or ±inf in P or L always reaches v = P/M or ω = I⁻¹L (an infinity times
+// a zero of the rotation is NaN), and NaN compares false, so two squared
+// speeds cover the momenta; the pose is finite when the sum of its seven
+// numbers is (a sum of poses cannot overflow: |x| is nowhere near 1e308).
+// Eleven additions and six multiplications, three comparisons, no square
+// root. judgeState says why a state failed.
+inline bool isHealthy(const RigidState& state, const Vec3& linearVelocity, const Vec3& angularVelocity,
+                      double maxLinearSpeedSquared, double maxAngularSpeedSquared) {
+  const Quaternion& q = state.orientation;
+  const double pose = state.position.x() + state.position.y() + state.position.z() + q.w + q.x + q.y + q.z;
+  return pose - pose == 0.0 && linearVelocity.squaredNorm() <= maxLinearSpeedSquared &&
+         angularVelocity.squaredNorm() <= maxAngularSpeedSquared;
+}
+
+// The guard's test inside a free integration step, on the state the
+// integrator returned, before it is stored and before the velocities are
+// derived from it: true means healthy for certain, false means "judge it
+// properly" (judgeState, after the velocities are known).
+// - Starting from a healthy state, the new pose is the old one moved by the
+//   new (or stage) velocities, which are finite when the new momenta are: a
+//   non-finite force leaves a NaN or an infinity in P or L, and NaN compares
+//   false. So the momenta say it all.
+// - |v| = |P| / M exactly; |ω| = |R I⁻¹ Rᵀ L| <= |L| max(I⁻¹), so a bound
+//   within the limit proves ω is too. Only a body spinning near the limit
+//   (or a long thin one spinning about its long axis at a tenth of it) is
+//   judged the slow way.
+// Two squared norms on values the integrator just produced: the step does
+// not wait on the velocities' matrix products.
+inline bool surelyHealthy(const RigidState& next, double inverseMass, const Vec3& inverseInertiaBody,
+                          double maxLinearSpeedSquared, double maxAngularSpeedSquared) {
+  const double maxInverseInertia = inverseInertiaBody.maxCoeff();
+  return next.linearMomentum.squaredNorm() * (inverseMass * inverseMass) <= maxLinearSpeedSquared &&
+         next.angularMomentum.squaredNorm() * (maxInverseInertia * maxInverseInertia) <=
+             maxAngularSpeedSquared;
+}
+
+// Judges a state and its derived velocities (world frame) against the limits.
+inline StateVerdict judgeState(const RigidState& state, const Vec3& linearVelocity,
+                               const Vec3& angularVelocity, const StateLimits& limits) {
+  // Eigen's allFinite is x − x == x − x per component: branch-free, and
+  // false for NaN and ±inf alike.
+  const bool finite = state.position.allFinite() && state.linearMomentum.allFinite() &&
+                      state.angularMomentum.allFinite() && state.orientation.isFinite();
+  if (!finite) return {FreezeReason::NonFiniteState, 0.0, 0.0};
+  // Squared norms against squared limits: no square root on the healthy path.
+  // "Not within" rather than "above", so an infinite velocity derived from
+  // finite momenta (a degenerate inertia) is caught too.
+  const double linear = linearVelocity.squaredNorm();
+  const double angular = angularVelocity.squaredNorm();
+  if (!(linear <= limits.maxLinearSpeed * limits.maxLinearSpeed))
+    return {FreezeReason::LinearSpeed, std::sqrt(linear), limits.maxLinearSpeed};
+  if (!(angular <= limits.maxAngularSpeed * limits.maxAngularSpeed))
+    return {FreezeReason::AngularSpeed, std::sqrt(angular), limits.maxAngularSpeed};
+  return {};
+}
+
+// One line for a log: which body, at which step, why, and what happens to it.
+std::string describeFreeze(const FreezeEvent& event);
+
+}  // namespace rbsim
