@@ -10,8 +10,8 @@ jobs=2
 build=${RBSIM_BUILD_DIR:-build}
 debug_build=${RBSIM_DEBUG_BUILD_DIR:-build-debug}
 # Fuzzing: RBSIM_FUZZ_BUILD_DIR (default build-fuzz), RBSIM_FUZZ_SECONDS per
-# target (default 15; 0 skips fuzzing, the corpora still run in ctest).
-fuzz_seconds=${RBSIM_FUZZ_SECONDS:-15}
+# target (default 10; 0 skips fuzzing, the corpora still run in ctest).
+fuzz_seconds=${RBSIM_FUZZ_SECONDS:-10}
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j"$jobs"
