@@ -478,14 +478,15 @@ void World::applyContinuousCollision(const std::vector<RigidState>& starts) {
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
     if (!body.description().continuousCollision || body.isStatic() || body.m_sleeping ||
-        !body.description().collider)
+        body.isFrozen() || !body.description().collider)
       continue;
     const Aabb sweptI = sweptBox(i);
     Body startI = body;
     startI.setState(starts[i]);
     double earliest = 1.0;
     for (std::size_t j = 0; j < n; ++j) {
-      if (j == i || !m_bodies[j].description().collider) continue;
+      // A frozen body is out of the simulation: nothing collides with it.
+      if (j == i || !m_bodies[j].description().collider || m_bodies[j].isFrozen()) continue;
       const Collider& other = *m_bodies[j].description().collider;
       if (!other.plane && !sweptI.overlaps(sweptBox(j))) continue;
       Body startJ = m_bodies[j];

@@ -285,6 +285,30 @@ TEST(StateGuard, AFrozenBodyTakesNoPartInContacts) {
     EXPECT_NE(guarded.bodies()[static_cast<std::size_t>(contact.bodyB)].name(), "box");
 }
 
+TEST(StateGuard, AFrozenWallDoesNotStopAContinuousCollisionBody) {
+  // Continuous collision ignores a frozen body too: a bullet fired at a
+  // frozen wall flies on exactly as if the wall were not there.
+  const auto make = [](bool withWall) {
+    World world;
+    world.setGravity(Vec3::Zero());
+    if (withWall) {
+      BodyDef wall = boxAt("wall", Vec3(0.5, 0, 0));
+      wall.shape = BoxShape{Vec3(0.0025, 0.5, 0.5)};
+      world.createBody(wall).value();
+    }
+    BodyDef bullet = sphereAt("bullet", Vec3::Zero(), Vec3(200, 0, 0));
+    bullet.shape = SphereShape{0.01};
+    bullet.continuousCollision = true;
+    world.createBody(bullet).value();
+    return world;
+  };
+  World guarded = make(true);
+  World reference = make(false);
+  ASSERT_TRUE(guarded.freezeBody(guarded.findBody("wall")));
+  expectOthersUnaffected(guarded, reference, 20);
+  EXPECT_GT(guarded.body(guarded.findBody("bullet")).position().x(), 1.0) << "through the wall";
+}
+
 TEST(StateGuard, RemovingOrResettingClearsTheFrozenState) {
   World initial = flyingWorld(true);
   World world = initial;
