@@ -3,16 +3,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "physics/common/exact_text.h"
+
 namespace rbsim {
 
 namespace {
 
 // Round-trip precision: 17 significant digits.
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
+std::string number(double value) { return exactText(value); }
 
 std::string vector3(const Vec3& v) {
   char buffer[96];

@@ -5,15 +5,13 @@
 #include <cstdio>
 #include <cstring>
 
+#include "physics/common/exact_text.h"
+
 namespace rbsim {
 
 namespace {
 
-std::string exact(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
+std::string exact(double value) { return exactText(value); }
 
 template <std::size_t N>
 std::string listOf(const double (&values)[N]) {

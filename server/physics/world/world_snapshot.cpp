@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "physics/collision/collider.h"
+#include "physics/common/exact_text.h"
 
 namespace rbsim {
 
@@ -179,11 +180,7 @@ void checkSettings(ByteReader& in, const WorldSettings& s) {
     in.fail("the checkpoint was taken with " + what + " " + saved + ", the config has " + now +
             ": a resumed run would not continue the same simulation");
   };
-  const auto text = [](double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    return std::string(buffer);
-  };
+  const auto text = [](double v) { return exactText(v); };
   const double dt = in.f64("dt");
   const Vec3 gravity = in.vec3("gravity");
   const uint8_t integrator = in.u8("integrator");
