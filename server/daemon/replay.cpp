@@ -199,6 +199,19 @@ Expected<bool> Replay::onState(const LogEvent& event) {
   const auto recorded = decodeWhole<rbsim::world_state_t>(event.data);
   if (!recorded) return Error{"undecodable world_state_t"};
   if (auto advanced = advanceTo(recorded->step, "the state"); !advanced) return advanced;
+  // A bus log can also lose an ack: its command then waits here unanswered,
+  // and the replay cannot know whether it took effect. A logged world
+  // revision the replay has not reached says that it did.
+  if (recorded->world_revision != m_session.worldRevision()) {
+    for (const auto& [key, queue] : m_pending->byKey) {
+      if (std::get<0>(key) != rbsim::ack_t::KIND_COMMAND || queue.empty()) continue;
+      return Error{"step " + std::to_string(recorded->step) + ": the log is at world revision " +
+                   std::to_string(recorded->world_revision) + ", the replay at " +
+                   std::to_string(m_session.worldRevision()) + ", and the command of '" +
+                   std::get<1>(key) + "' seq " + std::to_string(std::get<2>(key)) +
+                   " has no ack (lost by the logger?): the session cannot be replayed"};
+    }
+  }
   m_report.lastStep = recorded->step;
   const auto pages = worldStatePages(m_session.world(), recorded->utime, m_session.worldRevision());
   const auto index = static_cast<std::size_t>(recorded->page);

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -163,6 +164,36 @@ TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
   ASSERT_EQ(replayedStates.size(), recordedStates.size());
   for (std::size_t i = 0; i < recordedStates.size(); ++i)
     ASSERT_EQ(replayedStates[i].data, recordedStates[i].data) << "state event " << i;
+
+  // The record without its handled_t events is what a lossless bus log
+  // holds: the acks alone must place every message.
+  std::vector<LoggedEvent> busLike;
+  for (const LoggedEvent& event : readEventLog(record).events)
+    if (event.channel != "RBSIM_HANDLED") busLike.push_back(event);
+  const std::string lossless = scratchPath("bus_like.lcmlog");
+  ASSERT_TRUE(writeEventLog(lossless, busLike));
+  const ProcessResult fromAcks = verify(lossless, scratchPath("verify_bus_like.log"));
+  ASSERT_TRUE(fromAcks.status.has_value());
+  EXPECT_EQ(*fromAcks.status, 0) << fromAcks.output;
+
+  // Lose the ack of an accepted SPAWN: the replay cannot know the spawn took
+  // effect, and must say the log is incomplete rather than report a
+  // difference of the physics.
+  const auto lostAck = std::find_if(busLike.begin(), busLike.end(), [](const LoggedEvent& event) {
+    if (event.channel != "RBSIM_ACK") return false;
+    const auto ack = decodeAs<rbsim::ack_t>(event);
+    return ack && ack->accepted && ack->kind == rbsim::ack_t::KIND_COMMAND &&
+           ack->request == rbsim::command_t::SPAWN;
+  });
+  ASSERT_NE(lostAck, busLike.end());
+  busLike.erase(lostAck);
+  const std::string lossy = scratchPath("bus_like_lossy.lcmlog");
+  ASSERT_TRUE(writeEventLog(lossy, busLike));
+  const ProcessResult fromLossy = verify(lossy, scratchPath("verify_bus_like_lossy.log"));
+  ASSERT_TRUE(fromLossy.status.has_value());
+  EXPECT_EQ(*fromLossy.status, 3) << fromLossy.output;
+  EXPECT_NE(fromLossy.output.find("has no ack (lost by the logger?)"), std::string::npos)
+      << fromLossy.output;
 
   // From lcm-logger's log of the bus, where only the acks say when. UDP
   // multicast may drop a datagram on the way to the logger (the reason for
