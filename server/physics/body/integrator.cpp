@@ -60,23 +60,31 @@ RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
   return next;
 }
 
+Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                         const ForceInputs& inputs, double dt) {
+  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
+  Momenta next{state.linearMomentum + dt * wrench.force, state.angularMomentum + dt * wrench.torque};
+  // Implicit (backward Euler) damping: P' = P* − c dt P'. Skipped when zero so
+  // that undamped bodies pay no division.
+  if (dynamics.linearDamping != 0.0) next.linear /= 1.0 + dt * dynamics.linearDamping;
+  if (dynamics.angularDamping != 0.0) next.angular /= 1.0 + dt * dynamics.angularDamping;
+  return next;
+}
+
+void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
+                   const Vec3& angularVelocity, double dt) {
+  position += dt * linearVelocity;
+  orientation = addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized();
+}
+
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
                                  const BodyDynamics& dynamics, const ForceInputs& inputs,
                                  double dt) {
-  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
-  RigidState next;
-  next.linearMomentum = state.linearMomentum + dt * wrench.force;
-  next.angularMomentum = state.angularMomentum + dt * wrench.torque;
-  // Implicit (backward Euler) damping: P' = P* − c dt P'. Skipped when zero so
-  // that undamped bodies pay no division.
-  if (dynamics.linearDamping != 0.0) next.linearMomentum /= 1.0 + dt * dynamics.linearDamping;
-  if (dynamics.angularDamping != 0.0) next.angularMomentum /= 1.0 + dt * dynamics.angularDamping;
-
+  const Momenta momenta = integrateMomenta(state, rotation, dynamics, inputs, dt);
+  RigidState next{state.position, state.orientation, momenta.linear, momenta.angular};
   const Vec3 velocity = next.linearMomentum * dynamics.inverseMass;
   const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, next.angularMomentum);
-  next.position = state.position + dt * velocity;
-  next.orientation =
-      addScaled(state.orientation, orientationRate(state.orientation, omega), dt).normalized();
+  integratePose(next.position, next.orientation, velocity, omega, dt);
   return next;
 }
 

@@ -37,10 +37,24 @@ RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
 
 // P and L first (damping implicitly: P' = (P + F dt) / (1 + c dt), stable for
 // any c dt), then x and q with the new v and ω. Symplectic for the
-// translational part.
+// translational part. Its two halves below are what the contact solver runs
+// its impulses between, so bodies in contact and free bodies take the same
+// arithmetic.
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
                                  const BodyDynamics& dynamics, const ForceInputs& inputs,
                                  double dt);
+
+// The first half: momenta after the forces of dt, damping implicit.
+struct Momenta {
+  Vec3 linear = Vec3::Zero();   // P, kg·m/s, world
+  Vec3 angular = Vec3::Zero();  // L, kg·m²/s, world, about the centre of mass
+};
+Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                         const ForceInputs& inputs, double dt);
+
+// The second half: x += v dt, q += ½ [0, ω] q dt, then q normalised.
+void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
+                   const Vec3& angularVelocity, double dt);
 
 // Classical RK4: forces, torques, velocities re-evaluated at each stage.
 RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <utility>
 
+#include "physics/collision/contact_routines.h"
+
 namespace rbsim {
 
 namespace {
@@ -20,17 +22,16 @@ bool samePose(const Transform& x, const Transform& y) {
   return x.rotation == y.rotation && x.translation == y.translation;
 }
 
-uint64_t pairKey(int32_t serialA, int32_t serialB) {
-  return (static_cast<uint64_t>(static_cast<uint32_t>(serialA)) << 32) | static_cast<uint32_t>(serialB);
+// Bounds the distance from the body origin of any point of a collider by
+// the farthest corner of its box (planes are static and never need it).
+double boundingRadius(const Collider* collider) {
+  if (collider == nullptr || collider->plane) return 0.0;
+  const Vec3 farthest = collider->bounds.min.cwiseAbs().cwiseMax(collider->bounds.max.cwiseAbs());
+  return farthest.norm();
 }
 
-// Swaps the roles of A and B in a manifold: the normal turns round.
-void flip(ContactManifold& manifold) {
-  manifold.normal = -manifold.normal;
-  for (int i = 0; i < manifold.pointCount; ++i) {
-    ContactPoint& point = manifold.points[at(i)];
-    std::swap(point.pointA, point.pointB);
-  }
+uint64_t pairKey(int32_t serialA, int32_t serialB) {
+  return (static_cast<uint64_t>(static_cast<uint32_t>(serialA)) << 32) | static_cast<uint32_t>(serialB);
 }
 
 }  // namespace
@@ -44,25 +45,36 @@ void CollisionDetector::detect(const World& world) {
   // body at that index changes: its description (which the entry keeps
   // alive, so the address cannot be reused) is immutable.
   const std::vector<Body>& bodies = world.bodies();
+  const bool speculative = world.settings().contact.model == ContactModel::Impulse;
+  const double dt = world.settings().dt;
   m_geometry.resize(bodies.size());
   m_broadPhaseInputs.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     BodyGeometry& geometry = m_geometry[i];
     const Transform pose = poseOf(body);
-    geometry.unchanged = geometry.description.get() == &body.description() &&
-                         geometry.serial == body.serial() && samePose(geometry.pose, pose);
+    const bool sameBody = geometry.description.get() == &body.description() && geometry.serial == body.serial();
     if (geometry.description.get() != &body.description()) {
       geometry.description = body.sharedDescription();
       geometry.collider = geometry.description->collider.get();
       geometry.shape = BroadPhaseShape::of(body);
+      geometry.radius = boundingRadius(geometry.collider);
     }
+    double reach = 0.0;
+    if (speculative && !body.isStatic() && !body.isSleeping()) {
+      // The sum of the components' magnitudes bounds the norm: no square root.
+      reach = dt * (body.linearVelocity().cwiseAbs().sum() +
+                    body.angularVelocity().cwiseAbs().sum() * geometry.radius);
+    }
+    geometry.unchanged = sameBody && samePose(geometry.pose, pose) && geometry.reach == reach;
     geometry.serial = body.serial();
     geometry.pose = pose;
+    geometry.reach = reach;
     // A frozen body is out of the simulation: nothing collides with it.
     if (geometry.shape.hasGeometry() && !body.isFrozen()) {
-      m_broadPhaseInputs.push_back(
-          geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
+      BroadPhaseBody placed = geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose);
+      if (reach > 0.0 && placed.box) placed.box = placed.box->fattened(reach);
+      m_broadPhaseInputs.push_back(placed);
     }
   }
   m_broadPhase.update(m_broadPhaseInputs);
@@ -103,6 +115,14 @@ bool CollisionDetector::reusePair(uint64_t key, int indexA, int indexB) {
 }
 
 void CollisionDetector::collidePair(int indexA, int indexB) {
+  const double reach = m_geometry[at(indexA)].reach + m_geometry[at(indexB)].reach;
+  if (reach == 0.0) return collidePair(indexA, indexB, m_settings);
+  ContactSettings settings = m_settings;
+  settings.margin += reach;
+  collidePair(indexA, indexB, settings);
+}
+
+void CollisionDetector::collidePair(int indexA, int indexB, const ContactSettings& settings) {
   const BodyGeometry& a = m_geometry[at(indexA)];
   const BodyGeometry& b = m_geometry[at(indexB)];
   // The broad phase only pairs bodies that have colliders.
@@ -110,7 +130,7 @@ void CollisionDetector::collidePair(int indexA, int indexB) {
   const Collider& colliderB = *b.collider;
   const Transform& poseA = a.pose;
   const Transform& poseB = b.pose;
-  const double halfMargin = 0.5 * m_settings.margin;
+  const double halfMargin = 0.5 * settings.margin;
   // With at most one piece a side, the broad phase has compared these very
   // boxes already (a collider's bounds are its piece's).
   const bool checkBoxes = colliderA.pieces.size() > 1 || colliderB.pieces.size() > 1;
@@ -138,7 +158,7 @@ void CollisionDetector::collidePair(int indexA, int indexB) {
       contact.pieceA = 0;
       contact.pieceB = static_cast<int>(j);
       contact.manifold = {};
-      collidePlaneConvex(plane.normal, plane.offset, m_placedB[j].convex, m_settings,
+      collidePlaneConvex(plane.normal, plane.offset, m_placedB[j].convex, settings,
                          contact.manifold);
       if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
     }
@@ -154,8 +174,8 @@ void CollisionDetector::collidePair(int indexA, int indexB) {
         contact.pieceB = 0;
         contact.manifold = {};
         // The narrow phase puts the plane first; A is the convex here.
-        collidePlaneConvex(plane.normal, plane.offset, placedA, m_settings, contact.manifold);
-        flip(contact.manifold);
+        collidePlaneConvex(plane.normal, plane.offset, placedA, settings, contact.manifold);
+        flipManifold(contact.manifold);
         if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
       }
     }
@@ -163,7 +183,7 @@ void CollisionDetector::collidePair(int indexA, int indexB) {
       if (!boxA.overlaps(m_placedB[j].box)) continue;
       contact.pieceB = static_cast<int>(j);
       contact.manifold = {};
-      collideConvex(placedA, m_placedB[j].convex, m_settings, contact.manifold);
+      collideConvex(placedA, m_placedB[j].convex, settings, contact.manifold);
       if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
     }
   }

@@ -41,7 +41,14 @@ class CollisionDetector {
     BroadPhaseShape shape;
     Transform pose;  // body -> world
     int32_t serial = 0;
-    // Same collider at bit for bit the same pose as in the previous detect():
+    double radius = 0.0;  // m: the collider's farthest point from the body origin (bounded)
+    // m: how far a point of the body may move in the coming step, at most
+    // (dt (|v| + |ω| radius), the norms bounded by their sums of components).
+    // Impulse model only: pairs within the margin plus both reaches are
+    // contacts (speculative ones while apart), so that a fast body's impact
+    // is seen in the step it happens, not after it has sunk in.
+    double reach = 0.0;
+    // Same collider at bit for bit the same pose (and reach) as in the previous detect():
     // a pair of such bodies has the same manifolds as then (the narrow phase
     // is a pure function of the two placed colliders), so they are reused.
     // Resting and sleeping bodies stop costing narrow-phase time.
@@ -49,6 +56,7 @@ class CollisionDetector {
   };
 
   void collidePair(int indexA, int indexB);
+  void collidePair(int indexA, int indexB, const ContactSettings& settings);
   // Copies the previous detect()'s manifolds of the pair (serial order key);
   // false when the pair was not a candidate then.
   bool reusePair(uint64_t key, int indexA, int indexB);

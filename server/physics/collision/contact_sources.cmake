@@ -1,6 +1,7 @@
 # Narrow-phase contact manifolds.
 target_sources(rbsim_physics PRIVATE
   collision/contact_generation.cpp
+  collision/piece_pair_contact.cpp
   collision/sphere_contacts.cpp
   collision/capsule_contacts.cpp
   collision/box_box_contact.cpp

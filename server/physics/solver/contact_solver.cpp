@@ -265,7 +265,6 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
                                              b.startLinearVelocity, b.startAngularVelocity),
                       c.tiltRows[1].velocity(a.startLinearVelocity, a.startAngularVelocity,
                                              b.startLinearVelocity, b.startAngularVelocity));
-    bool allIncluded = true;
     for (int p = 0; p < c.pointCount; ++p) {
       const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
       PointConstraint& pc = c.points[p];
@@ -276,22 +275,19 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       pc.pressure = Vec3(1.0 / c.pointCount,
                          block.size > 1 ? weights[1] / block.tiltMoment[0] : 0.0,
                          block.size > 2 ? weights[2] / block.tiltMoment[1] : 0.0);
-      // A point left out of the solve keeps a zero mass: it never gets an impulse.
-      const bool included = -raw.depth <= settings.speculativeDistance;
-      allIncluded = allIncluded && included;
-      pc.normalMass = included ? inverseOrZero(weights.dot(block.coupling * weights)) : 0.0;
-      pc.shockNormalMass = included ? inverseOrZero(weights.dot(block.shockCoupling * weights)) : 0.0;
+      pc.normalMass = inverseOrZero(weights.dot(block.coupling * weights));
+      pc.shockNormalMass = inverseOrZero(weights.dot(block.shockCoupling * weights));
       pc.pseudoImpulse = 0.0;
 
-      // Target normal velocity. A gap (depth < 0) may close within the step
-      // (speculative contact); a contact that will be hit this step faster
-      // than the threshold bounces with −e v_rel (the seed's law of
-      // restitution); penetration itself is left to the position pass.
+      // Target normal velocity. A touching contact hit faster than the
+      // threshold bounces with −e v_rel (the seed's law of restitution); a
+      // gap (depth < 0) may close within the step but no further
+      // (speculative contact); penetration itself is left to the position pass.
       const double vn = weights.dot(u);
       pc.relativeNormalVelocity = weights.dot(uStart);
       const double gap = -raw.depth;
-      const bool hitsThisStep = gap <= 0.0 || vn * dt < -gap;
-      if (vn < -settings.restitutionThreshold && hitsThisStep && material.restitution > 0.0) {
+      const bool touching = gap <= settings.touchingDistance;
+      if (vn < -settings.restitutionThreshold && touching && material.restitution > 0.0) {
         pc.targetVelocity = -material.restitution * vn;
       } else {
         pc.targetVelocity = gap > 0.0 ? -gap / dt : 0.0;
@@ -302,7 +298,7 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
           std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
 
       pc.normalImpulse = 0.0;
-      if (old != nullptr && included && settings.warmStarting) {
+      if (old != nullptr && settings.warmStarting) {
         for (int q = 0; q < old->pointCount; ++q) {
           if (old->points[q].featureId != raw.featureId) continue;
           pc.normalImpulse = old->points[q].normalImpulse;
@@ -341,9 +337,9 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
       return true;
     };
     const bool velocityConsistent = consistent(block.velocityGoal, &PointConstraint::targetVelocity);
-    block.velocityExact = allIncluded && invertible && velocityConsistent;
-    block.shockExact = allIncluded && shockInvertible && velocityConsistent;
-    block.positionExact = allIncluded && invertible &&
+    block.velocityExact = invertible && velocityConsistent;
+    block.shockExact = shockInvertible && velocityConsistent;
+    block.positionExact = invertible &&
                           consistent(block.positionGoal, &PointConstraint::positionTarget);
 
     // The friction patch.

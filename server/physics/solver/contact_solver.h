@@ -8,8 +8,10 @@
 //    + n·(Ib⁻¹(rb×n))×rb), applied iteratively over all points at once:
 //    each iteration adds Δj = −m_n (v_rel − v_target) and clamps the
 //    accumulated j at 0 (contacts push, never pull). The target normal
-//    velocity is −e v_rel⁻ for colliding contacts (approach faster than the
-//    restitution threshold), 0 for resting ones.
+//    velocity is −e v_rel⁻ for colliding contacts (touching and approaching
+//    faster than the restitution threshold; the world hands them over at
+//    their time of impact), 0 for resting ones, and −gap/dt for speculative
+//    ones (a gap that must not close by more than it is).
 //  - Friction: Coulomb, per manifold rather than per point ("patch"
 //    friction, as in PhysX and Box2D v3's anchor friction): two tangential
 //    impulses at the centroid of the manifold's points clamped to the disc
@@ -47,15 +49,16 @@ namespace rbsim {
 struct SolverBody {
   Vec3 linearVelocity = Vec3::Zero();     // m/s, world
   Vec3 angularVelocity = Vec3::Zero();    // rad/s, world
-  // Velocities of the state the step starts from, before this step's forces:
-  // what classifies a contact as colliding, resting or separating.
+  // Velocities of the state the step starts from, before this step's forces
+  // (for a colliding body: at its time of impact): what classifies a contact
+  // as colliding, resting or separating.
   Vec3 startLinearVelocity = Vec3::Zero();   // m/s
   Vec3 startAngularVelocity = Vec3::Zero();  // rad/s
   Vec3 pseudoLinear = Vec3::Zero();       // m/s: split-impulse position correction
   Vec3 pseudoAngular = Vec3::Zero();      // rad/s
   Mat3 inverseInertia = Mat3::Zero();     // 1/(kg·m²), world
   double inverseMass = 0.0;               // 1/kg
-  Vec3 position = Vec3::Zero();           // m: centre of mass at the step start
+  Vec3 position = Vec3::Zero();           // m: centre of mass when the impulses act
 };
 
 // One solved contact point, kept for warm starting the next step and for
@@ -132,7 +135,7 @@ class ContactSolver {
   struct PointConstraint {
     Vec3 direction = Vec3::UnitX();  // a_i = (1, w_i1, w_i2), w_ik = g_i·e_k in m (0 along a dropped axis)
     Vec3 pressure = Vec3::Zero();    // x_i = pressure·λ: the point's affine share (1/n, w_i1/σ1, w_i2/σ2)
-    double normalMass = 0.0;         // kg: 1 / (a_iᵀ K a_i); 0: point left out of the solve
+    double normalMass = 0.0;         // kg: 1 / (a_iᵀ K a_i); 0: neither body can move along it
     double shockNormalMass = 0.0;    // kg: the same with the lower body held still
     double normalImpulse = 0.0;      // N·s, accumulated
     double targetVelocity = 0.0;     // m/s: v_n the normal impulse aims for
@@ -150,7 +153,7 @@ class ContactSolver {
     Mat3 inverse = Mat3::Zero();          // K⁻¹, zero outside size × size
     Mat3 shockCoupling = Mat3::Zero();    // with the lower body held still
     Mat3 shockInverse = Mat3::Zero();
-    // Try the block solution: every point in the solve, K invertible, and
+    // Try the block solution: K invertible, and
     // targets that one motion meets at every point (a_i·u_goal = t_i). Then a
     // feasible block solution (x >= 0, every vn_i on target) is the solution
     // of the manifold's complementarity problem. Mixed targets (a gap that

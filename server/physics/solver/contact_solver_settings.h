@@ -13,12 +13,12 @@ struct ContactSolverSettings {
   double maxCorrectionVelocity = 2.0;    // m/s: cap of the pseudo-velocity
   bool warmStarting = true;
   bool shockPropagation = true;          // the last sweep holds lower bodies still (stacks)
-  // Points with a gap wider than this (m) are left out of the solve. The
-  // default keeps every point within the contact margin (speculative
-  // contacts: an approaching body is stopped as the gap closes); the
-  // backtracking mode uses its tolerance so that it finds the time of
-  // collision itself.
-  double speculativeDistance = 1e30;
+  // m: a gap this small counts as touching. Only touching (or overlapping)
+  // points bounce; the world finds a colliding pair's time of impact to
+  // within it and answers the collision there (world/impacts.h). Points with
+  // a wider gap are speculative: they keep the gap from closing by more than
+  // it is, and never bounce.
+  double touchingDistance = 1e-9;
 };
 
 }  // namespace rbsim

@@ -269,14 +269,18 @@ void World::step() {
     m_contacts.clear();
   } else if (m_settings.contact.model == ContactModel::Penalty) {
     stepPenalty();
-  } else if (m_settings.contact.backtracking) {
-    stepBacktracking();
   } else {
     stepImpulse();
   }
   if (!starts.empty()) applyContinuousCollision(starts);
+  clearLoads();
   ++m_stepCount;
   guardStates();
+}
+
+void World::clearLoads() {
+  for (Body& body : m_bodies)
+    if (body.m_load.active) body.m_load.clear();
 }
 
 void World::guardStates() {
@@ -373,7 +377,6 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
     m_judged[i] = judgedHere ? 1 : 0;
     body.m_state = next;
     body.updateDerived();
-    if (body.m_load.active) body.m_load.clear();
   }
 }
 

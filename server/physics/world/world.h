@@ -62,7 +62,9 @@ class World {
   // since the last step (then cleared), and contact as settings().contact
   // says. Bodies that touch nothing are integrated with the world's
   // integrator; with the impulse model, bodies in contact take the solver's
-  // semi-implicit Euler step (velocities, contact impulses, then positions).
+  // semi-implicit Euler step (velocities, contact impulses, then positions),
+  // and colliding bodies free flight to their time of impact, the impulses
+  // there, and free flight over the rest of the step (world/impacts.h).
   // Then the numerical guard checks every awake dynamic body and freezes
   // those whose state went non-finite or too fast (see state_guard.h).
   void step();
@@ -115,39 +117,65 @@ class World {
   };
 
   // Integrates the awake dynamic bodies not marked in `skip` (all when it is
-  // empty) over h with the world's integrator, loads applied, and clears
-  // their loads; judges each for the guard as it goes (m_judged).
+  // empty) over h with the world's integrator, loads applied; judges each for
+  // the guard as it goes (m_judged).
   void integrateFree(double h, const std::vector<char>& skip);
   // The numerical guard, once per step after everything else has moved.
   void guardStates();
   // Puts a frozen body back at its last good pose with zero momenta, whatever
   // a contact path did to it during the step.
   static void holdFrozen(Body& body);
-  void stepImpulse();
-  void stepPenalty();
-  void stepBacktracking();
-  // Puts to sleep the islands (dense index -> island root) whose bodies all
-  // stayed below the sleep velocities for the sleep time.
-  void updateSleep(const std::vector<int>& islandOf);
+  // External loads act for one step: cleared here, once, at its end.
+  void clearLoads();
   void findContacts();
+
+  // The impulse model's step (world_impulse.cpp), in the order it runs:
+  // islands → wake → integrate velocities → impacts → solve → integrate
+  // positions → sleep.
+  void stepImpulse();
+  // Per dense index: the root of the island (bodies joined by contacts
+  // between dynamic bodies) it belongs to.
+  std::vector<int> findIslands(const std::vector<BodyContact>& contacts) const;
+  // A sleeping body wakes when its island holds an awake or a pushed body.
+  void wakeIslands(const std::vector<int>& islandOf);
+  // Puts to sleep the islands whose bodies all stayed below the sleep
+  // velocities, unpushed, for the sleep time.
+  void updateSleep(const std::vector<int>& islandOf);
+  // The contacts the solver takes this step and the bodies it moves.
+  struct ContactStep {
+    const std::vector<BodyContact>* contacts = nullptr;  // the detector's, or `own`
+    std::vector<BodyContact> own;  // when some contacts sleep, or impacts moved a manifold
+    std::vector<char> inContact;   // per dense index: in one of `contacts`
+    std::vector<char> solving;     // in contact and awake: the solver moves it
+    // Per dense index: the time of impact (s into the step) of the body's
+    // first collision this step, or < 0 for none; empty when nothing collides.
+    std::vector<double> impactTime;
+  };
+  ContactStep selectContacts(const std::vector<BodyContact>& detected) const;
+  // The solver's bodies: velocities after the forces of h (semi-implicit Euler's first half).
+  void loadSolverBodies(const std::vector<char>& solving, double h);
+  // Colliding contacts (world/impacts.h): each is moved to its time of
+  // impact, with the manifold there, and its bodies' solver data with it.
+  void findImpacts(ContactStep& step);
+  void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
+                     double h, std::vector<SolvedManifold>& solved);
+  // Per body: how many contacts away from a static body (shock propagation).
+  std::vector<int> contactLevels(const std::vector<BodyContact>& active) const;
+  // Momenta from the solved velocities and positions over h: semi-implicit
+  // Euler's second half, with the split-impulse pseudo-velocities; free
+  // flight over the rest of the step after a collision; the world's
+  // integrator for a body that no impulse reached.
+  void integrateSolvedBodies(const ContactStep& step, const std::vector<SolvedManifold>& solved, double h);
+  // Keeps, in key order, the last results of contacts between sleeping bodies.
+  void keepSleepingContacts(const std::vector<BodyContact>& detected,
+                            std::vector<SolvedManifold>& solved) const;
+
+  void stepPenalty();
   // Continuous collision for bodies flagged `continuousCollision`: a body
   // whose motion over the step (from `starts`) would pass through another
   // body is stopped at its time of impact, velocity kept, so the next step's
   // contact stops it (no tunnelling through thin geometry).
   void applyContinuousCollision(const std::vector<RigidState>& starts);
-  // Detects contacts and returns the deepest penetration (m; negative: the
-  // smallest gap within the margin; -inf without contacts).
-  double deepestPenetration();
-  // The impulse path's pieces, over the bodies marked in `solving`:
-  // velocities after the forces of h, contact impulses, momenta back into
-  // the state, positions advanced by h.
-  void loadSolverBodies(const std::vector<char>& solving, double h);
-  void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
-                     double h, std::vector<SolvedManifold>& solved);
-  // Per body: how many contacts away from a static body (shock propagation).
-  std::vector<int> contactLevels(const std::vector<BodyContact>& active) const;
-  void storeSolverVelocities(const std::vector<char>& solving);
-  void advanceSolverPositions(const std::vector<char>& solving, double h, bool withPseudo);
 
   WorldSettings m_settings;
   DeepCopyPtr<CollisionDetector> m_detector;

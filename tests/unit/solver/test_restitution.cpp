@@ -126,85 +126,8 @@ TEST(Restitution, HeadOnSpheresMatchTheClosedForm) {
   }
 }
 
-TEST(Restitution, ObliqueSpheresExchangeOnlyTheNormalComponent) {
-  // Frictionless: along the normal (the line of centres when the impulse
-  // acts) the closed form above; across it the velocities stay.
-  const double e = 0.7, m1 = 2.0, m2 = 1.0;
-  const Vec3 u1(2.0, 0, 0), u2(0, 0, 0);
-  WorldSettings settings = contactSettings(e, 0.0);
-  settings.gravity = Vec3::Zero();
-  World world(settings);
-  BodyDef a;
-  a.name = "a";
-  a.shape = SphereShape{0.1};
-  a.mass = m1;
-  a.linearVelocity = u1;
-  BodyDef b = a;
-  b.name = "b";
-  b.mass = m2;
-  b.position = Vec3(0.4, 0.1, 0);
-  b.linearVelocity = u2;
-  const BodyId ia = *world.createBody(a), ib = *world.createBody(b);
-  Vec3 normal = Vec3::Zero();
-  for (int i = 0; i < 400; ++i) {
-    world.step();
-    for (const SolvedManifold& m : world.contacts())
-      if (m.pointCount > 0 && m.points[0].normalImpulse > 0.0 && normal.isZero()) normal = m.normal;
-  }
-  ASSERT_FALSE(normal.isZero()) << "they collided";
-  // The impulse acts when the gap closes within a step (≤ |u| dt = 2 mm), so
-  // the normal is the line of centres then: within a few mrad of touching.
-  const Vec3 touching = Vec3(std::sqrt(0.2 * 0.2 - 0.1 * 0.1), 0.1, 0).normalized();
-  EXPECT_LT(std::acos(std::min(1.0, normal.dot(touching))), 0.02);
-  const double un1 = u1.dot(normal), un2 = u2.dot(normal);
-  const double vn1 = ((m1 - e * m2) * un1 + (1 + e) * m2 * un2) / (m1 + m2);
-  const double vn2 = ((m2 - e * m1) * un2 + (1 + e) * m1 * un1) / (m1 + m2);
-  EXPECT_LT((world.body(ia).linearVelocity() - (u1 + (vn1 - un1) * normal)).norm(), 1e-9);
-  EXPECT_LT((world.body(ib).linearVelocity() - (u2 + (vn2 - un2) * normal)).norm(), 1e-9);
-}
-
-TEST(Restitution, TiltedBoxLandingOnACornerGetsTheSeedsImpulse) {
-  // A frictionless box tilted so one corner is lowest, falling: the step
-  // that catches it applies j = −(1+e) v_rel / (1/M + n·(I⁻¹(r×n))×r) at the
-  // corner, along the ground normal.
-  const double e = 0.6;
-  WorldSettings settings = contactSettings(e, 0.0);
-  World world(settings);
-  addGround(world);
-  const Quaternion tilt = Quaternion::fromRollPitchYaw(0.3, 0.4, 0.0);
-  const BodyId box = addBox(world, "box", Vec3(0.1, 0.15, 0.2), Vec3(0, 0, 0.5), tilt);
-  for (int i = 0; i < 5000; ++i) {
-    const Body before = world.body(box);
-    world.step();
-    // Steps where the corner is within the contact margin but not yet
-    // reached get no impulse.
-    if (world.contacts().empty() || world.contacts()[0].points[0].normalImpulse == 0.0) continue;
-    const Body& after = world.body(box);
-    ASSERT_EQ(world.contacts().size(), 1u);
-    const SolvedManifold& m = world.contacts()[0];
-    ASSERT_EQ(m.pointCount, 1) << "one corner touches";
-    // Velocities just before the impulse: the step's gravity applied first.
-    const double dt = settings.dt;
-    const Vec3 v = before.linearVelocity() + settings.gravity * dt;
-    const Vec3 omega = before.angularVelocity();
-    const Vec3 n = Vec3::UnitZ();
-    const Vec3 r = m.points[0].point - before.position();
-    const double vRel = (v + omega.cross(r)).dot(n);
-    ASSERT_LT(vRel, -0.5);  // colliding
-    const Mat3 invI = before.inverseInertiaWorld();
-    const double k = before.inverseMass() + n.dot((invI * r.cross(n)).cross(r));
-    const double j = -(1.0 + e) * vRel / k;
-    EXPECT_NEAR(m.points[0].normalImpulse, j, 1e-9 * j);
-    EXPECT_LT((after.linearMomentum() - (before.mass() * v + j * n)).norm(), 1e-9);
-    // Angular: L' = L + r × (j n), and ω' = I⁻¹ L' with the inertia of the step start.
-    const Vec3 expectedL = before.angularMomentum() + r.cross(j * n);
-    EXPECT_LT((after.angularMomentum() - expectedL).norm(), 1e-9);
-    const Vec3 expectedOmega = invI * expectedL;
-    EXPECT_LT((before.inverseInertiaWorld() * after.angularMomentum() - expectedOmega).norm(), 1e-9);
-    return;
-  }
-  FAIL() << "the box never landed";
-}
+// Oblique impacts and a box landing on a corner, against closed forms for
+// every integrator: test_impacts.cpp.
 
 }  // namespace
 }  // namespace rbsim

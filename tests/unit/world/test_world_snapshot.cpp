@@ -78,7 +78,10 @@ void stepWithPushes(World& world, int steps) {
 
 TEST(WorldSnapshot, RestoredPileContinuesBitIdentically) {
   World original = makePile();
+  // The pile is chaotic (rolling capsules and cylinders keep parts of it
+  // awake): step until part of it sleeps.
   stepWithPushes(original, 1400);
+  while (original.sleepingBodyCount() == 0 && original.stepCount() < 6000) stepWithPushes(original, 100);
   ASSERT_GT(original.contactPointCount(), 40) << "the pile is in contact: warm starting matters";
   ASSERT_GT(original.sleepingBodyCount(), 0) << "some bodies are asleep";
   ASSERT_LT(original.sleepingBodyCount(), original.bodyCount() - 1) << "and some awake";

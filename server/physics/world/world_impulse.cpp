@@ -1,0 +1,313 @@
+// The impulse model's step: contacts detected at the step's start, islands
+// woken, velocities after the forces, colliding contacts moved to their time
+// of impact, sequential impulses (solver/contact_solver.h), positions, sleep.
+#include <algorithm>
+#include <tuple>
+
+#include "physics/body/integrator.h"
+#include "physics/collision/collision_detector.h"
+#include "physics/world/impacts.h"
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+namespace {
+
+auto manifoldKey(const SolvedManifold& m) {
+  return std::make_tuple(m.serialA, m.serialB, m.pieceA, m.pieceB);
+}
+
+bool isZero(const Vec3& v) {
+  return v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0;
+}
+
+}  // namespace
+
+int World::contactPointCount() const {
+  int count = 0;
+  for (const SolvedManifold& m : m_contacts) count += m.pointCount;
+  return count;
+}
+
+void World::findContacts() {
+  m_detector->detect(*this);
+}
+
+void World::stepImpulse() {
+  const double dt = m_settings.dt;
+  findContacts();
+  const std::vector<BodyContact>& detected = m_detector->contacts();
+  const std::vector<int> islandOf = findIslands(detected);
+  wakeIslands(islandOf);
+  if (detected.empty()) {
+    integrateFree(dt, {});  // nothing touches: every body flies free
+    m_contacts.clear();
+  } else {
+    ContactStep step = selectContacts(detected);
+    integrateFree(dt, step.inContact);  // bodies touching nothing
+    loadSolverBodies(step.solving, dt);
+    findImpacts(step);
+    std::vector<SolvedManifold> solved;
+    solveContacts(*step.contacts, m_settings.contact.solver, dt, solved);
+    integrateSolvedBodies(step, solved, dt);
+    keepSleepingContacts(detected, solved);
+    m_contacts = std::move(solved);
+  }
+  if (m_settings.contact.sleeping) updateSleep(islandOf);
+}
+
+World::ContactStep World::selectContacts(const std::vector<BodyContact>& detected) const {
+  // Contacts with an awake body go to the solver; the others keep last
+  // step's result (for reporting, and for warm starting when they wake).
+  const auto awake = [&](int i) {
+    const Body& b = m_bodies[static_cast<std::size_t>(i)];
+    return !b.isStatic() && !b.m_sleeping;
+  };
+  const std::size_t n = m_bodies.size();
+  ContactStep step;
+  step.inContact.assign(n, 0);
+  const bool allActive = std::all_of(detected.begin(), detected.end(), [&](const BodyContact& c) {
+    return awake(c.bodyA) || awake(c.bodyB);
+  });
+  if (!allActive) step.own.reserve(detected.size());
+  for (const BodyContact& c : detected) {
+    if (!awake(c.bodyA) && !awake(c.bodyB)) continue;
+    if (!allActive) step.own.push_back(c);
+    step.inContact[static_cast<std::size_t>(c.bodyA)] = 1;
+    step.inContact[static_cast<std::size_t>(c.bodyB)] = 1;
+  }
+  step.contacts = allActive ? &detected : &step.own;
+  step.solving.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    step.solving[i] = step.inContact[i] && awake(static_cast<int>(i));
+  return step;
+}
+
+void World::loadSolverBodies(const std::vector<char>& solving, double h) {
+  const std::size_t n = m_bodies.size();
+  m_solverBodies.assign(n, SolverBody{});
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body& body = m_bodies[i];
+    SolverBody& sb = m_solverBodies[i];
+    sb.position = body.m_state.position;
+    if (!solving[i]) continue;
+    ForceInputs inputs;
+    inputs.gravity = m_settings.gravity;
+    inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    const Momenta momenta =
+        integrateMomenta(body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
+    sb.inverseMass = body.m_dynamics.inverseMass;
+    sb.inverseInertia = body.m_invInertiaWorld;
+    sb.startLinearVelocity = body.m_linearVelocity;
+    sb.startAngularVelocity = body.m_angularVelocity;
+    sb.linearVelocity = momenta.linear * sb.inverseMass;
+    sb.angularVelocity = sb.inverseInertia * momenta.angular;
+  }
+}
+
+void World::findImpacts(ContactStep& step) {
+  const double dt = m_settings.dt;
+  const ContactConfig& config = m_settings.contact;
+  const double threshold = config.solver.restitutionThreshold;
+  ImpactSearch search;
+  search.method =
+      config.backtracking ? ImpactSearchMethod::Bisection : ImpactSearchMethod::RegulaFalsi;
+  search.tolerance = config.solver.touchingDistance;
+  search.integrator = m_settings.integrator;
+  search.gravity = m_settings.gravity;
+  search.detection = config.detection;
+
+  const std::vector<BodyContact>& contacts = *step.contacts;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const BodyContact& c = contacts[k];
+    // Cheap test first: a point approaching faster than the threshold (with
+    // the velocities after the step's forces) whose gap closes within the step.
+    const SolverBody& a = m_solverBodies[static_cast<std::size_t>(c.bodyA)];
+    const SolverBody& b = m_solverBodies[static_cast<std::size_t>(c.bodyB)];
+    bool colliding = false;
+    double predictedTime = dt;  // s: when the first such gap closes at its current rate
+    for (int p = 0; p < c.manifold.pointCount; ++p) {
+      const ContactPoint& point = c.manifold.points[static_cast<std::size_t>(p)];
+      const Vec3 x = 0.5 * (point.pointA + point.pointB);
+      const Vec3 vRel = b.linearVelocity + b.angularVelocity.cross(x - b.position) -
+                        a.linearVelocity - a.angularVelocity.cross(x - a.position);
+      const double vn = vRel.dot(c.manifold.normal);
+      if (vn < -threshold && -point.depth + vn * dt < 0.0) {
+        colliding = true;
+        predictedTime = std::min(predictedTime, std::max(0.0, -point.depth) / -vn);
+      }
+    }
+    if (!colliding) continue;
+    const std::optional<Impact> impact =
+        findImpact(m_bodies[static_cast<std::size_t>(c.bodyA)],
+                   m_bodies[static_cast<std::size_t>(c.bodyB)], c, search, dt, predictedTime);
+    if (!impact) continue;  // the flight curves away: a speculative contact after all
+    if (step.contacts != &step.own) {
+      step.own = contacts;
+      step.contacts = &step.own;
+    }
+    if (step.impactTime.empty()) step.impactTime.assign(m_bodies.size(), -1.0);
+    step.own[k].manifold = impact->manifold;
+    for (const int body : {c.bodyA, c.bodyB}) {
+      if (m_bodies[static_cast<std::size_t>(body)].isStatic()) continue;
+      double& time = step.impactTime[static_cast<std::size_t>(body)];
+      time = time < 0.0 ? impact->time : std::min(time, impact->time);
+    }
+  }
+  if (step.impactTime.empty()) return;
+
+  // A colliding body meets the solver as it is at its (first) time of
+  // impact: position, inertia and velocities there.
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    const double time = step.impactTime[i];
+    if (time < 0.0) continue;
+    const Body& body = m_bodies[i];
+    const RigidState flight = freeFlight(body, m_settings.integrator, m_settings.gravity, time);
+    const Mat3 rotation = flight.orientation.toRotationMatrix();
+    SolverBody& sb = m_solverBodies[i];
+    sb.position = flight.position;
+    sb.inverseInertia =
+        rotation * body.m_dynamics.inverseInertiaBody.asDiagonal() * rotation.transpose();
+    sb.linearVelocity = flight.linearMomentum * sb.inverseMass;
+    sb.angularVelocity = sb.inverseInertia * flight.angularMomentum;
+    sb.startLinearVelocity = sb.linearVelocity;
+    sb.startAngularVelocity = sb.angularVelocity;
+  }
+}
+
+void World::solveContacts(const std::vector<BodyContact>& active,
+                          const ContactSolverSettings& settings, double h,
+                          std::vector<SolvedManifold>& solved) {
+  std::vector<int32_t> serials(m_bodies.size());
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) serials[i] = m_bodies[i].m_serial;
+  std::vector<PairMaterial> materials;
+  materials.reserve(active.size());
+  for (const BodyContact& c : active)
+    materials.push_back(
+        combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
+                         m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
+  m_solver.solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
+                 contactLevels(active));
+}
+
+std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) const {
+  // Levels: distance in contacts from a static body (for shock propagation),
+  // by a breadth-first search over the contact graph. Bodies that no chain of
+  // contacts joins to a static body share one level above all others.
+  const std::size_t n = m_bodies.size();
+  constexpr int kUnreached = 1 << 20;
+  std::vector<int> levels(n, kUnreached);
+  std::vector<int> start(n + 1, 0);  // adjacency in compressed rows
+  for (const BodyContact& c : active) {
+    ++start[static_cast<std::size_t>(c.bodyA) + 1];
+    ++start[static_cast<std::size_t>(c.bodyB) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> neighbours(static_cast<std::size_t>(start[n]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const BodyContact& c : active) {
+    neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(c.bodyA)]++)] = c.bodyB;
+    neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(c.bodyB)]++)] = c.bodyA;
+  }
+  std::vector<int> queue;
+  queue.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!m_bodies[i].isStatic()) continue;
+    levels[i] = 0;
+    queue.push_back(static_cast<int>(i));
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int body = queue[head];
+    const int next = levels[static_cast<std::size_t>(body)] + 1;
+    for (int k = start[static_cast<std::size_t>(body)];
+         k < start[static_cast<std::size_t>(body) + 1]; ++k) {
+      const int other = neighbours[static_cast<std::size_t>(k)];
+      if (levels[static_cast<std::size_t>(other)] != kUnreached) continue;
+      levels[static_cast<std::size_t>(other)] = next;
+      queue.push_back(other);
+    }
+  }
+  return levels;
+}
+
+void World::integrateSolvedBodies(const ContactStep& step,
+                                  const std::vector<SolvedManifold>& solved, double h) {
+  const IntegratorKind integrator = m_settings.integrator;
+  // Bodies that some contact pushed: a contact ending the solve with no
+  // impulse at all pushed nothing (its warm start was taken back).
+  std::vector<char> pushed(m_bodies.size(), 0);
+  for (const SolvedManifold& m : solved) {
+    bool any = !isZero(m.frictionImpulse) || m.twistImpulse != 0.0;
+    for (int p = 0; p < m.pointCount && !any; ++p) any = m.points[p].normalImpulse != 0.0;
+    if (!any) continue;
+    pushed[static_cast<std::size_t>(m.bodyA)] = 1;
+    pushed[static_cast<std::size_t>(m.bodyB)] = 1;
+  }
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    if (!step.solving[i]) continue;
+    Body& body = m_bodies[i];
+    const SolverBody& sb = m_solverBodies[i];
+    ForceInputs inputs;
+    inputs.gravity = m_settings.gravity;
+    inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    const bool pseudo = !isZero(sb.pseudoLinear) || !isZero(sb.pseudoAngular);
+    const double impactTime = step.impactTime.empty() ? -1.0 : step.impactTime[i];
+    if (impactTime >= 0.0) {
+      // Free flight to the time of impact, the impulses there (momenta from
+      // the solved velocities with the inertia of that moment), free flight
+      // over the rest of the step.
+      RigidState state = freeFlight(body, integrator, m_settings.gravity, impactTime);
+      const Mat3 rotation = state.orientation.toRotationMatrix();
+      state.linearMomentum = body.m_dynamics.mass * sb.linearVelocity;
+      state.angularMomentum = rotation * body.m_dynamics.inertiaBody.asDiagonal() *
+                              rotation.transpose() * sb.angularVelocity;
+      if (h > impactTime)
+        state = integrateStep(integrator, state, rotation, body.m_dynamics, inputs, h - impactTime);
+      if (pseudo)
+        integratePose(state.position, state.orientation, sb.pseudoLinear, sb.pseudoAngular, h);
+      body.m_state = state;
+    } else if (!pseudo && !pushed[i]) {
+      // No impulse reached it (a gap that stayed open): it flew free.
+      body.m_state =
+          integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
+    } else {
+      // The solver worked with the inertia of the step start: L = I(t0) ω.
+      body.m_state.linearMomentum = body.m_dynamics.mass * sb.linearVelocity;
+      body.m_state.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
+      integratePose(body.m_state.position, body.m_state.orientation,
+                    sb.linearVelocity + sb.pseudoLinear, sb.angularVelocity + sb.pseudoAngular, h);
+    }
+    body.updateDerived();
+  }
+}
+
+void World::keepSleepingContacts(const std::vector<BodyContact>& detected,
+                                 std::vector<SolvedManifold>& solved) const {
+  const auto asleep = [&](int i) {
+    const Body& b = m_bodies[static_cast<std::size_t>(i)];
+    return b.isStatic() || b.m_sleeping;
+  };
+  std::vector<SolvedManifold> kept;
+  for (const BodyContact& c : detected) {
+    if (!asleep(c.bodyA) || !asleep(c.bodyB)) continue;
+    const auto key =
+        std::make_tuple(m_bodies[static_cast<std::size_t>(c.bodyA)].m_serial,
+                        m_bodies[static_cast<std::size_t>(c.bodyB)].m_serial, c.pieceA, c.pieceB);
+    const auto found =
+        std::lower_bound(m_contacts.begin(), m_contacts.end(), key,
+                         [](const SolvedManifold& m, const auto& k) { return manifoldKey(m) < k; });
+    if (found != m_contacts.end() && manifoldKey(*found) == key) {
+      SolvedManifold copy = *found;
+      copy.bodyA = c.bodyA;
+      copy.bodyB = c.bodyB;
+      kept.push_back(copy);
+    }
+  }
+  if (kept.empty()) return;
+  solved.insert(solved.end(), kept.begin(), kept.end());
+  std::sort(solved.begin(), solved.end(), [](const SolvedManifold& x, const SolvedManifold& y) {
+    return manifoldKey(x) < manifoldKey(y);
+  });
+}
+
+}  // namespace rbsim

@@ -1,0 +1,125 @@
+// Islands and sleeping: bodies joined by contacts move as one island, wake
+// together and fall asleep together.
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "physics/world/world.h"
+
+namespace rbsim {
+
+namespace {
+
+// Union–find over dense body indices.
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t count) : m_parent(count) {
+    std::iota(m_parent.begin(), m_parent.end(), 0);
+  }
+  int find(int i) {
+    while (parent(i) != i) {
+      parent(i) = parent(parent(i));  // path halving
+      i = parent(i);
+    }
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent(std::max(a, b)) = std::min(a, b);  // deterministic root: the lowest index
+  }
+
+ private:
+  int& parent(int i) { return m_parent[static_cast<std::size_t>(i)]; }
+  std::vector<int> m_parent;
+};
+
+}  // namespace
+
+int World::sleepingBodyCount() const {
+  return static_cast<int>(
+      std::count_if(m_bodies.begin(), m_bodies.end(), [](const Body& b) { return b.m_sleeping; }));
+}
+
+void World::wakeUp(BodyId id) {
+  if (!isValid(id)) return;
+  Body& body = this->body(id);
+  body.m_sleeping = false;
+  body.m_restTime = 0.0;
+}
+
+std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) const {
+  const std::size_t n = m_bodies.size();
+  std::vector<int> islandOf(n);
+  if (contacts.empty()) {  // every body its own island
+    std::iota(islandOf.begin(), islandOf.end(), 0);
+    return islandOf;
+  }
+  // A static body joins nothing: two piles on one floor are two islands.
+  DisjointSets islands(n);
+  for (const BodyContact& c : contacts) {
+    if (!m_bodies[static_cast<std::size_t>(c.bodyA)].isStatic() &&
+        !m_bodies[static_cast<std::size_t>(c.bodyB)].isStatic())
+      islands.unite(c.bodyA, c.bodyB);
+  }
+  for (std::size_t i = 0; i < n; ++i) islandOf[i] = islands.find(static_cast<int>(i));
+  return islandOf;
+}
+
+void World::wakeIslands(const std::vector<int>& islandOf) {
+  const bool sleeping = m_settings.contact.sleeping;
+  const std::size_t n = m_bodies.size();
+  std::vector<char> islandAwake(n, 0);
+  bool anyAsleep = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body& body = m_bodies[i];
+    if (body.isStatic()) continue;
+    anyAsleep = anyAsleep || body.m_sleeping;
+    // A pushed body wakes before the step in which the push first acts.
+    if (!body.m_sleeping || body.m_load.active || !sleeping)
+      islandAwake[static_cast<std::size_t>(islandOf[i])] = 1;
+  }
+  if (!anyAsleep) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& body = m_bodies[i];
+    if (body.m_sleeping && islandAwake[static_cast<std::size_t>(islandOf[i])]) {
+      body.m_sleeping = false;
+      body.m_restTime = 0.0;
+    }
+  }
+}
+
+void World::updateSleep(const std::vector<int>& islandOf) {
+  const double dt = m_settings.dt;
+  const ContactConfig& config = m_settings.contact;
+  const std::size_t n = m_bodies.size();
+  // An island's rest time is its least restful body's. A body pushed during
+  // this step is not at rest, however slowly it moves yet: it must not fall
+  // asleep under the force, and falling asleep must not throw away the
+  // momentum the push gave it.
+  std::vector<double> islandRest(n, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& body = m_bodies[i];
+    if (body.isStatic() || body.m_sleeping) continue;
+    const bool still = !body.m_load.active &&
+                       body.m_linearVelocity.squaredNorm() <
+                           config.sleepLinearVelocity * config.sleepLinearVelocity &&
+                       body.m_angularVelocity.squaredNorm() <
+                           config.sleepAngularVelocity * config.sleepAngularVelocity;
+    body.m_restTime = still ? body.m_restTime + dt : 0.0;
+    double& rest = islandRest[static_cast<std::size_t>(islandOf[i])];
+    rest = std::min(rest, body.m_restTime);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& body = m_bodies[i];
+    if (body.isStatic() || body.m_sleeping) continue;
+    if (islandRest[static_cast<std::size_t>(islandOf[i])] >= config.sleepTime) {
+      body.m_sleeping = true;
+      body.m_state.linearMomentum.setZero();
+      body.m_state.angularMomentum.setZero();
+      body.updateDerived();
+    }
+  }
+}
+
+}  // namespace rbsim
