@@ -9,7 +9,7 @@ namespace rbsim {
 namespace {
 
 constexpr uint32_t kMagic = 0x53534252u;  // "RBSS"
-constexpr uint32_t kVersion = 2;  // 2: a wrench's point frame
+constexpr uint32_t kVersion = 2;          // 2: a wrench's point frame
 constexpr uint32_t kMaxTextLength = 4096;
 
 void writeRequest(const WrenchRequest& r, ByteWriter& out) {
@@ -40,8 +40,9 @@ WrenchRequest readRequest(ByteReader& in) {
   r.durationSteps = in.i64("wrench duration");
   r.firstStep = in.i64("wrench first step");
   if (frame > static_cast<uint8_t>(WrenchFrame::Body) ||
-      pointFrame > static_cast<uint8_t>(WrenchFrame::Body) || mode > static_cast<uint8_t>(WrenchMode::Clear) ||
-      r.durationSteps < 1 || !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
+      pointFrame > static_cast<uint8_t>(WrenchFrame::Body) ||
+      mode > static_cast<uint8_t>(WrenchMode::Clear) || r.durationSteps < 1 ||
+      !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
     in.fail("a wrench of client '" + r.client + "' has an invalid frame, mode, duration or value");
   r.frame = static_cast<WrenchFrame>(frame);
   r.pointFrame = static_cast<WrenchFrame>(pointFrame);

@@ -36,6 +36,9 @@ void WrenchScheduler::applyForStep(World& world, int64_t step) {
   }
   m_pending.swap(stillPending);
 
+  // Drop the wrenches of removed bodies, then fix world points of wrenches
+  // acting for the first time in their body (in its shape frame, the frame
+  // body points are given in) and apply them all.
   std::erase_if(m_active,
                 [&](const WrenchRequest& active) { return world.findBody(active.body).isNull(); });
   for (WrenchRequest& active : m_active) {

@@ -34,8 +34,8 @@ struct WrenchRequest {
   std::string body;  // empty only for Clear (= every body)
   WrenchFrame frame = WrenchFrame::World;       // of force and torque
   WrenchFrame pointFrame = WrenchFrame::World;  // of point
-  Vec3 force = Vec3::Zero();   // N, in `frame`
-  Vec3 torque = Vec3::Zero();  // N·m, in `frame`
+  Vec3 force = Vec3::Zero();                    // N, in `frame`
+  Vec3 torque = Vec3::Zero();                   // N·m, in `frame`
   // m, in `pointFrame`: a world position, or a point of the body's shape
   // frame. A world point is taken into the body when the wrench first acts
   // (the request then holds that shape-frame point and pointFrame = Body),

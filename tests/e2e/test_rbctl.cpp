@@ -99,13 +99,12 @@ TEST_F(Rbctl, PauseStepStateAndWrench) {
   expectExitStatus(rbctl({"step"}), 0);
   waitForStep(beforeCorner + 1);
   const auto& tiltedAfter = history().body(beforeCorner + 1, "tilted");
-  const Vec3 change =
-      angularMomentum(tiltedAfter.orientation, description("tilted").inertia,
-                      tiltedAfter.angular_velocity) -
-      angularMomentum(tiltedBefore.orientation, description("tilted").inertia,
-                      tiltedBefore.angular_velocity);
-  const Vec3 moment = cross(rotationOf(tiltedBefore.orientation) * Vec3{0.2, 0.1, 0.05},
-                            Vec3{0.0, 0.0, 1e-6});
+  const Vec3 change = angularMomentum(tiltedAfter.orientation, description("tilted").inertia,
+                                      tiltedAfter.angular_velocity) -
+                      angularMomentum(tiltedBefore.orientation, description("tilted").inertia,
+                                      tiltedBefore.angular_velocity);
+  const Vec3 moment =
+      cross(rotationOf(tiltedBefore.orientation) * Vec3{0.2, 0.1, 0.05}, Vec3{0.0, 0.0, 1e-6});
   EXPECT_LT(relativeError(change, dt * moment), 1e-9);
 
   // Duration, body frame, scheduled: accepted with the requested step.

@@ -74,9 +74,8 @@ TEST(WrenchFrames, WorldForceAtACornerGivesFOverMAndTheLeverMomentAfterOneStep) 
   const Vec3 expectedAlpha = invInertiaWorld * (rotation * kCorner).cross(force);
   ASSERT_GT(expectedAlpha.norm(), 1.0);  // rad/s²: a real turn, not a rounding
   for (IntegratorKind kind : allIntegrators()) {
-    const std::vector<double> steps = kind == IntegratorKind::Rk4
-                                          ? std::vector<double>{1e-7, 3e-7}
-                                          : std::vector<double>{1e-3, 1e-5};
+    const std::vector<double> steps = kind == IntegratorKind::Rk4 ? std::vector<double>{1e-7, 3e-7}
+                                                                  : std::vector<double>{1e-3, 1e-5};
     for (double dt : steps) {
       const RigidState next = integrateStep(kind, start, rotation, body, inputs, dt);
       const Vec3 a = (next.linearMomentum - start.linearMomentum) * body.inverseMass / dt;
@@ -111,11 +110,12 @@ ReferenceState referenceRate(const ReferenceState& s, const BodyDynamics& body,
   const Mat3 r = s.orientation.normalized().toRotationMatrix();
   const Vec3 forceWorld = loads.worldForce + r * loads.bodyForce;
   const Vec3 torqueBody = kCorner.cross(r.transpose() * loads.worldForce) +
-                          r.transpose() * loads.worldCouple + loads.bodyPoint.cross(loads.bodyForce);
+                          r.transpose() * loads.worldCouple +
+                          loads.bodyPoint.cross(loads.bodyForce);
   const Vec3 inertia = body.inertiaBody;
   const Vec3 iw = inertia.cwiseProduct(s.omegaBody);
-  const Quaternion spin = s.orientation * Quaternion{0.0, s.omegaBody.x(), s.omegaBody.y(),
-                                                     s.omegaBody.z()};
+  const Quaternion spin =
+      s.orientation * Quaternion{0.0, s.omegaBody.x(), s.omegaBody.y(), s.omegaBody.z()};
   ReferenceState rate;
   rate.position = s.velocity;
   rate.velocity = forceWorld / body.mass;
@@ -125,7 +125,8 @@ ReferenceState referenceRate(const ReferenceState& s, const BodyDynamics& body,
 }
 
 ReferenceState plus(const ReferenceState& s, const ReferenceState& rate, double h) {
-  return {s.position + h * rate.position, s.velocity + h * rate.velocity,
+  return {s.position + h * rate.position,
+          s.velocity + h * rate.velocity,
           s.omegaBody + h * rate.omegaBody,
           {s.orientation.w + h * rate.orientation.w, s.orientation.x + h * rate.orientation.x,
            s.orientation.y + h * rate.orientation.y, s.orientation.z + h * rate.orientation.z}};
@@ -172,10 +173,9 @@ TEST(WrenchFrames, Rk4TumbleUnderBodyPointLoadsMatchesAnIndependentReferenceOver
     for (int i = 0; i < steps; ++i)
       state = rk4Step(state, state.orientation.toRotationMatrix(), body, inputs, dt);
 
-    const ReferenceState reference =
-        referenceRun({start.position, start.linearMomentum / body.mass, r0.transpose() * omega0,
-                      start.orientation},
-                     body, loads, dt / 100, steps * 100);
+    const ReferenceState reference = referenceRun({start.position, start.linearMomentum / body.mass,
+                                                   r0.transpose() * omega0, start.orientation},
+                                                  body, loads, dt / 100, steps * 100);
     const double angle = angleBetween(state.orientation, reference.orientation);
     EXPECT_LT(angle, 1e-8) << "dt " << dt;
     EXPECT_LT((state.position - reference.position).norm(), 1e-10) << "dt " << dt;
@@ -206,7 +206,7 @@ TEST(WrenchFrames, Rk4TumbleUnderBodyPointLoadsMatchesAnIndependentReferenceOver
 // the centre of mass (r_tip = +l e₃) the torque changes sign and so does the
 // m g l term: the top hangs from its tip like a gyroscopic pendulum.
 TEST(WrenchFrames, SymmetricTopHeldUpAtItsTipPrecessesAtTheSlowRoot) {
-  const double m = 1.0, g = 9.81, l = 0.05;  // kg, m/s², m
+  const double m = 1.0, g = 9.81, l = 0.05;      // kg, m/s², m
   const double radius = 0.1, halfLength = 0.02;  // m: a squat disc, C > A
   const double a = m * (3 * radius * radius + 4 * halfLength * halfLength) / 12;
   const double c = m * radius * radius / 2;

@@ -154,7 +154,8 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
   def.name = "dumbbell";
   CompoundShape compound;
   compound.parts.push_back({SphereShape{0.1}, Vec3::Zero(), Quaternion::identity(), std::nullopt});
-  compound.parts.push_back({SphereShape{0.1}, Vec3(0.5, 0, 0), Quaternion::identity(), std::nullopt});
+  compound.parts.push_back(
+      {SphereShape{0.1}, Vec3(0.5, 0, 0), Quaternion::identity(), std::nullopt});
   def.shape = compound;
   def.orientation = Quaternion::fromRollPitchYaw(0.3, -0.6, 1.2);  // shape -> world
   ASSERT_TRUE(world.createBody(def).ok());
@@ -179,7 +180,7 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
   // lever arm is −0.25 along the shape's x.
   const Body& body = world.body(id);
   const Vec3 lever = body.rotation() * body.description().shapeToBodyPoint(Vec3::Zero());
-  EXPECT_LT((lever - shapeToWorld.rotate(Vec3(-0.25, 0, 0))).norm(), 1e-6);  // ω dt turned it
+  EXPECT_LT((lever - shapeToWorld.rotate(Vec3(-0.25, 0, 0))).norm(), 1e-12);  // not turned
   const Vec3 l0 = body.angularMomentum();
   WrenchRequest atOrigin = push("c", "dumbbell", 0.0, WrenchMode::OneStep, 2);
   atOrigin.pointFrame = WrenchFrame::Body;
@@ -187,7 +188,8 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
   atOrigin.point = Vec3::Zero();
   scheduler.add(atOrigin);
   run(world, scheduler, 1);
-  EXPECT_LT((world.body(id).angularMomentum() - l0 - kDt * lever.cross(atOrigin.force)).norm(), 1e-15);
+  EXPECT_LT((world.body(id).angularMomentum() - l0 - kDt * lever.cross(atOrigin.force)).norm(),
+            1e-15);
 }
 
 }  // namespace

@@ -277,7 +277,8 @@ const std::vector<Verb>& verbs() {
       {"wrench", "apply a force and torque to a body",
        "usage: rbctl wrench BODY [--force FX FY FZ] [--torque TX TY TZ] [--point X Y Z]\n"
        "                    [--frame world|body] [--point-frame world|body]\n"
-       "                    [--mode one-step|duration|persistent|clear] [--duration S] [--at-step K]\n"
+       "                    [--mode one-step|duration|persistent|clear]\n"
+       "                    [--duration S] [--at-step K]\n"
        "       rbctl wrench --mode clear      (clear this client's wrenches on every body)\n\n"
        "  --force       N, in --frame (default 0 0 0)\n"
        "  --torque      N m, in --frame: a pure couple (default 0 0 0)\n"
