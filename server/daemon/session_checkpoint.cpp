@@ -9,7 +9,7 @@ namespace rbsim {
 namespace {
 
 constexpr uint32_t kMagic = 0x53534252u;  // "RBSS"
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;          // 2: a wrench's point frame
 constexpr uint32_t kMaxTextLength = 4096;
 
 void writeRequest(const WrenchRequest& r, ByteWriter& out) {
@@ -17,6 +17,7 @@ void writeRequest(const WrenchRequest& r, ByteWriter& out) {
   out.i64(r.seq);
   out.string(r.body);
   out.u8(static_cast<uint8_t>(r.frame));
+  out.u8(static_cast<uint8_t>(r.pointFrame));
   out.vec3(r.force);
   out.vec3(r.torque);
   out.vec3(r.point);
@@ -31,16 +32,20 @@ WrenchRequest readRequest(ByteReader& in) {
   r.seq = in.i64("wrench seq");
   r.body = in.string("wrench body", kMaxTextLength);
   const uint8_t frame = in.u8("wrench frame");
+  const uint8_t pointFrame = in.u8("wrench point frame");
   r.force = in.vec3("wrench force");
   r.torque = in.vec3("wrench torque");
   r.point = in.vec3("wrench point");
   const uint8_t mode = in.u8("wrench mode");
   r.durationSteps = in.i64("wrench duration");
   r.firstStep = in.i64("wrench first step");
-  if (frame > static_cast<uint8_t>(WrenchFrame::Body) || mode > static_cast<uint8_t>(WrenchMode::Clear) ||
-      r.durationSteps < 1 || !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
+  if (frame > static_cast<uint8_t>(WrenchFrame::Body) ||
+      pointFrame > static_cast<uint8_t>(WrenchFrame::Body) ||
+      mode > static_cast<uint8_t>(WrenchMode::Clear) || r.durationSteps < 1 ||
+      !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
     in.fail("a wrench of client '" + r.client + "' has an invalid frame, mode, duration or value");
   r.frame = static_cast<WrenchFrame>(frame);
+  r.pointFrame = static_cast<WrenchFrame>(pointFrame);
   r.mode = static_cast<WrenchMode>(mode);
   return r;
 }

@@ -1,8 +1,10 @@
 #pragma once
 // A whole session as a checkpoint payload: the world (world_snapshot.h),
-// the wrenches pending and acting with all their parameters, the pause
-// state and STEPs still to take, and the world revision. A session
-// restored from it continues bit-identically.
+// the wrenches pending and acting with all their parameters (an acting
+// wrench whose point was given in the world holds the body point it was
+// fixed to when it first acted), the pause state and STEPs still to take,
+// and the world revision. A session restored from it continues
+// bit-identically.
 //
 // Payload (little-endian): "RBSS", version, world revision, paused, steps
 // requested, the world snapshot, then the pending and the active wrenches.

@@ -249,6 +249,16 @@ std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
   return paginate<ContactFields>(header, std::move(contacts));
 }
 
+namespace {
+
+Expected<WrenchFrame> wrenchFrameFrom(int8_t value, const char* field) {
+  if (value == rbsim::wrench_t::FRAME_WORLD) return WrenchFrame::World;
+  if (value == rbsim::wrench_t::FRAME_BODY) return WrenchFrame::Body;
+  return Error{std::string("unknown ") + field + " " + std::to_string(value)};
+}
+
+}  // namespace
+
 Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
                                           int64_t nextStep, const WrenchLimits& limits) {
   WrenchRequest request;
@@ -272,13 +282,12 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
     default:
       return Error{"unknown mode " + std::to_string(message.mode)};
   }
-  if (message.frame == rbsim::wrench_t::FRAME_WORLD) {
-    request.frame = WrenchFrame::World;
-  } else if (message.frame == rbsim::wrench_t::FRAME_BODY) {
-    request.frame = WrenchFrame::Body;
-  } else {
-    return Error{"unknown frame " + std::to_string(message.frame)};
-  }
+  const auto frame = wrenchFrameFrom(message.frame, "frame");
+  if (!frame) return frame.error();
+  request.frame = *frame;
+  const auto pointFrame = wrenchFrameFrom(message.point_frame, "point_frame");
+  if (!pointFrame) return pointFrame.error();
+  request.pointFrame = *pointFrame;
 
   const bool clearEverything = request.mode == WrenchMode::Clear && message.body.empty();
   const BodyId id = world.findBody(message.body);
@@ -315,9 +324,9 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
     return Error{"body '" + message.body + "' is frozen (" +
                  std::string(freezeReasonName(body.freezeReason())) +
                  "); RESET or REMOVE it"};
-  const double leverArm = request.frame == WrenchFrame::World
+  const double leverArm = request.pointFrame == WrenchFrame::World
                               ? (request.point - body.position()).norm()
-                              : request.point.norm();
+                              : body.description().shapeToBodyPoint(request.point).norm();
   if (leverArm > limits.maxLeverArm)
     return Error{"point is " + std::to_string(leverArm) + " m from the centre of mass (limit " +
                  std::to_string(limits.maxLeverArm) + " m)"};

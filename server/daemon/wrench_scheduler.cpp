@@ -36,17 +36,26 @@ void WrenchScheduler::applyForStep(World& world, int64_t step) {
   }
   m_pending.swap(stillPending);
 
-  std::erase_if(m_active, [&](const WrenchRequest& active) {
-    const BodyId id = world.findBody(active.body);
-    if (id.isNull()) return true;  // the body was removed
-    Body& body = world.body(id);
-    if (active.frame == WrenchFrame::World) {
-      body.applyWorldWrench(active.force, active.torque, active.point);
-    } else {
-      body.applyBodyWrench(active.force, active.torque, active.point);
+  // Drop the wrenches of removed bodies, then fix world points of wrenches
+  // acting for the first time in their body (in its shape frame, the frame
+  // body points are given in) and apply them all.
+  std::erase_if(m_active,
+                [&](const WrenchRequest& active) { return world.findBody(active.body).isNull(); });
+  for (WrenchRequest& active : m_active) {
+    Body& body = world.body(world.findBody(active.body));
+    const BodyDescription& description = body.description();
+    if (active.pointFrame == WrenchFrame::World) {
+      active.point = description.bodyToShapePoint(body.worldToBody(active.point));
+      active.pointFrame = WrenchFrame::Body;
     }
-    return false;
-  });
+    const Vec3 bodyPoint = description.shapeToBodyPoint(active.point);
+    if (active.frame == WrenchFrame::World) {
+      body.applyWorldWrenchAtBodyPoint(active.force, active.torque, bodyPoint);
+    } else {
+      body.applyBodyWrench(description.shapeToBodyVector(active.force),
+                           description.shapeToBodyVector(active.torque), bodyPoint);
+    }
+  }
 }
 
 void WrenchScheduler::finishStep(int64_t step) {

@@ -23,6 +23,8 @@
 
 namespace rbsim {
 
+// Body frame here is the frame the body was given in (its shape frame, as
+// for a URDF link), not the principal-axes frame of the physics.
 enum class WrenchFrame { World, Body };
 enum class WrenchMode { OneStep, Duration, Persistent, Clear };
 
@@ -30,10 +32,15 @@ struct WrenchRequest {
   std::string client;
   int64_t seq = 0;
   std::string body;  // empty only for Clear (= every body)
-  WrenchFrame frame = WrenchFrame::World;
-  Vec3 force = Vec3::Zero();   // N
-  Vec3 torque = Vec3::Zero();  // N·m
-  Vec3 point = Vec3::Zero();   // m, world point or body point (relative to the centre of mass)
+  WrenchFrame frame = WrenchFrame::World;       // of force and torque
+  WrenchFrame pointFrame = WrenchFrame::World;  // of point
+  Vec3 force = Vec3::Zero();                    // N, in `frame`
+  Vec3 torque = Vec3::Zero();                   // N·m, in `frame`
+  // m, in `pointFrame`: a world position, or a point of the body's shape
+  // frame. A world point is taken into the body when the wrench first acts
+  // (the request then holds that shape-frame point and pointFrame = Body),
+  // so from then on it moves with the body.
+  Vec3 point = Vec3::Zero();
   WrenchMode mode = WrenchMode::OneStep;
   int64_t durationSteps = 1;   // Duration only, >= 1
   int64_t firstStep = 0;       // the step during which it first acts
@@ -47,7 +54,8 @@ class WrenchScheduler {
 
   // Applies the wrenches acting during `step` (= world.stepCount() + 1) to the
   // world's bodies: call right before world.step(). Wrenches whose body no
-  // longer exists are dropped.
+  // longer exists are dropped; world points of wrenches acting for the first
+  // time are fixed in their body at its current pose.
   void applyForStep(World& world, int64_t step);
   // Call right after world.step(): retires wrenches that have run out.
   void finishStep(int64_t step);

@@ -28,6 +28,9 @@ inline Vec3 operator*(double s, const Vec3& v) {
 inline double dot(const Vec3& a, const Vec3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
 inline double norm(const Vec3& v) {
   return std::sqrt(dot(v, v));
 }

@@ -87,6 +87,26 @@ TEST_F(Rbctl, PauseStepStateAndWrench) {
   EXPECT_LT(relativeError(toVec3(history().body(pausedAt + 6, "puck").linear_velocity), expected),
             1e-12);
 
+  // A world force at a body corner (--point-frame body) turns the box at
+  // rest by the moment of the force about its centre, (R r) × F: the flag
+  // reached the server (read as a world point the same numbers give another
+  // moment, see test_wrench_physics.cpp).
+  const int64_t beforeCorner = currentStep();
+  const auto& tiltedBefore = history().body(beforeCorner, "tilted");
+  expectExitStatus(rbctl({"wrench", "tilted", "--force", "0", "0", "1e-6", "--point", "0.2", "0.1",
+                          "0.05", "--point-frame", "body"}),
+                   0);
+  expectExitStatus(rbctl({"step"}), 0);
+  waitForStep(beforeCorner + 1);
+  const auto& tiltedAfter = history().body(beforeCorner + 1, "tilted");
+  const Vec3 change = angularMomentum(tiltedAfter.orientation, description("tilted").inertia,
+                                      tiltedAfter.angular_velocity) -
+                      angularMomentum(tiltedBefore.orientation, description("tilted").inertia,
+                                      tiltedBefore.angular_velocity);
+  const Vec3 moment =
+      cross(rotationOf(tiltedBefore.orientation) * Vec3{0.2, 0.1, 0.05}, Vec3{0.0, 0.0, 1e-6});
+  EXPECT_LT(relativeError(change, dt * moment), 1e-9);
+
   // Duration, body frame, scheduled: accepted with the requested step.
   const ProcessResult scheduled =
       rbctl({"wrench", "tilted", "--frame", "body", "--force", "0", "1", "0", "--duration", "0.01",
@@ -176,6 +196,7 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
            {"step", "0"},
            {"frobnicate"},
            {"wrench", "puck", "--frame", "sideways"},
+           {"wrench", "puck", "--point-frame", "up"},
            {"wrench", "puck", "--force", "1", "nan", "0"},
            {"wrench", "puck", "--mode", "duration"},
            {"wrench", "--force", "1", "0", "0"},

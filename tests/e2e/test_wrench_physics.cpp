@@ -69,6 +69,50 @@ TEST_F(WrenchPhysics, WorldForceForDurationChangesVelocityByFTOverM) {
   EXPECT_EQ(velocityOf(history().body(k + steps + 29, "puck")),
             velocityOf(history().body(k + steps - 1, "puck")))
       << "the wrench must stop after " << steps << " steps";
+  // The world point (the centre of mass when the wrench first acted) moves
+  // with the puck: no torque. A point left behind in the world would have
+  // had a lever arm of −v t, and turned it.
+  EXPECT_EQ(toVec3(history().body(k + steps + 29, "puck").angular_velocity), Vec3({0.0, 0.0, 0.0}));
+}
+
+// A world-frame force at a corner given in the body (point_frame BODY), on
+// a turned box at rest: one step changes L by dt (R r_b) × F. From rest the
+// body turns by about ½ α t² within the step, which changes the mean torque
+// RK4 sees by a relative α dt²/6: the force is small enough (α ≈ 2.5e-4
+// rad/s²) that this is 4e-11, well inside the tolerance.
+TEST_F(WrenchPhysics, WorldForceAtABodyCornerChangesAngularMomentumByItsLeverMoment) {
+  const auto& tilted = description("tilted");
+  const int64_t start = currentStep();
+  const auto& before = history().body(start, "tilted");
+  const Mat3 rotation = rotationOf(before.orientation);
+
+  client::Wrench wrench;
+  wrench.body = "tilted";
+  wrench.frame = client::Frame::World;
+  wrench.pointFrame = client::Frame::Body;
+  wrench.force = {2e-6, -3e-6, 8e-6};  // N, world
+  wrench.point = {0.2, -0.1, 0.05};    // m, a corner, body frame
+  const rbsim::ack_t ack = expectAccepted(client().applyWrench(wrench));
+  EXPECT_EQ(ack.effective_step, start + 1);
+  stepAndWait(3);
+
+  const auto momentumAt = [&](int64_t step) {
+    const auto& body = history().body(step, "tilted");
+    return angularMomentum(body.orientation, tilted.inertia, body.angular_velocity);
+  };
+  const Vec3 lever = rotation * wrench.point;
+  const Vec3 expected = dt() * cross(lever, wrench.force);
+  const Vec3 change = momentumAt(start + 1) - momentumAt(start);
+  EXPECT_LT(relativeError(change, expected), kTolerance);
+  EXPECT_LT(relativeError(velocityOf(history().body(start + 1, "tilted")),
+                          (dt() / tilted.mass) * wrench.force),
+            kTolerance);
+  // Neither the unturned corner nor the same numbers read as a world point.
+  EXPECT_GT(relativeError(change, dt() * cross(wrench.point, wrench.force)), 0.1);
+  const Vec3 asWorldPoint = wrench.point - toVec3(before.position);
+  EXPECT_GT(relativeError(change, dt() * cross(asWorldPoint, wrench.force)), 0.1);
+  // One step only: torque-free afterwards.
+  EXPECT_LT(relativeError(momentumAt(start + 3), momentumAt(start + 1)), 1e-12);
 }
 
 TEST_F(WrenchPhysics, PureTorqueChangesAngularMomentumByTauT) {

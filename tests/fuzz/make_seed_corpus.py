@@ -55,10 +55,11 @@ def messages(types_dir):
 
     modes = {"one_step": 0, "duration": 1, "persistent": 2, "clear": 3}
     for mode_name, mode in modes.items():
-        for frame_name, frame in (("world", 0), ("body", 1)):
+        for frame_name, frame, point_frame in (("world", 0, 0), ("body", 1, 1),
+                                               ("world_at_body_point", 0, 1)):
             w = wrench_t()
             w.utime, w.client, w.seq, w.body = 1, "fuzz", 1, "crate"
-            w.frame, w.mode = frame, mode
+            w.frame, w.point_frame, w.mode = frame, point_frame, mode
             w.force, w.torque, w.point = [10.0, 0.0, 5.0], [0.0, 1.0, 0.0], [0.1, 0.0, 0.1]
             w.duration, w.apply_at_step = 0.05, -1
             write("wrench_message", f"{mode_name}_{frame_name}", w.encode())

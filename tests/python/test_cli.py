@@ -37,6 +37,8 @@ def test_usage_errors():
     assert proc.returncode == 2 and "--force" in proc.stderr
     proc = _rbsim("wrench", "box", "--mode", "forever")
     assert proc.returncode == 2 and "invalid choice" in proc.stderr
+    proc = _rbsim("wrench", "box", "--point-frame", "shape")
+    assert proc.returncode == 2 and "invalid choice" in proc.stderr
 
 
 def test_cli_against_server(scenario):

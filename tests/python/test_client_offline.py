@@ -150,6 +150,7 @@ def test_sent_wrenches_and_commands(sim):
     assert (c1, c2, c3, c4, c5) == ("RBSIM_WRENCH",) * 3 + ("RBSIM_COMMAND",) * 2
     w1, w2, w3 = (wrench_t.decode(d) for d in (d1, d2, d3))
     assert (w1.client, w1.seq, w1.body, w1.frame, w1.mode) == ("offline", 1, "ball", 0, 0)
+    assert (w1.point_frame, w2.point_frame) == (0, 1)  # by default the frame of the force
     assert w1.force == (1.0, 2.0, 3.0) and w1.point == (0.0, 0.0, 0.5)  # ball's position
     assert w1.apply_at_step == -1 and w1.utime > 0
     assert (w2.frame, w2.mode, w2.duration, w2.apply_at_step) == (1, 1, 0.25, 99)
@@ -158,6 +159,26 @@ def test_sent_wrenches_and_commands(sim):
     c4m, c5m = command_t.decode(d4), command_t.decode(d5)
     assert (c4m.command, c4m.num_steps, c4m.seq) == (command_t.STEP, 7, 4)
     assert (c5m.command, c5m.spawn_yaml) == (command_t.SPAWN, "name: x")
+
+
+def test_point_frame_is_sent_apart_from_the_frame(sim):
+    sent = []
+    sim.lcm.subscribe("RBSIM_WRENCH", lambda c, d, u: sent.append(wrench_t.decode(d)))
+    _publish(sim, "STATE", _pages(0, ["ball"], 1))
+    sim.wait_state(timeout=2.0, new=False)
+    sim.apply_wrench("ball", (0, 0, 1), point=(0.1, 0, 0), point_frame="body")
+    sim.apply_wrench("ball", (0, 0, 1), frame="body", point_frame="world")  # point None: the centre
+    sim.apply_wrench("ball", (0, 0, 1), point_frame="body")  # point None: the body-frame origin
+    with pytest.raises(ValueError):
+        sim.apply_wrench("ball", (0, 0, 1), point_frame="shape")
+    for _ in range(200):
+        if len(sent) == 3:
+            break
+        threading.Event().wait(0.01)
+    assert [(w.frame, w.point_frame) for w in sent] == [(0, 1), (1, 0), (0, 1)]
+    assert sent[0].point == (0.1, 0.0, 0.0)
+    assert sent[1].point == (0.0, 0.0, 0.5)  # the ball's position in the latest state
+    assert sent[2].point == (0.0, 0.0, 0.0)
 
 
 def test_defaults(monkeypatch):

@@ -80,7 +80,7 @@ def _world():
 def _wrench():
     m = wrench_t()
     m.utime, m.client, m.seq, m.body = 1, "py-host-1", 42, "box"
-    m.frame, m.mode = wrench_t.FRAME_BODY, wrench_t.MODE_DURATION
+    m.frame, m.point_frame, m.mode = wrench_t.FRAME_WORLD, wrench_t.FRAME_BODY, wrench_t.MODE_DURATION
     m.force, m.torque, m.point = (1.0, -2.0, 3.0), (0.0, 0.5, 0.0), (0.1, 0.0, -0.1)
     m.duration, m.apply_at_step = 0.25, 1000
     return m

@@ -184,6 +184,7 @@ Request Client::applyWrench(const Wrench& wrench) {
   message.seq = m_nextSeq++;
   message.body = wrench.body;
   message.frame = static_cast<int8_t>(wrench.frame);
+  message.point_frame = static_cast<int8_t>(wrench.pointFrame.value_or(wrench.frame));
   copyVec3(message.force, wrench.force);
   copyVec3(message.torque, wrench.torque);
   copyVec3(message.point, wrench.point);

@@ -4,7 +4,8 @@
     python3 -m rbsim status                     print the next heartbeat
     python3 -m rbsim bodies                     print the world description
     python3 -m rbsim wrench BODY --force FX FY FZ [--torque ...] [--point ...]
-                            [--frame world|body] [--mode one_step|duration|persistent|clear]
+                            [--frame world|body] [--point-frame world|body]
+                            [--mode one_step|duration|persistent|clear]
                             [--duration S] [--at-step K]
     python3 -m rbsim pause | resume | reset
     python3 -m rbsim step [N] [--sync]
@@ -141,6 +142,7 @@ def cmd_wrench(args):
     with _client(args) as sim:
         ack = sim.apply_wrench(
             args.body, args.force, torque=args.torque, point=args.point, frame=args.frame,
+            point_frame=args.point_frame,
             mode=args.mode, duration=args.duration, apply_at_step=args.at_step, wait=True,
             timeout=args.timeout,
         )
@@ -291,9 +293,13 @@ def build_parser():
     sub.add_argument("--torque", nargs=3, type=float, default=[0.0, 0.0, 0.0],
                      metavar=("TX", "TY", "TZ"), help="N*m, pure couple, in --frame (default 0 0 0)")
     sub.add_argument("--point", nargs=3, type=float, default=None, metavar=("PX", "PY", "PZ"),
-                     help="m, where the force acts, in --frame (default: the centre of mass)")
+                     help="m, where the force acts, in --point-frame (default: the centre of mass)")
     sub.add_argument("--frame", choices=["world", "body"], default="world",
-                     help="frame of force, torque and point (default world)")
+                     help="frame of force and torque (default world: keeps its world direction; "
+                          "body: the body's config frame, turning with it)")
+    sub.add_argument("--point-frame", choices=["world", "body"], default=None,
+                     help="frame of point (default: --frame): world = a world position when the "
+                          "wrench first acts, carried with the body; body = fixed in the body")
     sub.add_argument("--mode", choices=["one_step", "duration", "persistent", "clear"],
                      default="one_step", help="how long it acts (default one_step)")
     sub.add_argument("--duration", type=float, default=0.0,

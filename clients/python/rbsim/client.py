@@ -13,8 +13,12 @@ Channels are ``prefix + STATE, STATUS, WORLD, ACK`` (received) and
 Units and frames (as on the wire): SI units (m, kg, s, rad, N, N*m); the world
 frame is right-handed with z up; positions and velocities are those of the
 centre of mass, velocities in the world frame; quaternions are (w, x, y, z),
-rotating body-frame vectors into the world frame. The body frame has its
-origin at the centre of mass and its axes along the principal axes of inertia.
+rotating body-frame vectors into the world frame. The body frame of a state
+(orientation, inertia) has its origin at the centre of mass and its axes along
+the principal axes of inertia; the body frame of a wrench is the frame the body
+is given in (its config frame), which the world description's shape_position
+and shape_orientation place in the principal frame (the two coincide for
+spheres, boxes, cylinders and capsules).
 
 Threading: the client runs one background thread that receives messages;
 state callbacks run on it. Every public method may be called from any other
@@ -641,17 +645,22 @@ class Client:
         wait=False,
         timeout=None,
         check=False,
+        point_frame=None,
     ):
         """Sends a ``wrench_t`` on ``prefix + WRENCH``.
 
         ``force`` (N) and ``torque`` (N*m, a pure couple) are 3-vectors in
-        ``frame``: "world" (fixed in the world while the wrench lasts) or
-        "body" (principal axes, turning with the body). ``point`` (m, in
-        ``frame``) is where the force acts; None means the centre of mass: the
-        body-frame origin, or for the world frame the body's position in the
-        latest received state (waited for if there is none yet), which is
-        exact while the server is paused and lags by the state latency
-        otherwise.
+        ``frame``: "world" (keeping their world direction while the body
+        turns) or "body" (the frame the body is given in, turning with it).
+        ``point`` (m, in ``point_frame``, which defaults to ``frame``) is the
+        point of the body where the force acts: in "world", a world position
+        at the moment the wrench first acts, carried with the body from then
+        on; in "body", a point fixed in the body. None means the centre of
+        mass: for a world point, the body's position in the latest received
+        state (waited for if there is none yet), which is exact while the
+        server is paused and lags by the state latency otherwise; for a body
+        point, the body-frame origin (the centre of mass for spheres, boxes,
+        cylinders and capsules).
 
         ``mode``: "one_step" (acts during one step), "duration" (during
         ``duration`` s of simulated time, rounded to whole steps, >= 1),
@@ -666,14 +675,18 @@ class Client:
         rejected). Values are not range-checked here: the server judges them.
         """
         frame_code = FRAMES.get(frame, frame)
+        point_code = frame_code if point_frame is None else FRAMES.get(point_frame, point_frame)
         mode_code = MODES.get(mode, mode)
         if frame_code not in FRAMES.values():
             raise ValueError("frame must be one of %s, not %r" % (sorted(FRAMES), frame))
+        if point_code not in FRAMES.values():
+            raise ValueError("point_frame must be one of %s, not %r" % (sorted(FRAMES), point_frame))
         if mode_code not in MODES.values():
             raise ValueError("mode must be one of %s, not %r" % (sorted(MODES), mode))
         message = wrench_t()
         message.body = body
         message.frame = frame_code
+        message.point_frame = point_code
         message.mode = mode_code
         if mode_code == wrench_t.MODE_CLEAR:
             force, torque, point = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
@@ -681,7 +694,7 @@ class Client:
         message.torque = _vector(torque, 3, "torque")
         if point is None:
             point = (0.0, 0.0, 0.0)
-            if frame_code == wrench_t.FRAME_WORLD:
+            if point_code == wrench_t.FRAME_WORLD:
                 state = self._state or self.wait_state(timeout)
                 if body in state:
                     point = state[body].position

@@ -28,6 +28,13 @@ struct BodyDescription {
   // mass, axes along the principal axes): p_body = shapeRotation p_shape + shapeTranslation.
   Mat3 shapeRotation = Mat3::Identity();
   Vec3 shapeTranslation = Vec3::Zero();  // m
+  Vec3 shapeToBodyPoint(const Vec3& shapePoint) const {
+    return shapeRotation * shapePoint + shapeTranslation;
+  }
+  Vec3 shapeToBodyVector(const Vec3& shapeVector) const { return shapeRotation * shapeVector; }
+  Vec3 bodyToShapePoint(const Vec3& bodyPoint) const {
+    return shapeRotation.transpose() * (bodyPoint - shapeTranslation);
+  }
   // For mesh shapes: the mesh re-expressed in body space. Null otherwise.
   std::shared_ptr<const TriangleMesh> bodySpaceMesh;
   // Collision geometry in body space (null until collision detection builds it).
@@ -85,11 +92,22 @@ class Body {
   void setDamping(double linear, double angular);
 
   // External wrenches for the coming step (cleared by the world after it).
-  void applyWorldWrench(const Vec3& force, const Vec3& torque, const Vec3& point) {
-    m_load.addWorldWrench(force, torque, point, m_state.position);
+  // Every force acts at a point fixed in the body: during the step (and at
+  // each RK4 stage) the point moves and turns with the body.
+  //  - applyWorldWrench: world-frame force and couple; the point is given by
+  //    its world position now, at the start of the step.
+  //  - applyWorldWrenchAtBodyPoint: world-frame force and couple at a body
+  //    point (body frame, relative to the centre of mass).
+  //  - applyBodyWrench: force, couple and point in the body frame; the force
+  //    turns with the body.
+  void applyWorldWrench(const Vec3& force, const Vec3& torque, const Vec3& worldPoint) {
+    m_load.addWorldWrench(force, torque, worldToBody(worldPoint));
   }
-  void applyBodyWrench(const Vec3& force, const Vec3& torque, const Vec3& point) {
-    m_load.addBodyWrench(force, torque, point);
+  void applyWorldWrenchAtBodyPoint(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
+    m_load.addWorldWrench(force, torque, bodyPoint);
+  }
+  void applyBodyWrench(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
+    m_load.addBodyWrench(force, torque, bodyPoint);
   }
   const ExternalLoad& load() const { return m_load; }
   void clearLoad() { m_load.clear(); }

@@ -44,7 +44,7 @@ Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyD
   if (inputs.load != nullptr && inputs.load->active) {
     const Vec3 external = inputs.load->forceAt(rotation);
     wrench.force += external;
-    wrench.torque += inputs.load->torqueAt(state.position, rotation);
+    wrench.torque += inputs.load->torqueAt(rotation);
   }
   if (includeDamping) {
     wrench.force -= dynamics.linearDamping * state.linearMomentum;

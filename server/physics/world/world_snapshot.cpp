@@ -145,8 +145,8 @@ Shape readShape(ByteReader& in, const std::string& body) {
 }
 
 void writeLoad(const ExternalLoad& load, ByteWriter& out) {
-  out.vec3(load.referencePoint);
   out.vec3(load.worldForce);
+  for (int row = 0; row < 3; ++row) out.vec3(load.worldForceLevers.row(row).transpose());
   out.vec3(load.worldTorque);
   out.vec3(load.bodyForce);
   out.vec3(load.bodyTorque);
@@ -155,8 +155,9 @@ void writeLoad(const ExternalLoad& load, ByteWriter& out) {
 
 ExternalLoad readLoad(ByteReader& in) {
   ExternalLoad load;
-  load.referencePoint = in.vec3("load reference point");
   load.worldForce = in.vec3("load world force");
+  for (int row = 0; row < 3; ++row)
+    load.worldForceLevers.row(row) = in.vec3("load world force levers").transpose();
   load.worldTorque = in.vec3("load world torque");
   load.bodyForce = in.vec3("load body force");
   load.bodyTorque = in.vec3("load body torque");

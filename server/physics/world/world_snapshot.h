@@ -33,7 +33,8 @@ namespace rbsim {
 class WorldSnapshot {
  public:
   static constexpr uint32_t kMagic = 0x53574252u;  // "RBWS" in file order
-  static constexpr uint32_t kVersion = 2;  // 2: a body's freeze reason (numerical guard)
+  // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in the body
+  static constexpr uint32_t kVersion = 3;
 
   // Errors only for a body whose shape the format cannot hold.
   static Expected<bool> write(const World& world, ByteWriter& out);

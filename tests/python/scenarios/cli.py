@@ -59,6 +59,18 @@ def cli(workdir):
         assert_close(box["linear_velocity"], [10 * 0.001 * 1.0 / 2.5, 0, 0], rel=1e-9,
                      what="box velocity after the CLI wrench")
 
+        # --point-frame body: the body-frame origin, the box's centre, so no
+        # turn; read as a world point, 0 0 0 is 1 m below the box and would
+        # turn it.
+        _ok("wrench", "box", "--force", "1", "0", "0", "--point", "0", "0", "0",
+            "--point-frame", "body")
+        _ok("step", "1", "--sync")
+        state = json.loads(_ok("state", "--json"))
+        box = next(b for b in state["bodies"] if b["name"] == "box")
+        assert box["angular_velocity"] == [0.0, 0.0, 0.0], box
+        assert_close(box["linear_velocity"], [11 * 0.001 * 1.0 / 2.5, 0, 0], rel=1e-9,
+                     what="box velocity after the point-frame wrench")
+
         out = _ok("wrench", "yawed", "--force", "0", "0", "1", "--torque", "0", "0", "0.1",
                   "--point", "0.1", "0", "0", "--frame", "body", "--mode", "persistent",
                   "--at-step", "25")

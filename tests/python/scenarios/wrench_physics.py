@@ -52,9 +52,8 @@ def duration_force(workdir):
                      what="dv one step before the end")
         for other in ("yawed",):
             assert_equal(states[k + n + 9][other].linear_velocity, [0, 0, 0], other + " velocity")
-        # Force through the centre of mass: no rotation. (The point is fixed
-        # in the world and the box moves along F, so the lever arm stays
-        # parallel to F: zero torque up to rounding.)
+        # Force through the centre of mass: no rotation (the point, the
+        # centre when the wrench first acted, moves with the box).
         assert_close(states[k + n + 9]["box"].angular_velocity, [0, 0, 0], abs_tol=1e-12,
                      what="box angular velocity")
 
@@ -150,5 +149,31 @@ def body_frame_force(workdir):
                      what="dL of a body-frame force at a point")
 
 
+
+def world_force_at_body_point(workdir):
+    """A world-frame force at a corner given in the body (point_frame
+    "body") on the resting, yawed box: dP = F dt and dL = (R r) x F dt after
+    one step (semi-implicit Euler takes the load at the start of the step);
+    the same numbers as a world point give another moment."""
+    with session(workdir, "free_bodies", *SERVER_ARGS) as (sim, _server):
+        world = sim.wait_world()
+        mass, dt = world["yawed"].mass, world.dt
+        start = sim.wait_state()
+        rotation = start["yawed"].rotation()
+        force, corner = np.array([0.5, -0.3, 2.0]), np.array([0.2, 0.1, -0.05])
+        ack = sim.apply_wrench("yawed", force, point=corner, point_frame="body", wait=True,
+                               check=True)
+        sim.step(1, sync=True, check=True)
+        after = sim.state_at(ack.effective_step)
+        assert after is not None
+        assert_close(after["yawed"].linear_velocity, force * dt / mass, what="dv")
+        moment = np.cross(rotation @ corner, force) * dt
+        assert_close(angular_momentum(world, after, "yawed"), moment, rel=1e-9,
+                     what="dL = (R r) x F dt")
+        as_world = np.cross(corner - start["yawed"].position, force) * dt
+        assert np.linalg.norm(as_world - moment) > 0.1 * np.linalg.norm(moment)
+
+
 if __name__ == "__main__":
-    run({f.__name__: f for f in (duration_force, torque, body_frame_force)})
+    run({f.__name__: f for f in (duration_force, torque, body_frame_force,
+                                 world_force_at_body_point)})

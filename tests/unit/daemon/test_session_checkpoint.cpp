@@ -32,6 +32,18 @@ Session pushedSession() {
   later.durationSteps = 7;
   later.firstStep = 40;
   session.wrenches().add(later);
+  // World points: one already fixed in the body (acting), one not yet (pending).
+  WrenchRequest atCorner = persistent;
+  atCorner.client = "d";
+  atCorner.point = Vec3(0.1, 0.0, 0.05);
+  atCorner.torque = Vec3(0.0, 0.1, 0.0);
+  atCorner.firstStep = 5;  // the ball has moved by then
+  session.wrenches().add(atCorner);
+  WrenchRequest bodyForce = atCorner;
+  bodyForce.frame = WrenchFrame::Body;
+  bodyForce.mode = WrenchMode::OneStep;
+  bodyForce.firstStep = 12;
+  session.wrenches().add(bodyForce);
   for (int i = 0; i < 10; ++i) session.step();
   session.pause();
   session.requestSteps(3);
@@ -46,8 +58,15 @@ TEST(SessionCheckpoint, WrenchesAndPauseStateRoundTrip) {
   ASSERT_TRUE(state.ok()) << state.error().message;
   EXPECT_TRUE(state->paused);
   EXPECT_EQ(state->stepsRequested, 3);
-  EXPECT_EQ(state->wrenches.activeCount(), 1);
-  EXPECT_EQ(state->wrenches.pendingCount(), 1);
+  EXPECT_EQ(state->wrenches.activeCount(), 2);
+  EXPECT_EQ(state->wrenches.pendingCount(), 2);
+  // The acting wrench keeps the body point its world point was fixed to,
+  // bit for bit; the pending one still holds its world point.
+  EXPECT_EQ(state->wrenches.active()[1].pointFrame, WrenchFrame::Body);
+  EXPECT_EQ(state->wrenches.active()[1].point, original.wrenches().active()[1].point);
+  EXPECT_NE(state->wrenches.active()[1].point, Vec3(0.1, 0.0, 0.05));
+  EXPECT_EQ(state->wrenches.pending()[1].pointFrame, WrenchFrame::World);
+  EXPECT_EQ(state->wrenches.pending()[1].frame, WrenchFrame::Body);
 
   Session restored(original.initialWorld(), false);
   restored.resumeFrom(std::move(state->world), std::move(state->wrenches), state->worldRevision, state->paused,

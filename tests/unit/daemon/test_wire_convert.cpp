@@ -76,6 +76,9 @@ TEST(WireConvert, RejectsBadWrenchesWithReasons) {
   w.frame = 5;
   EXPECT_NE(reason(w).find("frame"), std::string::npos);
   w = goodWrench();
+  w.point_frame = 2;
+  EXPECT_NE(reason(w).find("unknown point_frame 2"), std::string::npos);
+  w = goodWrench();
   w.duration = 0.0;
   EXPECT_NE(reason(w).find("duration"), std::string::npos);
   w = goodWrench();
@@ -90,6 +93,32 @@ TEST(WireConvert, RejectsBadWrenchesWithReasons) {
   w.body = "";
   w.force[0] = std::nan("");
   EXPECT_EQ(reason(w), "accepted");
+}
+
+TEST(WireConvert, PointFrameIsReadApartFromTheForceFrame) {
+  const World world = makeWorld(4);  // body_3 at (3, 0, 0)
+  auto w = goodWrench();
+  w.body = "body_3";
+  w.frame = rbsim::wrench_t::FRAME_WORLD;
+  w.point_frame = rbsim::wrench_t::FRAME_BODY;
+  w.point[0] = 0.1;
+  const auto request = wrenchRequestFrom(w, world, 11, WrenchLimits{});
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->frame, WrenchFrame::World);
+  EXPECT_EQ(request->pointFrame, WrenchFrame::Body);
+  EXPECT_EQ(request->point, Vec3(0.1, 0, 0));
+  // The lever-arm limit measures from the centre of mass in either frame.
+  WrenchLimits limits;
+  limits.maxLeverArm = 2.0;
+  w.point[0] = 2.5;  // 2.5 m from the centre in the body, 0.5 m from it as a world point
+  EXPECT_FALSE(wrenchRequestFrom(w, world, 11, limits).ok());
+  w.point_frame = rbsim::wrench_t::FRAME_WORLD;
+  EXPECT_TRUE(wrenchRequestFrom(w, world, 11, limits).ok());
+  w.frame = rbsim::wrench_t::FRAME_BODY;
+  const auto bodyForce = wrenchRequestFrom(w, world, 11, limits);
+  ASSERT_TRUE(bodyForce.ok());
+  EXPECT_EQ(bodyForce->frame, WrenchFrame::Body);
+  EXPECT_EQ(bodyForce->pointFrame, WrenchFrame::World);
 }
 
 TEST(WireConvert, LargeStatesArePagedUnderOneDatagram) {

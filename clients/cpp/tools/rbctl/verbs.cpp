@@ -105,6 +105,12 @@ client::WrenchMode parseMode(const std::string& text) {
   throw UsageError("--mode: expected one-step, duration, persistent or clear, got '" + text + "'");
 }
 
+client::Frame parseFrame(const std::string& option, const std::string& text) {
+  if (text == "world") return client::Frame::World;
+  if (text == "body") return client::Frame::Body;
+  throw UsageError(option + ": expected world or body, got '" + text + "'");
+}
+
 int runWrench(Context& context, Arguments& arguments) {
   client::Wrench wrench;
   bool hasBody = false;
@@ -121,14 +127,9 @@ int runWrench(Context& context, Arguments& arguments) {
       wrench.point = arguments.nextVec3(option);
       hasPoint = true;
     } else if (option == "--frame") {
-      const std::string frame = arguments.next(option, "world or body");
-      if (frame == "world") {
-        wrench.frame = client::Frame::World;
-      } else if (frame == "body") {
-        wrench.frame = client::Frame::Body;
-      } else {
-        throw UsageError("--frame: expected world or body, got '" + frame + "'");
-      }
+      wrench.frame = parseFrame(option, arguments.next(option, "world or body"));
+    } else if (option == "--point-frame") {
+      wrench.pointFrame = parseFrame(option, arguments.next(option, "world or body"));
     } else if (option == "--mode") {
       wrench.mode = parseMode(arguments.next(option, "a mode"));
       hasMode = true;
@@ -152,9 +153,12 @@ int runWrench(Context& context, Arguments& arguments) {
   if (!hasBody && wrench.mode != client::WrenchMode::Clear)
     throw UsageError("wrench: missing BODY (only --mode clear may leave it out, for every body)");
 
-  // A world-frame force with no point acts through the centre of mass: the
-  // one the latest state shows (the server checks the body exists).
-  if (wrench.frame == client::Frame::World && !hasPoint &&
+  // With no point the force acts through the centre of mass: as a world
+  // point, the one the latest state shows (the server checks the body
+  // exists); as a body point, the origin of the body frame, which is the
+  // centre of mass only for spheres, boxes, cylinders and capsules.
+  if (!wrench.pointFrame) wrench.pointFrame = wrench.frame;
+  if (*wrench.pointFrame == client::Frame::World && !hasPoint &&
       wrench.mode != client::WrenchMode::Clear) {
     if (!waitForState(context))
       return noAnswer(context, "state on " + context.client.channel("STATE") +
@@ -272,18 +276,24 @@ const std::vector<Verb>& verbs() {
        runBodies},
       {"wrench", "apply a force and torque to a body",
        "usage: rbctl wrench BODY [--force FX FY FZ] [--torque TX TY TZ] [--point X Y Z]\n"
-       "                    [--frame world|body] [--mode one-step|duration|persistent|clear]\n"
+       "                    [--frame world|body] [--point-frame world|body]\n"
+       "                    [--mode one-step|duration|persistent|clear]\n"
        "                    [--duration S] [--at-step K]\n"
        "       rbctl wrench --mode clear      (clear this client's wrenches on every body)\n\n"
-       "  --force       N, in the frame (default 0 0 0)\n"
-       "  --torque      N m, in the frame: a pure couple (default 0 0 0)\n"
-       "  --point       m, where the force acts: a world position (world frame) or an\n"
-       "                offset from the centre of mass (body frame). Default: the\n"
-       "                centre of mass (from the latest state, in the world frame)\n"
-       "  --frame       world (default) or body (turns with the body)\n"
+       "  --force       N, in --frame (default 0 0 0)\n"
+       "  --torque      N m, in --frame: a pure couple (default 0 0 0)\n"
+       "  --frame       of force and torque: world (default; keeps its world direction)\n"
+       "                or body (turns with the body)\n"
+       "  --point       m, in --point-frame: where the force acts, a point of the body.\n"
+       "                Default: the centre of mass (world: from the latest state;\n"
+       "                body: 0 0 0, the centre for spheres, boxes, cylinders, capsules)\n"
+       "  --point-frame world (a world position when the wrench first acts, carried\n"
+       "                with the body from then on) or body (fixed in the body).\n"
+       "                Default: the same as --frame\n"
        "  --mode        one-step (default), duration, persistent or clear\n"
        "  --duration    s of simulated time (implies --mode duration)\n"
-       "  --at-step K   the step during which it first acts (default: the next)\n\n"
+       "  --at-step K   the step during which it first acts (default: the next)\n"
+       "The body frame is the frame the body is given in (its config frame).\n\n"
        "Note: CLEAR and persistent replacement work per client id, and every rbctl run\n"
        "is a new client unless --client-id names one: to clear a persistent wrench later,\n"
        "  rbctl --client-id me wrench ball --force 0 0 5 --mode persistent\n"

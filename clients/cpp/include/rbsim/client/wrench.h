@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace rbsim::client {
@@ -13,8 +14,11 @@ using Vec3 = std::array<double, 3>;
 
 // The values are those of wrench_t::FRAME_* and MODE_* (checked in client.cpp).
 enum class Frame : int8_t {
-  World = 0,  // fixed in the world; `point` is a world position
-  Body = 1,   // body frame (origin at the centre of mass, principal axes); turns with the body
+  World = 0,  // the world frame
+  // The frame the body is given in (its config frame, as for a URDF link);
+  // world_t's shape_position and shape_orientation place it in the
+  // principal-axes frame of the state. Turns with the body.
+  Body = 1,
 };
 
 enum class WrenchMode : int8_t {
@@ -27,13 +31,17 @@ enum class WrenchMode : int8_t {
 struct Wrench {
   std::string body;            // name; may be empty only for Clear, meaning every body
   Vec3 force{0.0, 0.0, 0.0};   // N, in `frame`
-  Vec3 torque{0.0, 0.0, 0.0};  // N·m, in `frame`: a pure couple added to (point − x) × force
-  // m, in `frame`: where the force acts. In the world frame this is a world
-  // position, not an offset: leaving it at the origin for a body elsewhere
-  // also applies the moment of the force about the centre of mass. In the
-  // body frame it is relative to the centre of mass, so zero means "through it".
+  Vec3 torque{0.0, 0.0, 0.0};  // N·m, in `frame`: a pure couple added to the moment of the force
+  // m, in `pointFrame`: where the force acts, a point of the body either way.
+  // A world point is a world position (not an offset) at the moment the
+  // wrench first acts; the body carries it from then on. Leaving it at the
+  // origin for a body elsewhere also applies the moment of the force about
+  // the centre of mass. A body point is fixed in the body frame.
   Vec3 point{0.0, 0.0, 0.0};
-  Frame frame = Frame::World;
+  Frame frame = Frame::World;  // of force and torque
+  // Of point; unset: the same as `frame` (a world force at a world point, a
+  // body force at a body point).
+  std::optional<Frame> pointFrame;
   WrenchMode mode = WrenchMode::OneStep;
   double duration = 0.0;     // s of simulated time, Duration only, > 0
   int64_t applyAtStep = -1;  // the step during which it first acts; -1 = the next step
