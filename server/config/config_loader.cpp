@@ -1,7 +1,5 @@
 #include "config/config_loader.h"
 
-#include "config/contact_config.h"
-
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -15,9 +13,10 @@
 #include <memory>
 #include <utility>
 
-#include "config/yaml_document_count.h"
+#include "config/contact_config.h"
 #include "config/contained_path.h"
 #include "config/mass_data_config.h"
+#include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
 #include "physics/geometry/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
@@ -48,12 +47,9 @@ constexpr std::array<std::string_view, 6> kTopLevelKeys = {
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
 constexpr std::array<std::string_view, 15> kBodyKeys = {
-    "name",    "shape",           "mass",
-    "density", "center_of_mass",  "inertia",
-    "position", "orientation",
-    "rpy",     "linear_velocity", "angular_velocity",
-    "static",  "damping",         "material",
-    "ccd"};
+    "name",     "shape",       "mass", "density",         "center_of_mass",   "inertia",
+    "position", "orientation", "rpy",  "linear_velocity", "angular_velocity", "static",
+    "damping",  "material",    "ccd"};
 
 constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};

@@ -26,8 +26,8 @@ struct BodyDef {
   // off-diagonals are minus the products of inertia) and requires `mass`;
   // `centerOfMass` is in the shape's frame and requires `inertia` (unset:
   // the frame's origin). Neither is allowed on a static body.
-  std::optional<Mat3> inertia;        // kg·m²
-  std::optional<Vec3> centerOfMass;   // m
+  std::optional<Mat3> inertia;       // kg·m²
+  std::optional<Vec3> centerOfMass;  // m
 
   // Pose of the shape's frame (the frame its dimensions or mesh vertices are
   // given in) in the world. The body frame itself has its origin at the

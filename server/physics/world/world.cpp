@@ -128,8 +128,11 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   if (def.centerOfMass && !def.inertia)
     return Error{where + "a centre of mass needs an inertia tensor (and a mass) with it"};
   if (def.inertia) {
-    if (def.isStatic) return Error{where + "a static body has no mass properties; remove mass, inertia and centre of mass"};
-    if (!def.mass) return Error{where + "an inertia tensor needs the body's mass with it (not a density)"};
+    if (def.isStatic)
+      return Error{where +
+                   "a static body has no mass properties; remove mass, inertia and centre of mass"};
+    if (!def.mass)
+      return Error{where + "an inertia tensor needs the body's mass with it (not a density)"};
     if (def.centerOfMass && !isFiniteVec(*def.centerOfMass))
       return Error{where + "the centre of mass must be finite"};
     if (const auto problem = inertiaTensorProblem(*def.inertia)) return Error{where + *problem};
