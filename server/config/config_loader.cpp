@@ -1,7 +1,5 @@
 #include "config/config_loader.h"
 
-#include "config/contact_config.h"
-
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -15,8 +13,10 @@
 #include <memory>
 #include <utility>
 
-#include "config/yaml_document_count.h"
+#include "config/contact_config.h"
 #include "config/contained_path.h"
+#include "config/mass_data_config.h"
+#include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
 #include "physics/geometry/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
@@ -46,12 +46,10 @@ constexpr std::array<std::string_view, 6> kTopLevelKeys = {
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
-constexpr std::array<std::string_view, 13> kBodyKeys = {
-    "name",    "shape",           "mass",
-    "density", "position",        "orientation",
-    "rpy",     "linear_velocity", "angular_velocity",
-    "static",  "damping",         "material",
-    "ccd"};
+constexpr std::array<std::string_view, 15> kBodyKeys = {
+    "name",     "shape",       "mass", "density",         "center_of_mass",   "inertia",
+    "position", "orientation", "rpy",  "linear_velocity", "angular_velocity", "static",
+    "damping",  "material",    "ccd"};
 
 constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
@@ -254,6 +252,7 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
     if (!value) return value.error();
     body.density = *value;
   }
+  if (auto error = parseGivenMassProperties(m_reader, *map, body)) return *error;
 
   Expected<Vec3> position =
       m_reader.vec3(*map, "position", NumberRule::any(kMaxLength), body.position);

@@ -52,6 +52,9 @@ std::string massPropertiesJson(const World& world) {
     out << "      \"name\": " << jsonString(d.name) << ",\n";
     out << "      \"shape\": " << jsonString(shapeTypeName(d.shape)) << ",\n";
     out << "      \"static\": " << (d.isStatic ? "true" : "false") << ",\n";
+    // "given": the config's mass, center_of_mass and inertia; "shape":
+    // computed from the shape at its density (or scaled to its mass).
+    out << "      \"source\": \"" << (d.massPropertiesGiven ? "given" : "shape") << "\",\n";
     out << "      \"mass\": " << number(m.mass) << ",\n";
     out << "      \"volume\": " << number(m.volume) << ",\n";
     out << "      \"center_of_mass\": " << vector3(m.centerOfMass) << ",\n";

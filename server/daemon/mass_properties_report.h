@@ -7,7 +7,9 @@
 
 namespace rbsim {
 
-// For every body, in creation order: name, mass (kg), volume (m³),
+// For every body, in creation order: name, source ("given" when the config
+// gave mass, center_of_mass and inertia, "shape" when computed from the
+// shape), mass (kg), volume (m³, the shape's),
 // center_of_mass (m) and inertia (kg·m², 3×3 about the centre of mass), both
 // in the frame the shape was given in, principal_moments (ascending) and
 // principal_axes (a list of three unit vectors in that frame, one per moment).

@@ -90,6 +90,7 @@ rbsim::body_description_t bodyDescription(const Body& body) {
   out.is_static = d.isStatic;
   out.mass = body.mass();
   copyTo(out.inertia, body.dynamics().inertiaBody);
+  out.mass_properties_given = d.massPropertiesGiven;
   out.linear_damping = body.dynamics().linearDamping;
   out.angular_damping = body.dynamics().angularDamping;
   out.shape_type = shapeTypeName(d.shape);

@@ -45,8 +45,9 @@ std::vector<LoggedEvent> eventsOn(const EventLog& log, const std::string& channe
 }
 
 // Several clients send wrenches (every mode, some scheduled ahead), pauses,
-// steps, resumes, spawns, removes and one reset at random moments; the
-// session is recorded by the server and, on the bus, by lcm-logger.
+// steps, resumes, spawns (boxes with given mass properties), removes and one
+// reset at random moments; the session is recorded by the server and, on the
+// bus, by lcm-logger.
 TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
   const std::string record = scratchPath("session.lcmlog");
   const std::string busLog = scratchPath("bus.lcmlog");
@@ -72,6 +73,7 @@ TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
     return std::uniform_int_distribution<std::size_t>(0, count - 1)(random);
   };
   int spawned = 0;
+  std::vector<std::pair<client::Client*, int64_t>> givenSpawns;  // (client, seq) of the box spawns
   for (int action = 0; action < 140; ++action) {
     client::Client& c = *clients[pick(clients.size())];
     const rbsim::world_state_t& state = *client().latestState();
@@ -111,12 +113,18 @@ TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
     } else if (roll < 0.91) {
       const std::string name = "spawned_" + std::to_string(spawned++);
       const bool box = uniform(0.0, 1.0) < 0.5;
-      request = c.spawn("{name: " + name + ", shape: " +
-                        (box ? std::string("{type: box, half_extents: [0.08, 0.06, 0.05]}")
-                             : std::string("{type: sphere, radius: 0.07}")) +
-                        ", mass: 0.5, position: [" + std::to_string(uniform(-1.5, 1.5)) + ", " +
-                        std::to_string(uniform(-0.5, 0.5)) + ", " + std::to_string(uniform(0.3, 1.2)) +
-                        "], angular_velocity: [0, 0, " + std::to_string(uniform(-3, 3)) + "]}");
+      // Boxes come with their mass properties given as data (off the
+      // box's own), which the replay must rebuild from spawn_yaml.
+      request = c.spawn(
+          "{name: " + name + ", shape: " +
+          (box ? std::string("{type: box, half_extents: [0.08, 0.06, 0.05]}, center_of_mass: "
+                             "[0.01, 0, -0.005], inertia: [[0.0011, 0.0001, 0], [0.0001, 0.0015, "
+                             "0], [0, 0, 0.0017]]")
+               : std::string("{type: sphere, radius: 0.07}")) +
+          ", mass: 0.5, position: [" + std::to_string(uniform(-1.5, 1.5)) + ", " +
+          std::to_string(uniform(-0.5, 0.5)) + ", " + std::to_string(uniform(0.3, 1.2)) +
+          "], angular_velocity: [0, 0, " + std::to_string(uniform(-3, 3)) + "]}");
+      if (box) givenSpawns.emplace_back(&c, request.seq);
     } else if (!bodies.empty()) {
       request = c.remove(bodies[pick(bodies.size())]);
     }
@@ -126,11 +134,15 @@ TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
   // Every request answered (accepted or not) before the server stops.
   std::map<int8_t, int> acceptedCommands;
   int acceptedWrenches = 0;
+  int acceptedGivenSpawns = 0;
   for (auto& [via, request] : sent) {
     const auto ack = via->waitForAck(request, kAnswerTimeout);
     ASSERT_TRUE(ack.has_value()) << "no ack for seq " << request.seq << " of " << via->clientId();
     if (ack->accepted && ack->kind == rbsim::ack_t::KIND_WRENCH) ++acceptedWrenches;
     if (ack->accepted && ack->kind == rbsim::ack_t::KIND_COMMAND) ++acceptedCommands[ack->request];
+    if (ack->accepted && std::find(givenSpawns.begin(), givenSpawns.end(),
+                                   std::pair(via, request.seq)) != givenSpawns.end())
+      ++acceptedGivenSpawns;
   }
   if (client().latestStatus() && client().latestStatus()->paused) client().resume();
   spinFor(100ms);
@@ -146,6 +158,7 @@ TEST_F(Replay, RandomSessionOfSeveralClientsReplaysBitIdentically) {
   EXPECT_GE(acceptedCommands[rbsim::command_t::PAUSE], 1);
   EXPECT_GE(acceptedCommands[rbsim::command_t::STEP], 1);
   EXPECT_GE(acceptedCommands[rbsim::command_t::SPAWN], 3);
+  EXPECT_GE(acceptedGivenSpawns, 1);
   EXPECT_GE(acceptedCommands[rbsim::command_t::REMOVE], 2);
   EXPECT_EQ(acceptedCommands[rbsim::command_t::RESET], 1);
 

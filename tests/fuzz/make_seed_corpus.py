@@ -150,6 +150,8 @@ BODIES = {
     "plane": "{name: p, static: true, shape: {type: plane, normal: [0, 0.1, 1], offset: -1}}",
     "mesh": "{name: m, shape: {type: mesh, file: cube.obj}, position: [0, 0, 2]}",
     "mesh_stl": "{name: t, shape: {type: mesh, file: tetrahedron.stl}, position: [0, 1, 0.5]}",
+    "given_inertia": "{name: g, shape: {type: box, half_extents: [0.2, 0.1, 0.01]}, mass: 2, "
+                     "center_of_mass: [0.05, 0, 0], inertia: [[0.01, -0.001, 0], [-0.001, 0.02, 0], [0, 0, 0.03]]}",
 }
 
 

@@ -24,6 +24,10 @@ struct BodyDescription {
   Shape shape;                  // in the shape's own frame, as the user gave it
   bool isStatic = false;
   MassProperties massProperties;  // in the shape's frame (zero for static bodies)
+  // True when the mass, centre of mass and inertia were given (BodyDef::
+  // inertia) rather than computed from the shape; the volume is the shape's
+  // either way.
+  bool massPropertiesGiven = false;
   // Placement of the shape's frame in body space (origin at the centre of
   // mass, axes along the principal axes): p_body = shapeRotation p_shape + shapeTranslation.
   Mat3 shapeRotation = Mat3::Identity();

@@ -20,6 +20,15 @@ struct BodyDef {
   std::optional<double> mass;     // kg
   std::optional<double> density;  // kg/m³
 
+  // Mass properties given as data (URDF <inertial>, CAD) instead of computed
+  // from the shape, which then only collides. `inertia` is the tensor about
+  // the centre of mass in the axes of the shape's frame (its own entries:
+  // off-diagonals are minus the products of inertia) and requires `mass`;
+  // `centerOfMass` is in the shape's frame and requires `inertia` (unset:
+  // the frame's origin). Neither is allowed on a static body.
+  std::optional<Mat3> inertia;       // kg·m²
+  std::optional<Vec3> centerOfMass;  // m
+
   // Pose of the shape's frame (the frame its dimensions or mesh vertices are
   // given in) in the world. The body frame itself has its origin at the
   // centre of mass and its axes along the principal axes of inertia (the

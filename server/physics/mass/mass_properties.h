@@ -1,7 +1,9 @@
 #pragma once
 // Mass properties of a solid of uniform density.
 
+#include <optional>
 #include <span>
+#include <string>
 
 #include "physics/common/expected.h"
 #include "physics/geometry/triangle_mesh.h"
@@ -71,6 +73,17 @@ MassProperties combinedMassProperties(std::span<const PlacedMassProperties> part
 // moments are equal; the moments are then the diagonal in x, y, z order,
 // which need not be ascending. Otherwise they are ascending.
 PrincipalAxes principalAxes(const Mat3& inertia);
+
+// Why an inertia tensor given as data (URDF <inertial>, CAD) cannot be a
+// rigid body's, or nothing when it can: it must be finite, symmetric,
+// positive definite, and each principal moment at most the sum of the other
+// two (I1 + I2 − I3 = 2 ∫ z² dm ≥ 0 in principal axes; equality is a body
+// flat in a plane). Symmetry and the inequality allow round-off of
+// kInertiaTolerance times the largest |entry| or the trace: text written by
+// CAD tools repeats products of inertia to ~16 digits, and the principal
+// moments of a rotated tensor carry the eigensolver's rounding.
+std::optional<std::string> inertiaTensorProblem(const Mat3& inertia);
+inline constexpr double kInertiaTolerance = 1e-12;
 
 // Inertia of the same body about a point displaced by `offset` from the
 // centre of mass (parallel-axis theorem): I + m (|d|² 1 − d dᵀ).

@@ -125,6 +125,18 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   if (def.mass && !isPositiveFinite(*def.mass)) return Error{where + "mass must be positive"};
   if (def.density && !isPositiveFinite(*def.density))
     return Error{where + "density must be positive"};
+  if (def.centerOfMass && !def.inertia)
+    return Error{where + "a centre of mass needs an inertia tensor (and a mass) with it"};
+  if (def.inertia) {
+    if (def.isStatic)
+      return Error{where +
+                   "a static body has no mass properties; remove mass, inertia and centre of mass"};
+    if (!def.mass)
+      return Error{where + "an inertia tensor needs the body's mass with it (not a density)"};
+    if (def.centerOfMass && !isFiniteVec(*def.centerOfMass))
+      return Error{where + "the centre of mass must be finite"};
+    if (const auto problem = inertiaTensorProblem(*def.inertia)) return Error{where + *problem};
+  }
   const double linearDamping = def.linearDamping.value_or(m_settings.linearDamping);
   const double angularDamping = def.angularDamping.value_or(m_settings.angularDamping);
   if (!(std::isfinite(linearDamping) && linearDamping >= 0.0) ||
@@ -158,8 +170,19 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     // densities of their own (then it weighs them).
     const double density = def.mass ? *def.mass / unit->mass
                                     : def.density.value_or(BodyDef::kDefaultDensity);
-    description->massProperties = scaled(*unit, density);
-    if (def.mass) description->massProperties.mass = *def.mass;  // exactly as given
+    if (def.inertia) {
+      // Given as data: the shape keeps only its volume (and its collider).
+      // The mean of the two triangles keeps a given symmetric tensor as it
+      // is and splits round-off evenly.
+      description->massPropertiesGiven = true;
+      description->massProperties.mass = *def.mass;
+      description->massProperties.volume = unit->volume;
+      description->massProperties.centerOfMass = def.centerOfMass.value_or(Vec3::Zero());
+      description->massProperties.inertia = 0.5 * (*def.inertia + def.inertia->transpose());
+    } else {
+      description->massProperties = scaled(*unit, density);
+      if (def.mass) description->massProperties.mass = *def.mass;  // exactly as given
+    }
     const PrincipalAxes axes = principalAxes(description->massProperties.inertia);
     centerOfMass = description->massProperties.centerOfMass;
     principal = axes.axes;

@@ -306,6 +306,7 @@ Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
     out.f64(d.massProperties.volume);
     out.vec3(d.massProperties.centerOfMass);
     out.mat3(d.massProperties.inertia);
+    out.boolean(d.massPropertiesGiven);
     out.mat3(d.shapeRotation);
     out.vec3(d.shapeTranslation);
     out.f64(d.material.restitution);
@@ -397,6 +398,7 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
     description->massProperties.volume = in.f64("volume");
     description->massProperties.centerOfMass = in.vec3("centre of mass");
     description->massProperties.inertia = in.mat3("inertia");
+    description->massPropertiesGiven = in.boolean("mass properties given flag");
     description->shapeRotation = in.mat3("shape rotation");
     description->shapeTranslation = in.vec3("shape translation");
     description->material.restitution = in.f64("restitution");

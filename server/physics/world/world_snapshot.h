@@ -4,7 +4,8 @@
 //
 // What it holds: the step count and serial counter; every body with the 13
 // state numbers as bit patterns, its description (shape with mesh vertices,
-// mass properties, placement of the shape in body space, material, flags),
+// mass properties and whether they were given, placement of the shape in
+// body space, material, flags),
 // its dynamics, the load given for the coming step, its sleep state
 // (asleep, time at rest) and whether the numerical guard froze it; the slot
 // table behind BodyIds; and the contact
@@ -33,7 +34,8 @@ namespace rbsim {
 class WorldSnapshot {
  public:
   static constexpr uint32_t kMagic = 0x53574252u;  // "RBWS" in file order
-  // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in the body
+  // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
+  // the body, and whether a body's mass properties were given as data.
   static constexpr uint32_t kVersion = 3;
 
   // Errors only for a body whose shape the format cannot hold.

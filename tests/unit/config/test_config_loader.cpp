@@ -402,8 +402,8 @@ bodies:
     colour: red
 )"),
             "test.yaml:4:5: bodies[0].colour: unknown key; a body has: name, shape, mass, "
-            "density, position, orientation, rpy, linear_velocity, angular_velocity, static, "
-            "damping, material, ccd");
+            "density, center_of_mass, inertia, position, orientation, rpy, linear_velocity, "
+            "angular_velocity, static, damping, material, ccd");
   // Keys of another shape type are unknown too.
   EXPECT_EQ(errorOf(R"(
 bodies:

@@ -91,6 +91,39 @@ TEST(CommandHandler, PauseStepResumeDriveTheSessionState) {
   EXPECT_EQ(f.session.stepsRequested(), 0);
 }
 
+TEST(CommandHandler, SpawnWithGivenInertia) {
+  Fixture f;
+  auto spawn = commandMessage("c", 1, rbsim::command_t::SPAWN);
+  spawn.spawn_yaml =
+      "{name: plate, shape: {type: box, half_extents: [0.3, 0.2, 0.01]}, position: [0, 3, 0],\n"
+      " mass: 2, center_of_mass: [0.1, 0, 0], inertia: [0.01, 0.02, 0.03]}";
+  const CommandOutcome spawned = send(f.handler, spawn);
+  ASSERT_TRUE(spawned.ack.accepted) << spawned.ack.reason;
+  const Body& plate = f.session.world().body(f.session.world().findBody("plate"));
+  EXPECT_TRUE(plate.description().massPropertiesGiven);
+  EXPECT_EQ(plate.mass(), 2.0);
+  EXPECT_EQ(plate.dynamics().inertiaBody, Vec3(0.01, 0.02, 0.03));
+  EXPECT_EQ(plate.position(), Vec3(0.1, 3.0, 0.0));  // the centre of mass, world frame
+
+  spawn.seq = 2;
+  spawn.spawn_yaml =
+      "{name: bad, shape: {type: sphere, radius: 0.1}, mass: 1,\n inertia: [0.01, 0.01, 0.03]}";
+  const CommandOutcome rejected = send(f.handler, spawn);
+  EXPECT_FALSE(rejected.ack.accepted);
+  EXPECT_NE(rejected.ack.reason.find(
+                "spawn_yaml:2:11: inertia: no rigid body has these principal moments"),
+            std::string::npos)
+      << rejected.ack.reason;
+  spawn.seq = 3;
+  spawn.spawn_yaml = "{name: bad, shape: {type: sphere, radius: 0.1}, inertia: [0.01, 0.01, 0.01]}";
+  const CommandOutcome noMass = send(f.handler, spawn);
+  EXPECT_FALSE(noMass.ack.accepted);
+  EXPECT_NE(noMass.ack.reason.find("spawn_yaml:1:49: inertia: inertia needs the body's mass"),
+            std::string::npos)
+      << noMass.ack.reason;
+  EXPECT_EQ(f.session.world().bodyCount(), 3);
+}
+
 TEST(CommandHandler, SpawnRemoveAndResetChangeTheRevision) {
   Fixture f;
   auto spawn = commandMessage("c", 1, rbsim::command_t::SPAWN);

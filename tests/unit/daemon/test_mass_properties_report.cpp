@@ -25,5 +25,32 @@ TEST(MassPropertiesReport, BoxInTheShapeFrame) {
       << json;
 }
 
+TEST(MassPropertiesReport, GivenMassPropertiesAreReportedAsGiven) {
+  World world;
+  BodyDef def;
+  def.name = "plate";
+  def.shape = SphereShape{0.5};  // collides as a ball, weighs as a plate
+  def.mass = 4.0;
+  def.inertia = Mat3(Vec3(1.0, 2.0, 3.0).asDiagonal());
+  def.centerOfMass = Vec3(0.25, 0.0, -0.5);
+  ASSERT_TRUE(world.createBody(def).ok());
+  BodyDef computed;
+  computed.name = "ball";
+  computed.shape = SphereShape{0.5};
+  computed.position = Vec3(3, 0, 0);
+  ASSERT_TRUE(world.createBody(computed).ok());
+  const std::string json = massPropertiesJson(world);
+  const std::size_t ball = json.find("\"name\": \"ball\"");
+  ASSERT_NE(ball, std::string::npos) << json;
+  const std::string plate = json.substr(0, ball);
+  EXPECT_NE(plate.find("\"source\": \"given\","), std::string::npos) << json;
+  EXPECT_NE(plate.find("\"mass\": 4,"), std::string::npos) << json;
+  EXPECT_NE(plate.find("\"center_of_mass\": [0.25, 0, -0.5],"), std::string::npos) << json;
+  EXPECT_NE(plate.find("\"inertia\": [[1, 0, 0], [0, 2, 0], [0, 0, 3]]"), std::string::npos)
+      << json;
+  EXPECT_NE(plate.find("\"principal_moments\": [1, 2, 3]"), std::string::npos) << json;
+  EXPECT_NE(json.substr(ball).find("\"source\": \"shape\","), std::string::npos) << json;
+}
+
 }  // namespace
 }  // namespace rbsim

@@ -239,6 +239,49 @@ TEST(WireConvert, SpawnedCompoundRoundTripsInTheWorldDescription) {
   EXPECT_EQ(worldDescriptionPages(makeWorld(1), 0, 1)[0].bodies[0].num_parts, 0);
 }
 
+TEST(WireConvert, GivenMassPropertiesAreFlaggedAndRebuildable) {
+  // A body whose mass properties came from CAD: world_t says so, and the
+  // centre of mass and tensor in the shape frame follow from its fields
+  // (body_description_t.lcm gives the formulas).
+  const std::string yaml =
+      "{name: bracket, shape: {type: box, half_extents: [0.2, 0.1, 0.05]}, mass: 2.5,\n"
+      " center_of_mass: [0.05, -0.02, 0.01],\n"
+      " inertia: [[0.02, -0.003, 0.001], [-0.003, 0.03, 0.002], [0.001, 0.002, 0.04]]}";
+  const Expected<BodyDef> def = parseBodyDef(yaml, "spawn", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  World world;
+  ASSERT_TRUE(world.createBody(*def).ok());
+  BodyDef computed;
+  computed.name = "plain";
+  computed.shape = BoxShape{Vec3(0.2, 0.1, 0.05)};
+  computed.mass = 2.5;
+  computed.position = Vec3(3, 0, 0);
+  ASSERT_TRUE(world.createBody(computed).ok());
+
+  const auto pages = worldDescriptionPages(world, 0, 1);
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(pages[0].getEncodedSize()));
+  ASSERT_EQ(pages[0].encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  rbsim::world_t decoded;
+  ASSERT_EQ(decoded.decode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  ASSERT_EQ(decoded.num_bodies, 2);
+  const rbsim::body_description_t& bracket = decoded.bodies[0];
+  EXPECT_TRUE(bracket.mass_properties_given);
+  EXPECT_FALSE(decoded.bodies[1].mass_properties_given);
+  EXPECT_EQ(bracket.mass, 2.5);
+  const Quaternion placement{bracket.shape_orientation[0], bracket.shape_orientation[1],
+                             bracket.shape_orientation[2], bracket.shape_orientation[3]};
+  const Mat3 r = placement.toRotationMatrix();
+  const Vec3 shapePosition(bracket.shape_position[0], bracket.shape_position[1],
+                           bracket.shape_position[2]);
+  const Vec3 center = -(r.transpose() * shapePosition);
+  EXPECT_LT((center - *def->centerOfMass).norm(), 1e-15);
+  const Vec3 moments(bracket.inertia[0], bracket.inertia[1], bracket.inertia[2]);
+  const Mat3 tensor = r.transpose() * moments.asDiagonal() * r;
+  EXPECT_LT((tensor - *def->inertia).cwiseAbs().maxCoeff(), 1e-15);
+}
+
 }  // namespace
 }  // namespace rbsim
 
