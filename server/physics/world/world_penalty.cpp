@@ -5,6 +5,7 @@
 // forces couple them: an RK4 stage of one body needs the other's stage state.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "physics/body/integrator.h"
@@ -58,17 +59,16 @@ class PenaltySystem {
                   : m_fixedMotion[static_cast<std::size_t>(dense)];
   }
   std::vector<BodyMotion> motions(const States& states, const Rotations& rotations) const;
-  // Which points push at a state (the law's switch, see penaltyPushes) and,
-  // when `held` is given, for each point a value (N) whose sign change is
-  // its switch away from `held`, smooth in time while `held` is: k d or
-  // k d + c ḋ, whichever vanishes there. It only guides the search for the
-  // moment of a switch; `pushing` decides.
+  // Which points push at a state (the law's switch, see penaltyPushes), and
+  // the two values whose sign changes are the switches: k d and k d + c ḋ
+  // (N). They only guide the search for the moment of a switch; `pushing`
+  // decides.
   struct Switches {
     std::vector<char> pushing;
-    std::vector<double> value;
+    std::vector<double> springForce;  // k d
+    std::vector<double> linearForce;  // k d + c ḋ
   };
-  Switches switchesAt(const States& states, const Rotations& rotations,
-                      const std::vector<char>* held) const;
+  Switches switchesAt(const States& states, const Rotations& rotations) const;
   // The contact wrench on every body at a state (torques about its centre of
   // mass). `pushing` fixes which points push; null lets the law decide at
   // this state. The points' forces times `weight` are added to `impulses`
@@ -109,23 +109,20 @@ std::vector<BodyMotion> PenaltySystem::motions(const States& states,
   return out;
 }
 
-PenaltySystem::Switches PenaltySystem::switchesAt(const States& states, const Rotations& rotations,
-                                                  const std::vector<char>* held) const {
+PenaltySystem::Switches PenaltySystem::switchesAt(const States& states,
+                                                  const Rotations& rotations) const {
   const std::vector<BodyMotion> moving = motions(states, rotations);
   Switches switches;
   switches.pushing.assign(m_points.size(), 0);
-  if (held != nullptr) switches.value.assign(m_points.size(), 0.0);
+  switches.springForce.assign(m_points.size(), 0.0);
+  switches.linearForce.assign(m_points.size(), 0.0);
   for (std::size_t p = 0; p < m_points.size(); ++p) {
     const PenaltyPoint& point = m_points[p];
     const PenaltyGap gap =
         penaltyGap(point, motionOf(point.bodyA, moving), motionOf(point.bodyB, moving));
     switches.pushing[p] = penaltyPushes(m_law, point, gap) ? 1 : 0;
-    if (held == nullptr) continue;
-    // A clamped point stops pushing where k d + c ḋ reaches zero (before d
-    // does, as ḋ < 0 there); any point starts where d does (then c ḋ > 0),
-    // or, clamped and still in the ground, where k d + c ḋ turns positive.
-    const bool byForce = m_law == PenaltyLaw::Clamped && ((*held)[p] != 0 || gap.depth > 0.0);
-    switches.value[p] = byForce ? linearPenaltyForce(point, gap) : point.stiffness * gap.depth;
+    switches.springForce[p] = point.stiffness * gap.depth;
+    switches.linearForce[p] = linearPenaltyForce(point, gap);
   }
   return switches;
 }
@@ -229,15 +226,33 @@ PenaltySystem::States PenaltySystem::rk4WithSwitches(double h) {
   double remaining = h;
   for (int switches = 0;; ++switches) {
     if (switches == kMaxSwitches) return rk4(states, rotations, nullptr, remaining, &m_impulses);
-    const std::vector<char> pushing = switchesAt(states, rotations, nullptr).pushing;
+    Switches atLow = switchesAt(states, rotations);
+    const std::vector<char> pushing = atLow.pushing;
+    // Which value's root is each point's switch, smooth over the piece: a
+    // clamped point stops pushing where k d + c ḋ reaches zero (before d
+    // does, as ḋ < 0 there), and starts, if it is still in the ground, where
+    // k d + c ḋ turns positive; otherwise the switch is d = 0 (at touch-down
+    // c ḋ > 0).
+    std::vector<char> byForce(m_points.size(), 0);
+    for (std::size_t p = 0; p < m_points.size(); ++p)
+      byForce[p] = m_law == PenaltyLaw::Clamped && (pushing[p] != 0 || atLow.springForce[p] > 0.0);
     // The switches at the end of a piece of length t with `pushing` held.
     const auto after = [&](double t) {
       const States end = rk4(states, rotations, &pushing, t, nullptr);
-      return switchesAt(end, rotationsOf(end), &pushing);
+      return switchesAt(end, rotationsOf(end));
     };
-    Switches atHigh = after(remaining);
-    if (atHigh.pushing == pushing) return rk4(states, rotations, &pushing, remaining, &m_impulses);
-    Switches atLow = switchesAt(states, rotations, &pushing);
+    // Most steps have no switch: the whole rest of the step, kept if so.
+    PointImpulses pieceImpulses{std::vector<double>(m_points.size(), 0.0),
+                                std::vector<Vec3>(m_points.size(), Vec3::Zero())};
+    States whole = rk4(states, rotations, &pushing, remaining, &pieceImpulses);
+    Switches atHigh = switchesAt(whole, rotationsOf(whole));
+    if (atHigh.pushing == pushing) {
+      for (std::size_t p = 0; p < m_points.size(); ++p) {
+        m_impulses.normal[p] += pieceImpulses.normal[p];
+        m_impulses.tangent[p] += pieceImpulses.tangent[p];
+      }
+      return whole;
+    }
     double low = 0.0, high = remaining;
     bool bisect = false;
     for (int i = 0; i < kMaxIterations && high - low > tolerance; ++i) {
@@ -258,7 +273,8 @@ PenaltySystem::States PenaltySystem::rk4WithSwitches(double h) {
         double guess = high;
         for (std::size_t p = 0; p < pushing.size(); ++p) {
           if (atHigh.pushing[p] == pushing[p]) continue;
-          const double a = atLow.value[p], b = atHigh.value[p];
+          const double a = byForce[p] ? atLow.linearForce[p] : atLow.springForce[p];
+          const double b = byForce[p] ? atHigh.linearForce[p] : atHigh.springForce[p];
           const double t = low + width * a / (a - b);
           if (t > low && t < guess) guess = t;
         }
