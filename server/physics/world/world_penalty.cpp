@@ -5,6 +5,7 @@
 // forces couple them: an RK4 stage of one body needs the other's stage state.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -205,10 +206,9 @@ PenaltySystem::States PenaltySystem::rk4WithSwitches(double h) {
   // right-hand side), and a piece that ends with another set is shortened to
   // the moment the set changes, bracketed to 1e-12 dt, after which the rest
   // of the step is taken with the new set. The moment is found by regula
-  // falsi on the switching values, each guess checked by a bracket of the
-  // tolerance around it, with a bisection whenever a guess fails to halve
-  // the bracket. Past kMaxSwitches in one step the law decides at every
-  // stage (a safety net for chattering contacts).
+  // falsi (Illinois variant) on the switching values (about six RK4 trials a
+  // switch). Past kMaxSwitches in one step the law decides at every stage
+  // (a safety net for chattering contacts).
   constexpr int kMaxSwitches = 8;
   constexpr int kMaxIterations = 100;
   const double tolerance = 1e-12 * h;
@@ -254,53 +254,38 @@ PenaltySystem::States PenaltySystem::rk4WithSwitches(double h) {
       return whole;
     }
     double low = 0.0, high = remaining;
-    bool bisect = false;
+    // Illinois: the value of an end kept twice in a row is halved, so that
+    // regula falsi does not creep up on the root from one side.
+    double scaleLow = 1.0, scaleHigh = 1.0;
+    int keptLow = 0, keptHigh = 0;
     for (int i = 0; i < kMaxIterations && high - low > tolerance; ++i) {
-      const double width = high - low;
-      if (bisect) {
-        const double middle = low + 0.5 * width;
-        Switches at = after(middle);
-        if (at.pushing == pushing) {
-          low = middle;
-          atLow = std::move(at);
-        } else {
-          high = middle;
-          atHigh = std::move(at);
-        }
-      } else {
-        // The earliest crossing, linearly between the bracket's ends, among
-        // the points that have switched by `high`.
-        double guess = high;
-        for (std::size_t p = 0; p < pushing.size(); ++p) {
-          if (atHigh.pushing[p] == pushing[p]) continue;
-          const double a = byForce[p] ? atLow.linearForce[p] : atLow.springForce[p];
-          const double b = byForce[p] ? atHigh.linearForce[p] : atHigh.springForce[p];
-          const double t = low + width * a / (a - b);
-          if (t > low && t < guess) guess = t;
-        }
-        if (!(guess < high)) guess = low + 0.5 * width;
-        const double upper = std::min(high, guess + 0.5 * tolerance);
-        Switches at = after(upper);
-        if (at.pushing == pushing) {
-          low = upper;
-          atLow = std::move(at);
-        } else {
-          high = upper;
-          atHigh = std::move(at);
-          const double lower = std::max(low, guess - 0.5 * tolerance);
-          if (lower > low) {
-            Switches below = after(lower);
-            if (below.pushing == pushing) {
-              low = lower;
-              atLow = std::move(below);
-            } else {
-              high = lower;
-              atHigh = std::move(below);
-            }
-          }
-        }
+      const double width = high - low, oldLow = low, oldHigh = high;
+      // The earliest crossing, linearly between the bracket's ends, among
+      // the points that have switched by `high`.
+      double guess = std::numeric_limits<double>::infinity();
+      for (std::size_t p = 0; p < pushing.size(); ++p) {
+        if (atHigh.pushing[p] == pushing[p]) continue;
+        const double a = scaleLow * (byForce[p] ? atLow.linearForce[p] : atLow.springForce[p]);
+        const double b = scaleHigh * (byForce[p] ? atHigh.linearForce[p] : atHigh.springForce[p]);
+        const double t = low + width * a / (a - b);
+        if (t >= low && t <= high) guess = std::min(guess, t);
       }
-      bisect = high - low > 0.5 * width;
+      if (!(guess <= high)) guess = low + 0.5 * width;
+      // Never at an end: an end at the root (to rounding) is then bracketed
+      // by the next evaluation.
+      guess = std::clamp(guess, low + 0.5 * tolerance, high - 0.5 * tolerance);
+      Switches at = after(guess);
+      if (at.pushing == pushing) {
+        low = guess;
+        atLow = std::move(at);
+      } else {
+        high = guess;
+        atHigh = std::move(at);
+      }
+      keptLow = low == oldLow ? keptLow + 1 : 0;
+      keptHigh = high == oldHigh ? keptHigh + 1 : 0;
+      scaleLow = keptLow >= 2 ? 0.5 * scaleLow : (keptLow == 0 ? 1.0 : scaleLow);
+      scaleHigh = keptHigh >= 2 ? 0.5 * scaleHigh : (keptHigh == 0 ? 1.0 : scaleHigh);
     }
     // To just past the switch (the set has changed at `high`).
     states = rk4(states, rotations, &pushing, high, &m_impulses);
