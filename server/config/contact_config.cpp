@@ -9,17 +9,18 @@ namespace {
 
 constexpr std::array<std::string_view, 3> kMaterialKeys = {"restitution", "friction",
                                                            "static_friction"};
-constexpr std::array<std::string_view, 20> kContactKeys = {
+constexpr std::array<std::string_view, 21> kContactKeys = {
     "enabled",           "model",
     "backtracking",      "iterations",
     "position_iterations", "stiffness",
     "damping",           "friction_damping",
-    "restitution",       "friction",
-    "static_friction",   "restitution_threshold",
-    "margin",            "slop",
-    "baumgarte",         "warm_starting",
-    "epsilon",           "sleeping",
-    "sleep_velocity",    "sleep_time"};
+    "penalty_law",       "restitution",
+    "friction",          "static_friction",
+    "restitution_threshold", "margin",
+    "slop",              "baumgarte",
+    "warm_starting",     "epsilon",
+    "sleeping",          "sleep_velocity",
+    "sleep_time"};
 
 constexpr double kMaxCoefficient = 100.0;  // friction coefficients beyond this are typos
 
@@ -82,6 +83,14 @@ std::optional<Error> parseContactConfig(const YamlReader& reader, const YamlNode
     const auto kind = contactModelFromName(*name);
     if (!kind) return reader.error(model->value, "expected impulse or penalty, got \"" + *name + "\"");
     config.model = *kind;
+  }
+  if (const auto* law = map->find("penalty_law")) {
+    const auto name = reader.string(law->value);
+    if (!name) return name.error();
+    const auto kind = penaltyLawFromName(*name);
+    if (!kind)
+      return reader.error(law->value, "expected clamped or unclamped, got \"" + *name + "\"");
+    config.penaltyLaw = *kind;
   }
   const auto backtracking = reader.boolean(*map, "backtracking", config.backtracking);
   if (!backtracking) return backtracking.error();

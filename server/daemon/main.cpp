@@ -15,6 +15,7 @@
 #include "daemon/server_settings.h"
 #include "daemon/session_checkpoint.h"
 #include "daemon/signal_events.h"
+#include "physics/world/rotation_drift.h"
 
 using namespace rbsim;
 
@@ -85,6 +86,13 @@ int main(int argc, char** argv) {
   // The guard's limits live with the server's other limits in the config
   // file; the world (and RESET's copy of it, made from this one) obeys them.
   world->setStateLimits(settings->stateLimits);
+  // Bodies that explicit Euler would spin out of their motion: over the run
+  // when it has a duration, else over the next 10 s (a horizon any run
+  // reaches soon; the drift only grows after it).
+  constexpr double kDriftHorizon = 10.0;  // s of simulated time
+  const double driftHorizon = settings->duration.value_or(kDriftHorizon);
+  for (const RotationDriftWarning& drift : rotationDriftWarnings(*world, driftHorizon))
+    logWarning(drift.message);
   if (!isPlainChannelPrefix(settings->channelPrefix)) {
     std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
                  settings->channelPrefix.c_str());

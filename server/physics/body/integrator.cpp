@@ -15,27 +15,39 @@ Quaternion addScaled(const Quaternion& q, const Quaternion& rate, double h) {
   return {q.w + h * rate.w, q.x + h * rate.x, q.y + h * rate.y, q.z + h * rate.z};
 }
 
-struct StateRate {
-  Vec3 velocity;           // dx/dt
-  Quaternion spin;         // dq/dt
-  Vec3 force;              // dP/dt
-  Vec3 torque;             // dL/dt
-};
+}  // namespace
 
-StateRate rateAt(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
-                 const ForceInputs& inputs) {
+StateRate stateRate(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                    const ForceInputs& inputs) {
   const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, true);
   const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, state.angularMomentum);
   return {state.linearMomentum * dynamics.inverseMass, orientationRate(state.orientation, omega),
           wrench.force, wrench.torque};
 }
 
-RigidState advance(const RigidState& state, const StateRate& rate, double h) {
+RigidState advanceState(const RigidState& state, const StateRate& rate, double h) {
   return {state.position + h * rate.velocity, addScaled(state.orientation, rate.spin, h),
           state.linearMomentum + h * rate.force, state.angularMomentum + h * rate.torque};
 }
 
-}  // namespace
+RigidState rk4Combine(const RigidState& state, const StateRate& k1, const StateRate& k2,
+                      const StateRate& k3, const StateRate& k4, double dt) {
+  const double h6 = dt / 6.0;
+  RigidState next;
+  next.position =
+      state.position + h6 * (k1.velocity + 2.0 * k2.velocity + 2.0 * k3.velocity + k4.velocity);
+  next.linearMomentum =
+      state.linearMomentum + h6 * (k1.force + 2.0 * k2.force + 2.0 * k3.force + k4.force);
+  next.angularMomentum =
+      state.angularMomentum + h6 * (k1.torque + 2.0 * k2.torque + 2.0 * k3.torque + k4.torque);
+  Quaternion q = state.orientation;
+  q = addScaled(q, k1.spin, h6);
+  q = addScaled(q, k2.spin, 2.0 * h6);
+  q = addScaled(q, k3.spin, 2.0 * h6);
+  q = addScaled(q, k4.spin, h6);
+  next.orientation = q.normalized();
+  return next;
+}
 
 Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                       const ForceInputs& inputs, bool includeDamping) {
@@ -55,7 +67,7 @@ Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyD
 
 RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
                              const BodyDynamics& dynamics, const ForceInputs& inputs, double dt) {
-  RigidState next = advance(state, rateAt(state, rotation, dynamics, inputs), dt);
+  RigidState next = advanceState(state, stateRate(state, rotation, dynamics, inputs), dt);
   next.orientation = next.orientation.normalized();
   return next;
 }
@@ -93,28 +105,13 @@ RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDyna
   // Intermediate stages use the rotation of their normalised quaternion; the
   // stage state itself is left as the method prescribes.
   const auto stageRate = [&](const RigidState& stage) {
-    return rateAt(stage, stage.orientation.normalized().toRotationMatrix(), dynamics, inputs);
+    return stateRate(stage, stage.orientation.normalized().toRotationMatrix(), dynamics, inputs);
   };
-  const StateRate k1 = rateAt(state, rotation, dynamics, inputs);
-  const StateRate k2 = stageRate(advance(state, k1, 0.5 * dt));
-  const StateRate k3 = stageRate(advance(state, k2, 0.5 * dt));
-  const StateRate k4 = stageRate(advance(state, k3, dt));
-
-  const double h6 = dt / 6.0;
-  RigidState next;
-  next.position =
-      state.position + h6 * (k1.velocity + 2.0 * k2.velocity + 2.0 * k3.velocity + k4.velocity);
-  next.linearMomentum =
-      state.linearMomentum + h6 * (k1.force + 2.0 * k2.force + 2.0 * k3.force + k4.force);
-  next.angularMomentum =
-      state.angularMomentum + h6 * (k1.torque + 2.0 * k2.torque + 2.0 * k3.torque + k4.torque);
-  Quaternion q = state.orientation;
-  q = addScaled(q, k1.spin, h6);
-  q = addScaled(q, k2.spin, 2.0 * h6);
-  q = addScaled(q, k3.spin, 2.0 * h6);
-  q = addScaled(q, k4.spin, h6);
-  next.orientation = q.normalized();
-  return next;
+  const StateRate k1 = stateRate(state, rotation, dynamics, inputs);
+  const StateRate k2 = stageRate(advanceState(state, k1, 0.5 * dt));
+  const StateRate k3 = stageRate(advanceState(state, k2, 0.5 * dt));
+  const StateRate k4 = stageRate(advanceState(state, k3, dt));
+  return rk4Combine(state, k1, k2, k3, k4, dt);
 }
 
 RigidState integrateStep(IntegratorKind kind, const RigidState& state, const Mat3& rotation,

@@ -30,6 +30,25 @@ Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyD
 
 // `rotation` must be state.orientation's rotation matrix (callers cache it).
 
+// The time derivative of the state: dx/dt = v, dq/dt = ½ [0, ω] q, dP/dt = F,
+// dL/dt = τ, forces and torques from evaluateWrench with damping. Exposed so
+// that a system of bodies coupled by forces of its own (penalty contact) can
+// be integrated with the same stages: the caller adds those forces to
+// `force` and `torque`.
+struct StateRate {
+  Vec3 velocity;    // dx/dt, m/s
+  Quaternion spin;  // dq/dt, 1/s
+  Vec3 force;       // dP/dt, N
+  Vec3 torque;      // dL/dt, N·m
+};
+StateRate stateRate(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                    const ForceInputs& inputs);
+// state + h · rate, the quaternion not renormalised (as inside a step).
+RigidState advanceState(const RigidState& state, const StateRate& rate, double h);
+// The classical RK4 update from the four stage rates, quaternion renormalised.
+RigidState rk4Combine(const RigidState& state, const StateRate& k1, const StateRate& k2,
+                      const StateRate& k3, const StateRate& k4, double dt);
+
 // x += v dt, q += ½ ω q dt, P += F dt, L += τ dt, every right-hand side
 // taken at the start of the step.
 RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,

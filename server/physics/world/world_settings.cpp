@@ -31,4 +31,14 @@ std::optional<ContactModel> contactModelFromName(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view penaltyLawName(PenaltyLaw law) {
+  return law == PenaltyLaw::Unclamped ? "unclamped" : "clamped";
+}
+
+std::optional<PenaltyLaw> penaltyLawFromName(std::string_view name) {
+  if (name == "clamped") return PenaltyLaw::Clamped;
+  if (name == "unclamped") return PenaltyLaw::Unclamped;
+  return std::nullopt;
+}
+
 }  // namespace rbsim

@@ -32,6 +32,16 @@ enum class ContactModel {
 std::string_view contactModelName(ContactModel model);                  // "impulse", "penalty"
 std::optional<ContactModel> contactModelFromName(std::string_view name);  // inverse
 
+// The penalty model's normal force law for penetration d > 0 and its rate ḋ
+// (no force without penetration).
+enum class PenaltyLaw {
+  Clamped,    // F = max(0, k d + c ḋ): never pulls (the default)
+  Unclamped,  // F = k d + c ḋ: the linear spring–damper, which pulls while the bodies part fast
+};
+
+std::string_view penaltyLawName(PenaltyLaw law);                   // "clamped", "unclamped"
+std::optional<PenaltyLaw> penaltyLawFromName(std::string_view name);  // inverse
+
 // How bodies touch: the `contact:` section of a world file.
 struct ContactConfig {
   bool enabled = true;                  // collision detection and response at all
@@ -45,6 +55,7 @@ struct ContactConfig {
   double penaltyStiffness = 1e5;        // N/m per contact manifold (split over its points)
   double penaltyDamping = 1e3;          // N·s/m per manifold, along the normal
   double penaltyFrictionDamping = 1e4;  // N·s/m: tangential viscosity below the Coulomb limit
+  PenaltyLaw penaltyLaw = PenaltyLaw::Clamped;
   double classificationEpsilon = 1e-3;  // m/s: |v_rel| below it is resting contact
   bool sleeping = true;                 // islands at rest stop being integrated
   double sleepLinearVelocity = 0.01;    // m/s

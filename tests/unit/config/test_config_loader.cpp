@@ -83,6 +83,7 @@ TEST(ConfigLoader, FullWorldFieldByField) {
   EXPECT_DOUBLE_EQ(contact.penaltyStiffness, 2.0e4);
   EXPECT_DOUBLE_EQ(contact.penaltyDamping, 150.0);
   EXPECT_DOUBLE_EQ(contact.penaltyFrictionDamping, 900.0);
+  EXPECT_EQ(contact.penaltyLaw, PenaltyLaw::Unclamped);
   EXPECT_DOUBLE_EQ(contact.defaultMaterial.restitution, 0.25);
   EXPECT_DOUBLE_EQ(contact.defaultMaterial.friction, 0.4);
   EXPECT_DOUBLE_EQ(contact.defaultMaterial.staticCoefficient(), 0.7);
@@ -428,6 +429,8 @@ TEST(ConfigLoaderErrors, BadContactSettings) {
   EXPECT_EQ(errorOf("contact: 3\n"), "test.yaml:1:10: contact: expected a mapping, got \"3\"");
   EXPECT_EQ(errorOf("contact: {model: springs}\n"),
             "test.yaml:1:18: contact.model: expected impulse or penalty, got \"springs\"");
+  EXPECT_EQ(errorOf("contact: {penalty_law: soft}\n"),
+            "test.yaml:1:24: contact.penalty_law: expected clamped or unclamped, got \"soft\"");
   EXPECT_EQ(errorOf("contact: {friction: 0.5, static_friction: 0.2}\n"),
             "test.yaml:1:43: contact.static_friction: static_friction must not be below friction");
   EXPECT_NE(errorOf("contact: {restitution: 1.5}\n").find("contact.restitution"), std::string::npos);
