@@ -104,14 +104,15 @@ class Body {
   //    point (body frame, relative to the centre of mass).
   //  - applyBodyWrench: force, couple and point in the body frame; the force
   //    turns with the body.
+  // A static body takes no load: nothing moves it.
   void applyWorldWrench(const Vec3& force, const Vec3& torque, const Vec3& worldPoint) {
-    m_load.addWorldWrench(force, torque, worldToBody(worldPoint));
+    if (!isStatic()) m_load.addWorldWrench(force, torque, worldToBody(worldPoint));
   }
   void applyWorldWrenchAtBodyPoint(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
-    m_load.addWorldWrench(force, torque, bodyPoint);
+    if (!isStatic()) m_load.addWorldWrench(force, torque, bodyPoint);
   }
   void applyBodyWrench(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
-    m_load.addBodyWrench(force, torque, bodyPoint);
+    if (!isStatic()) m_load.addBodyWrench(force, torque, bodyPoint);
   }
   const ExternalLoad& load() const { return m_load; }
   void clearLoad() { m_load.clear(); }
@@ -131,7 +132,6 @@ class Body {
   std::shared_ptr<const BodyDescription> m_description;
   BodyDynamics m_dynamics;
   RigidState m_state;
-  ExternalLoad m_load;
   Mat3 m_rotation = Mat3::Identity();
   Mat3 m_invInertiaWorld = Mat3::Zero();
   Vec3 m_linearVelocity = Vec3::Zero();
@@ -139,6 +139,9 @@ class Body {
   int32_t m_serial = 0;
   bool m_sleeping = false;
   double m_restTime = 0.0;  // s spent below the sleep velocities
+  // After the hot values that every step reads: most bodies are pushed by
+  // nothing, and only `active` is read of theirs.
+  ExternalLoad m_load;
   // The pose that last passed the guard's check: where a body that goes bad
   // is put back. Kept by the world after every step and by setState.
   Vec3 m_lastGoodPosition = Vec3::Zero();

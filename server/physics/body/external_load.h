@@ -18,12 +18,12 @@
 namespace rbsim {
 
 struct ExternalLoad {
+  bool active = false;                   // false: all of the below are zero (first: read most)
   Vec3 worldForce = Vec3::Zero();        // N, world frame: Σ fᵢ of world-frame forces
   Mat3 worldForceLevers = Mat3::Zero();  // m·N: S = Σ rᵢ fᵢᵀ, rᵢ body frame, fᵢ world frame
   Vec3 worldTorque = Vec3::Zero();       // N·m, world frame: pure couples
   Vec3 bodyForce = Vec3::Zero();         // N, body frame, through the centre of mass
   Vec3 bodyTorque = Vec3::Zero();        // N·m, body frame, about the centre of mass
-  bool active = false;                   // false: all of the above are zero
 
   // World-frame force f acting at body point r (body frame, relative to the
   // centre of mass), plus a world-frame couple.

@@ -72,8 +72,12 @@ RigidState explicitEulerStep(const RigidState& state, const Mat3& rotation,
   return next;
 }
 
-Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
-                         const ForceInputs& inputs, double dt) {
+namespace {
+
+// The halves of semi-implicit Euler, with internal linkage so that the
+// free-body step inlines them (the free loop runs this for every body).
+[[gnu::always_inline]] inline Momenta momentaAfterForces(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                           const ForceInputs& inputs, double dt) {
   const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
   Momenta next{state.linearMomentum + dt * wrench.force, state.angularMomentum + dt * wrench.torque};
   // Implicit (backward Euler) damping: P' = P* − c dt P'. Skipped when zero so
@@ -83,20 +87,33 @@ Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const Bo
   return next;
 }
 
-void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
-                   const Vec3& angularVelocity, double dt) {
+[[gnu::always_inline]] inline void advancePose(Vec3& position, Quaternion& orientation,
+                                               const Vec3& linearVelocity, const Vec3& angularVelocity,
+                                               double dt) {
   position += dt * linearVelocity;
   orientation = addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized();
+}
+
+}  // namespace
+
+Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                         const ForceInputs& inputs, double dt) {
+  return momentaAfterForces(state, rotation, dynamics, inputs, dt);
+}
+
+void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
+                   const Vec3& angularVelocity, double dt) {
+  advancePose(position, orientation, linearVelocity, angularVelocity, dt);
 }
 
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
                                  const BodyDynamics& dynamics, const ForceInputs& inputs,
                                  double dt) {
-  const Momenta momenta = integrateMomenta(state, rotation, dynamics, inputs, dt);
+  const Momenta momenta = momentaAfterForces(state, rotation, dynamics, inputs, dt);
   RigidState next{state.position, state.orientation, momenta.linear, momenta.angular};
   const Vec3 velocity = next.linearMomentum * dynamics.inverseMass;
   const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, next.angularMomentum);
-  integratePose(next.position, next.orientation, velocity, omega, dt);
+  advancePose(next.position, next.orientation, velocity, omega, dt);
   return next;
 }
 

@@ -302,8 +302,12 @@ void World::step() {
 }
 
 void World::clearLoads() {
+  // Every pushed body was integrated (a push wakes a sleeping one; static
+  // bodies take none; frozen ones drop theirs), and the integration noted it.
+  if (!m_loadsSeen) return;
   for (Body& body : m_bodies)
     if (body.m_load.active) body.m_load.clear();
+  m_loadsSeen = false;
 }
 
 void World::guardStates() {
@@ -384,6 +388,7 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
     inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    m_loadsSeen = m_loadsSeen || body.m_load.active;
     const RigidState next =
         integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     // The guard's check, on the new state while it is at hand. A body it

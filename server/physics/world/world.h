@@ -194,6 +194,7 @@ class World {
   int m_continuousBodies = 0; // dynamic bodies flagged for continuous collision
   int m_frozenBodies = 0;
   std::vector<FreezeEvent> m_freezeEvents;  // of the last step
+  bool m_loadsSeen = false;  // some body integrated this step had an external load
   // Per dense index, during a step: 1 when the guard has nothing left to do
   // for the body (judged and passed in integrateFree, static, asleep).
   std::vector<char> m_judged;

@@ -94,6 +94,7 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
     inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    m_loadsSeen = m_loadsSeen || body.m_load.active;
     const Momenta momenta =
         integrateMomenta(body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     sb.inverseMass = body.m_dynamics.inverseMass;

@@ -69,20 +69,23 @@ std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) co
 void World::wakeIslands(const std::vector<int>& islandOf) {
   const bool sleeping = m_settings.contact.sleeping;
   const std::size_t n = m_bodies.size();
-  std::vector<char> islandAwake(n, 0);
-  bool anyAsleep = false;
+  std::vector<char> islandAwake;
   for (std::size_t i = 0; i < n; ++i) {
-    const Body& body = m_bodies[i];
-    if (body.isStatic()) continue;
-    anyAsleep = anyAsleep || body.m_sleeping;
-    // A pushed body wakes before the step in which the push first acts.
-    if (!body.m_sleeping || body.m_load.active || !sleeping)
-      islandAwake[static_cast<std::size_t>(islandOf[i])] = 1;
-  }
-  if (!anyAsleep) return;
-  for (std::size_t i = 0; i < n; ++i) {
+    // Only a sleeping body has anything to wake; most steps find none.
+    if (!m_bodies[i].m_sleeping) continue;
+    if (islandAwake.empty()) {
+      // An island is awake when it holds an awake or a pushed body (a push
+      // wakes it before the step in which the push first acts). Static
+      // bodies are islands of their own and never asleep: harmless here.
+      islandAwake.assign(n, 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        const Body& body = m_bodies[k];
+        if (!body.m_sleeping || body.m_load.active || !sleeping)
+          islandAwake[static_cast<std::size_t>(islandOf[k])] = 1;
+      }
+    }
     Body& body = m_bodies[i];
-    if (body.m_sleeping && islandAwake[static_cast<std::size_t>(islandOf[i])]) {
+    if (islandAwake[static_cast<std::size_t>(islandOf[i])]) {
       body.m_sleeping = false;
       body.m_restTime = 0.0;
     }

@@ -375,6 +375,7 @@ void World::stepPenalty() {
       ForceInputs inputs;
       inputs.gravity = m_settings.gravity;
       inputs.load = body.m_load.active ? &body.m_load : nullptr;
+      m_loadsSeen = m_loadsSeen || body.m_load.active;
       system.push_back({body.m_state, body.m_rotation, body.m_dynamics, inputs});
     }
   }
@@ -425,7 +426,6 @@ void World::stepPenalty() {
       Body& body = m_bodies[static_cast<std::size_t>(denseOf[j])];
       body.m_state = next[j];
       body.updateDerived();
-      if (body.m_load.active) body.m_load.clear();
     }
     std::size_t index = 0;
     for (SolvedManifold& record : records) {
