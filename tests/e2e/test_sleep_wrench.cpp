@@ -1,0 +1,60 @@
+// Sleeping never eats a push, seen from a client: boxes at rest fall asleep
+// after the sleep time; a 0.25 s wrench scheduled (apply_at_step) at each of
+// 31 steps around that moment, one box each, changes each box's velocity by
+// exactly F T / m, and no state shows a velocity taken back.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "rigid_body_math.h"
+#include "server_test.h"
+
+namespace rbsim::e2e {
+namespace {
+
+class Sleeping : public ServerTest {};
+
+TEST_F(Sleeping, NeverEatsAWrenchScheduledAroundTheSleepTime) {
+  startServer("sleepy_boxes.yaml", {"--paused", "--state-rate", "0"});
+  const double dt = client().world()->dt;
+  const int64_t start = currentStep();
+  ASSERT_EQ(start, 0);
+  // At rest from the start, a box falls asleep in the step that takes its
+  // rest time to 0.5 s: step 500 (the library's tests pin this down).
+  const int64_t asleep = 500;
+  const int64_t steps = 250;  // 0.25 s
+  const double force = 4.0, mass = 2.0;
+  for (int i = 0; i <= 30; ++i) {
+    client::Wrench wrench;
+    wrench.body = "box" + std::to_string(i);
+    wrench.force = {force, 0.0, 0.0};
+    wrench.pointFrame = client::Frame::Body;  // at the centre of mass
+    wrench.mode = client::WrenchMode::Duration;
+    wrench.duration = steps * dt;
+    wrench.applyAtStep = asleep - 25 + i;
+    const rbsim::ack_t ack = expectAccepted(client().applyWrench(wrench));
+    EXPECT_EQ(ack.effective_step, wrench.applyAtStep);
+  }
+  stepAndWait(asleep + 5 + steps + 10);
+  for (int i = 0; i <= 30; ++i) {
+    const std::string name = "box" + std::to_string(i);
+    const int64_t first = asleep - 25 + i;
+    double previous = 0.0;
+    for (int64_t step = first; step < first + steps; ++step) {
+      const double v = history().body(step, name).linear_velocity[0];
+      EXPECT_GT(v, previous) << name << ": a velocity taken back at step " << step;
+      previous = v;
+    }
+    const double expected = force * steps * dt / mass;
+    EXPECT_NEAR(history().body(first + steps - 1, name).linear_velocity[0], expected,
+                1e-12 * expected)
+        << name << ", pushed from step " << first;
+    EXPECT_EQ(history().body(first + steps + 9, name).linear_velocity[0],
+              history().body(first + steps - 1, name).linear_velocity[0])
+        << name << ": nothing after the wrench";
+  }
+}
+
+}  // namespace
+}  // namespace rbsim::e2e
