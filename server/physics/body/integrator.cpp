@@ -5,7 +5,7 @@ namespace rbsim {
 namespace {
 
 // dq/dt = ½ [0, ω] q (the seed's quaternion kinematics, ω in the world frame).
-Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
+[[gnu::always_inline]] inline Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
   const Quaternion w{0.0, omega.x(), omega.y(), omega.z()};
   const Quaternion product = w * q;
   return {0.5 * product.w, 0.5 * product.x, 0.5 * product.y, 0.5 * product.z};

@@ -1,5 +1,6 @@
 #include "physics/collision/collision_detector.h"
 
+#include <cmath>
 #include <cstddef>
 #include <utility>
 
@@ -22,7 +23,7 @@ bool samePose(const Transform& x, const Transform& y) {
   return x.rotation == y.rotation && x.translation == y.translation;
 }
 
-constexpr double kSlowReach = 0.25;  // of the contact margin
+constexpr double kSlowReach = 0.5;  // of the contact margin per step
 
 // Bounds the distance from the body origin of any point of a collider by
 // the farthest corner of its box (planes are static and never need it).
@@ -64,17 +65,16 @@ void CollisionDetector::detect(const World& world) {
     }
     double reach = 0.0;
     if (speculative && !geometry.shape.isStatic && !body.isSleeping()) {
-      // From the momenta, which share the pose's cache lines: |v| <= |P|₁/m
-      // and |ω| <= |L|₁ max(Ibody⁻¹); sums of magnitudes, no square root.
-      const BodyDynamics& dynamics = body.dynamics();
-      reach = dt * (dynamics.inverseMass * body.linearMomentum().cwiseAbs().sum() +
-                    dynamics.inverseInertiaBody.maxCoeff() * body.angularMomentum().cwiseAbs().sum() *
-                        geometry.radius);
-      // A body that moves less than a quarter of the margin in a step needs
-      // none: two of them close by less than the margin per step, so the
-      // margin sees their contact coming. Leaving it at zero keeps resting
-      // bodies' geometry, and their manifolds' reuse, unchanged.
-      if (reach < kSlowReach * m_settings.margin) reach = 0.0;
+      // A body that moves less than half the margin in a step needs none: two
+      // of them close by less than the margin per step, so the margin sees
+      // their contact coming before they touch. Leaving it at zero keeps
+      // resting bodies' geometry, and their manifolds' reuse, unchanged. The
+      // test is on squares (|v| + |ω| r <= sqrt(2 (|v|² + |ω|² r²))), so most
+      // bodies pay no square root.
+      const double speed2 = body.linearVelocity().squaredNorm();
+      const double spin2 = body.angularVelocity().squaredNorm() * geometry.radius * geometry.radius;
+      const double slow = kSlowReach * m_settings.margin / dt;  // m/s
+      if (2.0 * (speed2 + spin2) >= slow * slow) reach = dt * (std::sqrt(speed2) + std::sqrt(spin2));
     }
     geometry.unchanged = sameBody && samePose(geometry.pose, pose) && geometry.reach == reach;
     geometry.serial = body.serial();
@@ -82,9 +82,9 @@ void CollisionDetector::detect(const World& world) {
     geometry.reach = reach;
     // A frozen body is out of the simulation: nothing collides with it.
     if (geometry.shape.hasGeometry() && !body.isFrozen()) {
-      BroadPhaseBody placed = geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose);
-      if (reach > 0.0 && placed.box) placed.box = placed.box->fattened(reach);
-      m_broadPhaseInputs.push_back(placed);
+      m_broadPhaseInputs.push_back(geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
+      std::optional<Aabb>& box = m_broadPhaseInputs.back().box;
+      if (reach > 0.0 && box) box = box->fattened(reach);
     }
   }
   m_broadPhase.update(m_broadPhaseInputs);

@@ -43,8 +43,8 @@ class CollisionDetector {
     int32_t serial = 0;
     double radius = 0.0;  // m: the collider's farthest point from the body origin (bounded)
     // m: how far a point of the body may move in the coming step, at most
-    // (dt (|v| + |ω| radius), the speeds bounded from the momenta;
-    // 0 for bodies slower than a quarter of the margin per step). Impulse
+    // (dt (|v| + |ω| radius); 0 for bodies slower than half the margin per
+    // step). Impulse
     // model only: pairs within the margin plus both reaches are contacts
     // (speculative ones while apart), so that a fast body's impact is seen in
     // the step it happens, not after it has sunk in.

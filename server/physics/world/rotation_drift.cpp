@@ -22,7 +22,11 @@ std::vector<RotationDriftWarning> rotationDriftWarnings(const World& world, doub
                                                         double threshold) {
   std::vector<RotationDriftWarning> warnings;
   const WorldSettings& settings = world.settings();
-  if (settings.integrator != IntegratorKind::ExplicitEuler || !(horizon > 0.0)) return warnings;
+  // RK4 follows the rotation (its error is of fifth order per step); both
+  // Euler methods take the same orientation update for a torque-free body.
+  if (settings.integrator == IntegratorKind::Rk4 || !(horizon > 0.0)) return warnings;
+  const char* method =
+      settings.integrator == IntegratorKind::ExplicitEuler ? "explicit Euler" : "semi-implicit Euler";
   const double dt = settings.dt;
   constexpr double kMaxSteps = 1e7;  // per body: a horizon beyond it is checked up to it
   const auto steps = static_cast<long>(std::min(std::ceil(horizon / dt), kMaxSteps));
@@ -38,11 +42,11 @@ std::vector<RotationDriftWarning> rotationDriftWarnings(const World& world, doub
                                dynamics.inverseInertiaBody.maxCoeff() / (2.0 * energy) -
                            1.0;
     if (!(ceiling > threshold)) continue;
-    // Its own torque-free rotation, as explicit Euler takes it.
+    // Its own torque-free rotation, as the world's integrator takes it.
     Mat3 rotation = body.rotation();
     long crossed = -1;
     for (long i = 1; i <= steps; ++i) {
-      state = explicitEulerStep(state, rotation, dynamics, ForceInputs{}, dt);
+      state = integrateStep(settings.integrator, state, rotation, dynamics, ForceInputs{}, dt);
       rotation = state.orientation.toRotationMatrix();
       if (rotationalEnergy(state, rotation, dynamics) > (1.0 + threshold) * energy) {
         crossed = i;
@@ -59,11 +63,11 @@ std::vector<RotationDriftWarning> rotationDriftWarnings(const World& world, doub
     char text[640];
     std::snprintf(
         text, sizeof text,
-        "body '%s' spins at |w| = %.4g rad/s: explicit Euler at dt = %.4g s makes its "
+        "body '%s' spins at |w| = %.4g rad/s: %s at dt = %.4g s makes its "
         "rotational energy grow by %.3g%% within %.4g s (the horizon is %.4g s), and on up to "
         "+%.3g%% (all of its angular momentum about its axis of least inertia); use "
         "world.integrator: rk4, or dt below about %.2g s",
-        warning.body.c_str(), warning.angularSpeed, dt, 100.0 * threshold, warning.thresholdTime,
+        warning.body.c_str(), warning.angularSpeed, method, dt, 100.0 * threshold, warning.thresholdTime,
         horizon, 100.0 * ceiling, warning.suggestedStep);
     warning.message = text;
     warnings.push_back(std::move(warning));

@@ -1,5 +1,5 @@
 #pragma once
-// Warnings for bodies whose rotation explicit Euler cannot follow.
+// Warnings for bodies whose rotation the Euler integrators cannot follow.
 //
 // Explicit Euler keeps L exact for a torque-free body (L is the state) and
 // turns q about the step-start ω by θ = 2 atan(|ω| dt / 2) ≈ |ω| dt (the
@@ -24,9 +24,9 @@
 // whose ceiling is below the threshold. The drift per step is ∝ dt², so the
 // time to reach a given growth is ∝ 1/dt: dt · t/T reaches it at T.
 //
-// (Semi-implicit Euler, as defined here, takes the same orientation update
-// for a torque-free body and drifts the same way; the warning is about
-// explicit Euler.)
+// Semi-implicit Euler, as defined here, takes the same orientation update
+// for a torque-free body (L is unchanged, then q turns about the step-start
+// ω) and drifts the same way: the warning covers both Euler methods.
 
 #include <string>
 #include <vector>
@@ -44,9 +44,9 @@ struct RotationDriftWarning {
   std::string message;         // for the log: the body, the figures, what to do
 };
 
-// The awake dynamic bodies whose rotational energy explicit Euler grows by
-// more than `threshold` (relative) within `horizon` (s) at the world's dt, in
-// body order. Empty unless the world's integrator is explicit Euler.
+// The awake dynamic bodies whose rotational energy the world's integrator
+// grows by more than `threshold` (relative) within `horizon` (s) at the
+// world's dt, in body order. Empty for RK4.
 std::vector<RotationDriftWarning> rotationDriftWarnings(const World& world, double horizon,
                                                         double threshold = 0.01);
 

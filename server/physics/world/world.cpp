@@ -387,8 +387,10 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
     }
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
-    inputs.load = body.m_load.active ? &body.m_load : nullptr;
-    m_loadsSeen = m_loadsSeen || body.m_load.active;
+    if (body.m_load.active) {
+      inputs.load = &body.m_load;
+      m_loadsSeen = true;
+    }
     const RigidState next =
         integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     // The guard's check, on the new state while it is at hand. A body it

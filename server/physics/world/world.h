@@ -195,6 +195,9 @@ class World {
   int m_frozenBodies = 0;
   std::vector<FreezeEvent> m_freezeEvents;  // of the last step
   bool m_loadsSeen = false;  // some body integrated this step had an external load
+  // False only when the last sleep update found every body awake (and
+  // nothing since could have put one to sleep): the wake pass is skipped.
+  bool m_maybeAsleep = true;
   // Per dense index, during a step: 1 when the guard has nothing left to do
   // for the body (judged and passed in integrateFree, static, asleep).
   std::vector<char> m_judged;

@@ -93,8 +93,10 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     if (!solving[i]) continue;
     ForceInputs inputs;
     inputs.gravity = m_settings.gravity;
-    inputs.load = body.m_load.active ? &body.m_load : nullptr;
-    m_loadsSeen = m_loadsSeen || body.m_load.active;
+    if (body.m_load.active) {
+      inputs.load = &body.m_load;
+      m_loadsSeen = true;
+    }
     const Momenta momenta =
         integrateMomenta(body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     sb.inverseMass = body.m_dynamics.inverseMass;

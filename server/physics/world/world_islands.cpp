@@ -67,6 +67,7 @@ std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) co
 }
 
 void World::wakeIslands(const std::vector<int>& islandOf) {
+  if (!m_maybeAsleep) return;
   const bool sleeping = m_settings.contact.sleeping;
   const std::size_t n = m_bodies.size();
   std::vector<char> islandAwake;
@@ -113,16 +114,20 @@ void World::updateSleep(const std::vector<int>& islandOf) {
     double& rest = islandRest[static_cast<std::size_t>(islandOf[i])];
     rest = std::min(rest, body.m_restTime);
   }
+  bool anyAsleep = false;
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
+    anyAsleep = anyAsleep || body.m_sleeping;
     if (body.isStatic() || body.m_sleeping) continue;
     if (islandRest[static_cast<std::size_t>(islandOf[i])] >= config.sleepTime) {
+      anyAsleep = true;
       body.m_sleeping = true;
       body.m_state.linearMomentum.setZero();
       body.m_state.angularMomentum.setZero();
       body.updateDerived();
     }
   }
+  m_maybeAsleep = anyAsleep;
 }
 
 }  // namespace rbsim

@@ -374,8 +374,10 @@ void World::stepPenalty() {
       const Body& body = m_bodies[k];
       ForceInputs inputs;
       inputs.gravity = m_settings.gravity;
-      inputs.load = body.m_load.active ? &body.m_load : nullptr;
-      m_loadsSeen = m_loadsSeen || body.m_load.active;
+      if (body.m_load.active) {
+        inputs.load = &body.m_load;
+        m_loadsSeen = true;
+      }
       system.push_back({body.m_state, body.m_rotation, body.m_dynamics, inputs});
     }
   }
