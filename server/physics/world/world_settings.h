@@ -46,8 +46,10 @@ std::optional<PenaltyLaw> penaltyLawFromName(std::string_view name);  // inverse
 struct ContactConfig {
   bool enabled = true;                  // collision detection and response at all
   ContactModel model = ContactModel::Impulse;
-  // The seed's backtracking: find the time of collision by bisection,
-  // advance to it, apply the collision impulses, go on with the rest of the step.
+  // Backtracking: a colliding contact's time of impact is found by bisection
+  // of the step (the classic method: Baraff, "Rigid Body Simulation",
+  // SIGGRAPH course notes) instead of regula falsi; either way the bodies
+  // fly to it, collide there and fly on (world/impacts.h).
   bool backtracking = false;
   ContactSettings detection;            // contact margin
   ContactSolverSettings solver;         // iterations, restitution threshold, slop, ...
