@@ -1,6 +1,6 @@
 #include "daemon/checkpoint_writer.h"
 
-#include "daemon/checkpoint_file.h"
+#include "persist/checkpoint_file.h"
 #include "daemon/log.h"
 
 namespace rbsim {

@@ -13,7 +13,7 @@
 #include "daemon/replay_runner.h"
 #include "daemon/server.h"
 #include "daemon/server_settings.h"
-#include "daemon/session_checkpoint.h"
+#include "persist/session_checkpoint.h"
 #include "daemon/signal_events.h"
 #include "physics/world/rotation_drift.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "daemon/step_clock.h"
-#include "daemon/wire_convert.h"
+#include "bridge/wire_convert.h"
 #include "physics/common/expected.h"
 #include "physics/world/state_guard.h"
 

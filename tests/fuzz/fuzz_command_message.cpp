@@ -10,7 +10,7 @@
 #include <rbsim/command_t.hpp>
 
 #include "config/config_loader.h"
-#include "daemon/message_decode.h"
+#include "bridge/message_decode.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "daemon/wrench_scheduler.h"
+#include "session/wrench_scheduler.h"
 
 namespace rbsim {
 namespace {

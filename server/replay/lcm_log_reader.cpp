@@ -1,4 +1,4 @@
-#include "daemon/lcm_log_reader.h"
+#include "replay/lcm_log_reader.h"
 
 #include <cerrno>
 #include <cstring>

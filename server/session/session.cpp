@@ -1,4 +1,4 @@
-#include "daemon/session.h"
+#include "session/session.h"
 
 #include <utility>
 

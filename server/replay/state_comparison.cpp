@@ -1,4 +1,4 @@
-#include "daemon/state_comparison.h"
+#include "replay/state_comparison.h"
 
 #include <algorithm>
 #include <cmath>

@@ -22,9 +22,9 @@
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
 
-#include "daemon/client_rate_limiter.h"
+#include "bridge/client_rate_limiter.h"
 #include "daemon/server_settings.h"
-#include "daemon/session.h"
+#include "session/session.h"
 
 namespace rbsim {
 

@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "daemon/checkpoint_file.h"
-#include "daemon/session_checkpoint.h"
+#include "persist/checkpoint_file.h"
+#include "persist/session_checkpoint.h"
 
 namespace rbsim {
 namespace {

@@ -9,7 +9,7 @@
 #include <rbsim/command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/command_handler.h"
+#include "bridge/command_handler.h"
 
 namespace rbsim::test {
 

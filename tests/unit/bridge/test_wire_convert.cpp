@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "config/config_loader.h"
-#include "daemon/wire_convert.h"
+#include "bridge/wire_convert.h"
 
 namespace rbsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "daemon/wire_convert.h"
+#include "bridge/wire_convert.h"
 
 #include <cmath>
 #include <variant>

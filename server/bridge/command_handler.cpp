@@ -1,4 +1,4 @@
-#include "daemon/command_handler.h"
+#include "bridge/command_handler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "config/config_loader.h"
-#include "daemon/checkpoint_file.h"
-#include "daemon/message_decode.h"
-#include "daemon/session_checkpoint.h"
-#include "daemon/wire_convert.h"
+#include "persist/checkpoint_file.h"
+#include "bridge/message_decode.h"
+#include "persist/session_checkpoint.h"
+#include "bridge/wire_convert.h"
 
 namespace rbsim {
 

@@ -13,7 +13,7 @@
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/wrench_scheduler.h"
+#include "session/wrench_scheduler.h"
 #include "physics/common/expected.h"
 #include "physics/world/world.h"
 

@@ -1,4 +1,4 @@
-#include "daemon/event_recorder.h"
+#include "replay/event_recorder.h"
 
 #include <lcm/eventlog.h>
 

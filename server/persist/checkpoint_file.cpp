@@ -1,4 +1,4 @@
-#include "daemon/checkpoint_file.h"
+#include "persist/checkpoint_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -25,9 +25,9 @@
 #include <optional>
 #include <string>
 
-#include "daemon/command_handler.h"
-#include "daemon/lcm_log_reader.h"
-#include "daemon/session.h"
+#include "bridge/command_handler.h"
+#include "replay/lcm_log_reader.h"
+#include "session/session.h"
 #include "physics/common/expected.h"
 
 namespace rbsim {

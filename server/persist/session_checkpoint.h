@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/session.h"
+#include "session/session.h"
 #include "physics/common/expected.h"
 
 namespace rbsim {

@@ -8,7 +8,7 @@
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/message_decode.h"
+#include "bridge/message_decode.h"
 
 namespace rbsim {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "daemon/command_handler.h"
+#include "bridge/command_handler.h"
 #include "handler_test_messages.h"
 
 namespace rbsim {

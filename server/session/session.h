@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "daemon/wrench_scheduler.h"
+#include "session/wrench_scheduler.h"
 #include "physics/world/world.h"
 
 namespace rbsim {

@@ -1,6 +1,6 @@
-#include "daemon/session_checkpoint.h"
+#include "persist/session_checkpoint.h"
 
-#include "daemon/checkpoint_file.h"
+#include "persist/checkpoint_file.h"
 #include "physics/common/byte_stream.h"
 #include "physics/world/world_snapshot.h"
 

@@ -1,7 +1,7 @@
 // The command path without LCM: bytes in, acks and session changes out.
 #include <gtest/gtest.h>
 
-#include "daemon/command_handler.h"
+#include "bridge/command_handler.h"
 #include "handler_test_messages.h"
 
 namespace rbsim {

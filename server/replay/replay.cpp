@@ -1,4 +1,4 @@
-#include "daemon/replay.h"
+#include "replay/replay.h"
 
 #include <deque>
 #include <map>
@@ -11,9 +11,9 @@
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/message_decode.h"
-#include "daemon/state_comparison.h"
-#include "daemon/wire_convert.h"
+#include "bridge/message_decode.h"
+#include "replay/state_comparison.h"
+#include "bridge/wire_convert.h"
 
 namespace rbsim {
 

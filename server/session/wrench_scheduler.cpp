@@ -1,4 +1,4 @@
-#include "daemon/wrench_scheduler.h"
+#include "session/wrench_scheduler.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "daemon/client_rate_limiter.h"
+#include "bridge/client_rate_limiter.h"
 
 #include <algorithm>
 
