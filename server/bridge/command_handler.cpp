@@ -6,11 +6,11 @@
 #include <rbsim/command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
+#include "bridge/message_decode.h"
+#include "bridge/wire_convert.h"
 #include "config/config_loader.h"
 #include "persist/checkpoint_file.h"
-#include "bridge/message_decode.h"
 #include "persist/session_checkpoint.h"
-#include "bridge/wire_convert.h"
 
 namespace rbsim {
 

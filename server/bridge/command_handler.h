@@ -23,7 +23,7 @@
 #include <rbsim/command_t.hpp>
 
 #include "bridge/client_rate_limiter.h"
-#include "daemon/server_settings.h"
+#include "config/server_settings.h"
 #include "session/session.h"
 
 namespace rbsim {

@@ -13,9 +13,10 @@
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "session/wrench_scheduler.h"
+#include "config/server_settings.h"
 #include "physics/common/expected.h"
 #include "physics/world/world.h"
+#include "session/wrench_scheduler.h"
 
 namespace rbsim {
 
@@ -37,15 +38,6 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
 // impulses, classification by relative normal velocity), paged like the
 // state. Bodies are named by their ids (serials).
 std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime);
-
-// What a server accepts in a wrench (configurable in the `limits:` section).
-struct WrenchLimits {
-  double maxForce = 1e6;         // N, magnitude
-  double maxTorque = 1e6;        // N·m, magnitude
-  double maxLeverArm = 1e3;      // m, |point − centre of mass| (world) or |point| (body)
-  double maxDuration = 86400.0;  // s of simulated time
-  int64_t maxStepsAhead = 100000000;  // how far ahead apply_at_step may schedule
-};
 
 // Checks a wrench message against the world and the limits; on success the
 // request is ready for the WrenchScheduler. `nextStep` is the step the

@@ -7,8 +7,8 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bridge/command_handler.h"
-#include "replay/event_recorder.h"
 #include "daemon/log.h"
+#include "replay/event_recorder.h"
 #include "replay/replay.h"
 #include "session/session.h"
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "config/server_settings.h"
 #include "daemon/options.h"
-#include "daemon/server_settings.h"
 #include "persist/session_checkpoint.h"
 #include "physics/world/world.h"
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "session/session.h"
 #include "physics/common/expected.h"
+#include "session/session.h"
 
 namespace rbsim {
 

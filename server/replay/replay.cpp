@@ -12,8 +12,8 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "bridge/message_decode.h"
-#include "replay/state_comparison.h"
 #include "bridge/wire_convert.h"
+#include "replay/state_comparison.h"
 
 namespace rbsim {
 

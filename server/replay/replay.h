@@ -26,9 +26,9 @@
 #include <string>
 
 #include "bridge/command_handler.h"
+#include "physics/common/expected.h"
 #include "replay/lcm_log_reader.h"
 #include "session/session.h"
-#include "physics/common/expected.h"
 
 namespace rbsim {
 

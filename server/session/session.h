@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#include "session/wrench_scheduler.h"
 #include "physics/world/world.h"
+#include "session/wrench_scheduler.h"
 
 namespace rbsim {
 

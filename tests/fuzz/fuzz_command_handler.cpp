@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "bridge/command_handler.h"
-#include "session/session.h"
 #include "bridge/wire_convert.h"
 #include "input_records.h"
+#include "session/session.h"
 #include "small_world.h"
 
 namespace {

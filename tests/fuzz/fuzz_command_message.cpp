@@ -9,8 +9,8 @@
 
 #include <rbsim/command_t.hpp>
 
-#include "config/config_loader.h"
 #include "bridge/message_decode.h"
+#include "config/config_loader.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -17,11 +17,11 @@
 #include <rbsim/world_state_t.hpp>
 
 #include "bridge/command_handler.h"
-#include "replay/lcm_log_reader.h"
 #include "bridge/message_decode.h"
+#include "replay/lcm_log_reader.h"
 #include "replay/replay.h"
-#include "session/session.h"
 #include "scratch_files.h"
+#include "session/session.h"
 #include "small_world.h"
 
 namespace {

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "config/config_loader.h"
 #include "bridge/wire_convert.h"
+#include "config/config_loader.h"
 
 namespace rbsim {
 namespace {

@@ -1,17 +1,31 @@
 #pragma once
 // How rbserver runs: the `lcm:`, `server:` and `limits:` sections of a config
-// file, overridden by the command line.
+// file (read by the config loader, config/server_sections.h), which rbserver
+// then overrides from its command line. Plain data: nothing here knows LCM,
+// clocks or the daemon; the daemon and the bridge read these values.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "daemon/step_clock.h"
-#include "bridge/wire_convert.h"
-#include "physics/common/expected.h"
 #include "physics/world/state_guard.h"
 
 namespace rbsim {
+
+// What the step clock does when the loop falls behind (daemon/step_clock.h
+// has the whole story): take the late steps back to back (Burst), or give
+// up the lost time and re-anchor the schedule (Reanchor).
+enum class CatchUpPolicy { Burst, Reanchor };
+
+// What a server accepts in a wrench (configurable in the `limits:` section).
+struct WrenchLimits {
+  double maxForce = 1e6;         // N, magnitude
+  double maxTorque = 1e6;        // N·m, magnitude
+  double maxLeverArm = 1e3;      // m, |point − centre of mass| (world) or |point| (body)
+  double maxDuration = 86400.0;  // s of simulated time
+  int64_t maxStepsAhead = 100000000;  // how far ahead apply_at_step may schedule
+};
 
 struct ServerSettings {
   // LCM. ttl=0 keeps every packet on this host; recv_buf_size lets the
@@ -58,9 +72,5 @@ struct ServerSettings {
   int64_t maxMessageBytes = 262144;      // bytes; larger wrench/command messages are rejected undecoded
   int64_t maxBodies = 100000;            // SPAWN is rejected when the world has this many bodies
 };
-
-// Reads the `lcm`, `server` and `limits` sections of the config file (absent
-// sections keep the defaults). Errors name file, line and column.
-Expected<ServerSettings> loadServerSettings(const std::string& configPath);
 
 }  // namespace rbsim

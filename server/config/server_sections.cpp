@@ -1,14 +1,8 @@
-#include "daemon/server_settings.h"
+#include "config/server_sections.h"
 
 #include <array>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string_view>
-
-#include <yaml-cpp/yaml.h>
-
-#include "config/yaml_reader.h"
 
 namespace rbsim {
 
@@ -167,7 +161,8 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
   out.clientRate = *rate;
   const auto burst = reader.number(limits, "client_burst", NumberRule::positive(1e9), out.clientBurst);
   if (!burst) return burst.error();
-  if (*burst < 1.0) return Error{reader.sourceName() + ": limits.client_burst must be at least 1 message"};
+  if (const auto* entry = limits.find("client_burst"); entry != nullptr && *burst < 1.0)
+    return reader.error(entry->value, "expected at least 1 message, got " + describeNode(entry->value.node));
   out.clientBurst = *burst;
   const auto bytes = reader.number(limits, "max_message_bytes", NumberRule::positive(268435456.0),
                                    static_cast<double>(out.maxMessageBytes));
@@ -184,35 +179,18 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
 
 }  // namespace
 
-Expected<ServerSettings> loadServerSettings(const std::string& configPath) {
-  std::ifstream file(configPath);
-  if (!file) return Error{configPath + ": cannot open the file"};
-  std::stringstream text;
-  text << file.rdbuf();
-  YAML::Node document;
-  try {
-    document = YAML::Load(text.str());
-  } catch (const YAML::Exception& e) {
-    return Error{configPath + ":" + std::to_string(e.mark.line + 1) + ":" +
-                 std::to_string(e.mark.column + 1) + ": " + e.msg};
-  }
-  const YamlReader reader(configPath);
-  ServerSettings settings;
-  if (!document || document.IsNull()) return settings;
-  const auto root = reader.map(YamlNode::root(document));
-  if (!root) return root.error();
-  if (auto error = readSection(reader, *root, "lcm",
+std::optional<Error> readServerSections(const YamlReader& reader, const YamlMap& root,
+                                        ServerSettings& settings) {
+  if (auto error = readSection(reader, root, "lcm",
                                [&](const YamlMap& m) { return readLcm(reader, m, settings); }))
-    return *error;
-  if (auto error = readSection(reader, *root, "server",
-                               [&](const YamlMap& m) {
-                                 return readServer(reader, m, settings);
-                               }))
-    return *error;
-  if (auto error = readSection(reader, *root, "limits",
+    return error;
+  if (auto error = readSection(reader, root, "server",
+                               [&](const YamlMap& m) { return readServer(reader, m, settings); }))
+    return error;
+  if (auto error = readSection(reader, root, "limits",
                                [&](const YamlMap& m) { return readLimits(reader, m, settings); }))
-    return *error;
-  return settings;
+    return error;
+  return std::nullopt;
 }
 
 }  // namespace rbsim
