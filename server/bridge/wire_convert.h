@@ -20,9 +20,11 @@
 
 namespace rbsim {
 
-// Largest payload we put in one LCM message: under one UDP datagram
-// (65499 bytes with header and channel, LCM_NOTES.md §8), so a page is never
-// fragmented and a lost datagram loses one page, not a whole state.
+// Largest payload we put in one LCM message: LCM sends a message as one UDP
+// datagram when its header, channel and payload fit in 65499 bytes, and
+// fragments it otherwise (docs/lcm.md, "Message size and fragmentation").
+// Under that, a page is never fragmented and a lost datagram loses one page,
+// not a whole state.
 constexpr std::size_t kMaxPagePayloadBytes = 60000;
 
 // The world's state split into pages of whole bodies, each page encoding to
