@@ -36,10 +36,10 @@ Expected<Config> loadConfig(const std::string& path);
 Expected<Config> parseConfig(const std::string& yamlText, const std::string& sourceName,
                              const std::string& baseDirectory);
 
-// Only the world of the file at `path` (the server's sections are checked
-// for known keys only): for tools and tests that need no server.
-// Reads and parses the file at `path`; mesh files are resolved relative to
-// the directory of `path`, and messages name `path` as given.
+// Only the world of the file at `path`, for tools and tests that need no
+// server: the server's sections may be there but are not read. Mesh files
+// are resolved relative to the directory of `path`, and messages name
+// `path` as given.
 Expected<WorldDef> loadWorldConfig(const std::string& path);
 
 // Parses a whole world from YAML text. `sourceName` is what messages call

@@ -177,7 +177,8 @@ world: {dt: -0.001}
 }
 
 TEST(ServerSections, LoadConfigReadsBothPartsOfOneFile) {
-  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "rbsim_one_pass.yaml";
+  const std::filesystem::path file =
+      std::filesystem::path(::testing::TempDir()) / "rbsim_one_pass.yaml";
   {
     std::ofstream out(file);
     out << "bodies:\n  - {name: b, shape: {type: sphere, radius: 1}, mass: 2}\n"
