@@ -3,7 +3,8 @@
 // Scene: tests/scenes/free_bodies_scene.h (N cubes, random spins, no gravity,
 // no contacts, dt = 1 ms). Reported: time per World::step() and, as a
 // counter, nanoseconds per body-step. Reference figures (Bullet 3.24, ODE
-// 0.16) come from ../shared/anchors, run in the same session.
+// 0.16) come from the anchors harness (bench/anchors/ours.cpp), run in the
+// same session.
 //
 //   taskset -c 1 build/bench/bench_free_bodies --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true

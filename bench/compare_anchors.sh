@@ -4,7 +4,8 @@
 # per case, pinned to one core, printing the harness's table rows. Run it on
 # a quiet machine; absolute times drift, so compare rows of the same run.
 #   bench/compare_anchors.sh BUILD_DIR ANCHORS_BUILD_DIR [REPS]
-# Build the anchors first (see ../shared/anchors/README.md).
+# Build the anchors harness first (it is not part of this repository; its
+# own README says how).
 # Environment: CASES overrides the list ("scene:n ..."), ENGINES the engines
 # ("rbsim bullet bullet-nosleep ode mujoco"), CPU the core (1).
 set -eu

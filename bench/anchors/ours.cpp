@@ -1,4 +1,5 @@
-// rbsim as an engine of the shared anchors harness (../shared/anchors), so
+// rbsim as an engine of the anchors benchmark harness (kept outside this
+// repository; RBSIM_ANCHORS_DIR in bench/CMakeLists.txt says where), so
 // that it runs the very same scenes, timing loop and statistics as Bullet,
 // ODE and MuJoCo, in the same session:
 //   taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3

@@ -16,6 +16,7 @@
 #include "config/contact_config.h"
 #include "config/contained_path.h"
 #include "config/mass_data_config.h"
+#include "config/server_sections.h"
 #include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
 #include "physics/geometry/mesh_io.h"
@@ -42,7 +43,7 @@ constexpr std::size_t kMaxNameLength = 128;  // characters, body names
 
 constexpr std::array<std::string_view, 6> kTopLevelKeys = {
     "world", "bodies", "contact",
-    // The server's settings, read by rbserver (daemon/server_settings.cpp).
+    // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
@@ -88,6 +89,8 @@ class ConfigParser {
       : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory), m_meshPaths(meshPaths) {}
 
   Expected<WorldDef> parseWorld(const YamlNode& root) const;
+  // The world, then the server's sections, of one document.
+  Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
 
  private:
@@ -149,6 +152,17 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
     world.bodies.push_back(std::move(*body));
   }
   return world;
+}
+
+Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
+  Expected<WorldDef> world = parseWorld(root);
+  if (!world) return world.error();
+  Config config{std::move(*world), ServerSettings{}};
+  // parseWorld has checked that the root is a mapping.
+  const Expected<YamlMap> top = m_reader.map(root);
+  if (!top) return top.error();
+  if (auto error = readServerSections(m_reader, *top, config.server)) return *error;
+  return config;
 }
 
 Expected<WorldSettings> ConfigParser::parseSettings(const YamlNode& node) const {
@@ -570,7 +584,17 @@ Expected<BodyDef> parseSpawnedBodyDef(const std::string& yamlText, const std::st
                                 [&](const YamlNode& root) { return parser.parseBody(root); });
 }
 
-Expected<WorldDef> loadWorldConfig(const std::string& path) {
+Expected<Config> parseConfig(const std::string& yamlText, const std::string& sourceName,
+                             const std::string& baseDirectory) {
+  const ConfigParser parser(sourceName, baseDirectory);
+  return parseDocument<Config>(yamlText, sourceName,
+                               [&](const YamlNode& root) { return parser.parseConfig(root); });
+}
+
+namespace {
+
+// The whole text of the config file at `path`.
+Expected<std::string> readConfigFile(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     const std::string why =
@@ -584,8 +608,21 @@ Expected<WorldDef> loadWorldConfig(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (!in) return Error{path + ": cannot read the config file: " + std::strerror(errno)};
-  const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
-  return parseWorldConfig(text, path, baseDirectory);
+  return text;
+}
+
+}  // namespace
+
+Expected<WorldDef> loadWorldConfig(const std::string& path) {
+  const Expected<std::string> text = readConfigFile(path);
+  if (!text) return text.error();
+  return parseWorldConfig(*text, path, std::filesystem::path(path).parent_path().string());
+}
+
+Expected<Config> loadConfig(const std::string& path) {
+  const Expected<std::string> text = readConfigFile(path);
+  if (!text) return text.error();
+  return parseConfig(*text, path, std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace rbsim

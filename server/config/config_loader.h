@@ -1,5 +1,6 @@
 #pragma once
-// Loading worlds from YAML config files (schema: config/default.yaml).
+// Loading YAML config files (schema: config/default.yaml): the world and the
+// server's own sections, from one read and one parse of the file.
 //
 // Errors are Error values, never exceptions, and read like compiler
 // messages: "world.yaml:7:15: bodies[2].shape.radius: expected a positive
@@ -8,14 +9,37 @@
 
 #include <string>
 
+#include "config/server_settings.h"
 #include "physics/body/body_def.h"
 #include "physics/common/expected.h"
 #include "physics/world/world_settings.h"
 
 namespace rbsim {
 
-// Reads and parses the file at `path`; mesh files are resolved relative to
-// the directory of `path`, and messages name `path` as given.
+// Everything a config file says.
+struct Config {
+  WorldDef world;
+  // The `lcm:`, `server:` and `limits:` sections (defaults where absent),
+  // before rbserver applies its command line.
+  ServerSettings server;
+};
+
+// Reads and parses the file at `path`, the world and the server's sections
+// in one pass; relative paths in it (meshes, checkpoint_dir,
+// spawn_mesh_directory) are relative to the directory of `path`, and
+// messages name `path` as given.
+Expected<Config> loadConfig(const std::string& path);
+
+// The same from YAML text (`sourceName` and `baseDirectory` as for
+// parseWorldConfig; the server's relative directories are taken relative to
+// the directory of `sourceName`).
+Expected<Config> parseConfig(const std::string& yamlText, const std::string& sourceName,
+                             const std::string& baseDirectory);
+
+// Only the world of the file at `path`, for tools and tests that need no
+// server: the server's sections may be there but are not read. Mesh files
+// are resolved relative to the directory of `path`, and messages name
+// `path` as given.
 Expected<WorldDef> loadWorldConfig(const std::string& path);
 
 // Parses a whole world from YAML text. `sourceName` is what messages call

@@ -1,7 +1,7 @@
 #include "daemon/checkpoint_writer.h"
 
-#include "daemon/checkpoint_file.h"
 #include "daemon/log.h"
+#include "persist/checkpoint_file.h"
 
 namespace rbsim {
 

@@ -6,15 +6,15 @@
 #include <iostream>
 
 #include "config/config_loader.h"
+#include "config/server_settings.h"
 #include "daemon/lcm_url_reach.h"
 #include "daemon/log.h"
 #include "daemon/mass_properties_report.h"
 #include "daemon/options.h"
 #include "daemon/replay_runner.h"
 #include "daemon/server.h"
-#include "daemon/server_settings.h"
-#include "daemon/session_checkpoint.h"
 #include "daemon/signal_events.h"
+#include "persist/session_checkpoint.h"
 #include "physics/world/rotation_drift.h"
 
 using namespace rbsim;
@@ -52,12 +52,13 @@ int main(int argc, char** argv) {
     setLogLevel(level);
   }
 
-  const auto worldDef = loadWorldConfig(options->configPath);
-  if (!worldDef) {
-    std::fprintf(stderr, "rbserver: %s\n", worldDef.error().message.c_str());
+  // One read of the file gives the world and the server's sections.
+  auto config = loadConfig(options->configPath);
+  if (!config) {
+    std::fprintf(stderr, "rbserver: %s\n", config.error().message.c_str());
     return 1;
   }
-  auto world = World::fromDef(*worldDef);
+  auto world = World::fromDef(config->world);
   if (!world) {
     std::fprintf(stderr, "rbserver: %s: %s\n", options->configPath.c_str(),
                  world.error().message.c_str());
@@ -68,34 +69,31 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  auto settings = loadServerSettings(options->configPath);
-  if (!settings) {
-    std::fprintf(stderr, "rbserver: %s\n", settings.error().message.c_str());
-    return 1;
-  }
-  if (options->realTimeFactor) settings->realTimeFactor = *options->realTimeFactor;
-  if (options->duration) settings->duration = *options->duration;
-  if (options->lcmUrl) settings->lcmUrl = *options->lcmUrl;
-  if (options->channelPrefix) settings->channelPrefix = *options->channelPrefix;
-  if (options->recordPath) settings->recordPath = *options->recordPath;
-  if (options->stateRate) settings->stateRate = *options->stateRate;
-  if (options->startPaused) settings->startPaused = true;
-  if (options->readOnly) settings->readOnly = true;
-  if (options->checkpointDirectory) settings->checkpointDirectory = *options->checkpointDirectory;
-  if (options->checkpointEvery) settings->checkpointEvery = *options->checkpointEvery;
+  // The command line overrides the file.
+  ServerSettings& settings = config->server;
+  if (options->realTimeFactor) settings.realTimeFactor = *options->realTimeFactor;
+  if (options->duration) settings.duration = *options->duration;
+  if (options->lcmUrl) settings.lcmUrl = *options->lcmUrl;
+  if (options->channelPrefix) settings.channelPrefix = *options->channelPrefix;
+  if (options->recordPath) settings.recordPath = *options->recordPath;
+  if (options->stateRate) settings.stateRate = *options->stateRate;
+  if (options->startPaused) settings.startPaused = true;
+  if (options->readOnly) settings.readOnly = true;
+  if (options->checkpointDirectory) settings.checkpointDirectory = *options->checkpointDirectory;
+  if (options->checkpointEvery) settings.checkpointEvery = *options->checkpointEvery;
   // The guard's limits live with the server's other limits in the config
   // file; the world (and RESET's copy of it, made from this one) obeys them.
-  world->setStateLimits(settings->stateLimits);
+  world->setStateLimits(settings.stateLimits);
   // Bodies that explicit Euler would spin out of their motion: over the run
   // when it has a duration, else over the next 10 s (a horizon any run
   // reaches soon; the drift only grows after it).
   constexpr double kDriftHorizon = 10.0;  // s of simulated time
-  const double driftHorizon = settings->duration.value_or(kDriftHorizon);
+  const double driftHorizon = settings.duration.value_or(kDriftHorizon);
   for (const RotationDriftWarning& drift : rotationDriftWarnings(*world, driftHorizon))
     logWarning(drift.message);
-  if (!isPlainChannelPrefix(settings->channelPrefix)) {
+  if (!isPlainChannelPrefix(settings.channelPrefix)) {
     std::fprintf(stderr, "rbserver: channel prefix '%s': use at most 40 letters, digits and '_'\n",
-                 settings->channelPrefix.c_str());
+                 settings.channelPrefix.c_str());
     return 2;
   }
 
@@ -103,7 +101,7 @@ int main(int argc, char** argv) {
       std::filesystem::path(options->configPath).parent_path().string();
   // A replay must take the same SPAWN decisions as the recorded server.
   const std::string spawnMeshDirectory =
-      settings->spawnMeshDirectory.empty() ? configDirectory : settings->spawnMeshDirectory;
+      settings.spawnMeshDirectory.empty() ? configDirectory : settings.spawnMeshDirectory;
   std::optional<SessionState> resumed;
   if (options->resumePath) {
     auto state = loadSessionCheckpoint(*options->resumePath, world->settings());
@@ -114,7 +112,7 @@ int main(int argc, char** argv) {
     resumed = std::move(state).value();
   }
   if (options->replayPath)
-    return runReplay(*options, *settings, std::move(world).value(), spawnMeshDirectory,
+    return runReplay(*options, settings, std::move(world).value(), spawnMeshDirectory,
                      std::move(resumed));
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
@@ -126,8 +124,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbserver: cannot set up signal handling\n");
     return 1;
   }
-  if (const std::string warning = reachWarning(settings->lcmUrl); !warning.empty()) logWarning(warning);
-  Server server(*settings, std::move(world).value(), spawnMeshDirectory);
+  if (const std::string warning = reachWarning(settings.lcmUrl); !warning.empty()) logWarning(warning);
+  Server server(settings, std::move(world).value(), spawnMeshDirectory);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());

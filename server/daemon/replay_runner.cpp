@@ -6,11 +6,11 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "daemon/command_handler.h"
-#include "daemon/event_recorder.h"
+#include "bridge/command_handler.h"
 #include "daemon/log.h"
-#include "daemon/replay.h"
-#include "daemon/session.h"
+#include "replay/event_recorder.h"
+#include "replay/replay.h"
+#include "session/session.h"
 
 namespace rbsim {
 

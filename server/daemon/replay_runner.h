@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "config/server_settings.h"
 #include "daemon/options.h"
-#include "daemon/server_settings.h"
-#include "daemon/session_checkpoint.h"
+#include "persist/session_checkpoint.h"
 #include "physics/world/world.h"
 
 namespace rbsim {

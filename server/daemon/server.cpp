@@ -13,9 +13,9 @@
 #include <rbsim/status_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/checkpoint_file.h"
+#include "bridge/wire_convert.h"
 #include "daemon/log.h"
-#include "daemon/wire_convert.h"
+#include "persist/checkpoint_file.h"
 
 namespace rbsim {
 

@@ -10,16 +10,16 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bridge/command_handler.h"
+#include "config/server_settings.h"
 #include "daemon/checkpoint_writer.h"
-#include "daemon/command_handler.h"
-#include "daemon/event_recorder.h"
 #include "daemon/lateness_histogram.h"
-#include "daemon/server_settings.h"
 #include "daemon/signal_events.h"
 #include "daemon/step_clock.h"
-#include "daemon/session.h"
-#include "daemon/session_checkpoint.h"
+#include "persist/session_checkpoint.h"
 #include "physics/world/world.h"
+#include "replay/event_recorder.h"
+#include "session/session.h"
 
 namespace rbsim {
 

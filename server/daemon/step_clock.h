@@ -15,13 +15,13 @@
 
 #include <cstdint>
 
+#include "config/server_settings.h"
+
 namespace rbsim {
 
 using Nanoseconds = int64_t;
 
 Nanoseconds monotonicNow();  // CLOCK_MONOTONIC, ns
-
-enum class CatchUpPolicy { Burst, Reanchor };
 
 class StepClock {
  public:

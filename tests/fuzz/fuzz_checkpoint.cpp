@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <span>
 
-#include "daemon/checkpoint_file.h"
-#include "daemon/session.h"
-#include "daemon/session_checkpoint.h"
-#include "daemon/wire_convert.h"
+#include "bridge/wire_convert.h"
+#include "persist/checkpoint_file.h"
+#include "persist/session_checkpoint.h"
+#include "session/session.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -18,10 +18,10 @@
 #include <cstdlib>
 #include <vector>
 
-#include "daemon/command_handler.h"
-#include "daemon/session.h"
-#include "daemon/wire_convert.h"
+#include "bridge/command_handler.h"
+#include "bridge/wire_convert.h"
 #include "input_records.h"
+#include "session/session.h"
 #include "small_world.h"
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include <rbsim/command_t.hpp>
 
+#include "bridge/message_decode.h"
 #include "config/config_loader.h"
-#include "daemon/message_decode.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

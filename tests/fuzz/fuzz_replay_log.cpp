@@ -16,12 +16,12 @@
 #include <rbsim/handled_t.hpp>
 #include <rbsim/world_state_t.hpp>
 
-#include "daemon/command_handler.h"
-#include "daemon/lcm_log_reader.h"
-#include "daemon/message_decode.h"
-#include "daemon/replay.h"
-#include "daemon/session.h"
+#include "bridge/command_handler.h"
+#include "bridge/message_decode.h"
+#include "replay/lcm_log_reader.h"
+#include "replay/replay.h"
 #include "scratch_files.h"
+#include "session/session.h"
 #include "small_world.h"
 
 namespace {

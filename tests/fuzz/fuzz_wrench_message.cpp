@@ -8,9 +8,9 @@
 
 #include <rbsim/wrench_t.hpp>
 
-#include "daemon/message_decode.h"
-#include "daemon/wire_convert.h"
-#include "daemon/wrench_scheduler.h"
+#include "bridge/message_decode.h"
+#include "bridge/wire_convert.h"
+#include "session/wrench_scheduler.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

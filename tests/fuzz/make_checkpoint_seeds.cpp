@@ -11,8 +11,8 @@
 #include <string>
 
 #include "config/config_loader.h"
-#include "daemon/session.h"
-#include "daemon/session_checkpoint.h"
+#include "persist/session_checkpoint.h"
+#include "session/session.h"
 #include "small_world.h"
 
 namespace {

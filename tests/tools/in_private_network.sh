@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs a command in a private network namespace with only loopback, routed for
 # multicast, so LCM traffic of a test never leaves the host and never meets
-# another test's (LCM_NOTES.md §7). Needs root (CI runs as root) or
+# another test's (docs/lcm.md, "Hermetic multi-process tests"). Needs root (CI runs as root) or
 # unprivileged user namespaces (then: unshare -rn).
 #   tests/tools/in_private_network.sh COMMAND [ARGS...]
 if [ "$(id -u)" -eq 0 ]; then flags=-n; else flags=-rn; fi

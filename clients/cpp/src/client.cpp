@@ -21,7 +21,7 @@ static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAN
 namespace {
 
 // LCM's default per-subscription queue holds 30 messages and drops the rest
-// silently (LCM_NOTES.md §3); a burst of STEPs at state rate 0 publishes far
+// silently (docs/lcm.md, "Subscriptions"); a burst of STEPs at state rate 0 publishes far
 // more before the caller gets to handle them.
 constexpr int kQueueCapacity = 10000;
 // Acks kept for waitForAck, per client.
@@ -41,7 +41,7 @@ int64_t wallMicroseconds() {
 }
 
 // LCM subscribes to a POSIX extended regex anchored at both ends
-// (LCM_NOTES.md §3): a prefix such as "A.B_" must match itself only.
+// (docs/lcm.md, "Subscriptions"): a prefix such as "A.B_" must match itself only.
 std::string regexEscaped(const std::string& channel) {
   std::string out;
   for (const char c : channel) {

@@ -1,8 +1,8 @@
 """A small ctypes binding of LCM's C library (liblcm.so.1, LCM 1.3.1).
 
 Debian ships no Python binding for LCM, and there is no PyPI here, so this
-module drives the C library directly (see LCM_NOTES.md section 6). It covers
-what rbsim needs:
+module drives the C library directly (docs/lcm.md, "Python without an LCM
+binding", has the pitfalls). It covers what rbsim needs:
 
 * :class:`Lcm` -- ``lcm_t``: publish, subscribe/unsubscribe, per-subscription
   queue capacity, ``handle``/``handle_timeout``, ``fileno`` for select/poll, and

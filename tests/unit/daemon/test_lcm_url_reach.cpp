@@ -3,8 +3,8 @@
 
 #include <cstdlib>
 
+#include "config/server_settings.h"
 #include "daemon/lcm_url_reach.h"
-#include "daemon/server_settings.h"
 
 namespace rbsim {
 namespace {

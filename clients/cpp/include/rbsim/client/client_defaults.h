@@ -7,8 +7,8 @@ namespace rbsim::client {
 
 // rbserver's default URL (multicast that never leaves the host) with a 2 MiB
 // kernel receive buffer: a client that falls behind for a moment then keeps
-// the states instead of losing them (LCM_NOTES.md §8; the receiver's buffer
-// is what counts).
+// the states instead of losing them (the receiver's buffer is what counts:
+// docs/lcm.md, "Kernel receive buffers").
 inline constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152";
 inline constexpr const char* kDefaultChannelPrefix = "RBSIM_";
 

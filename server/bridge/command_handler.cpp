@@ -1,0 +1,210 @@
+#include "bridge/command_handler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <rbsim/command_t.hpp>
+#include <rbsim/wrench_t.hpp>
+
+#include "bridge/message_decode.h"
+#include "bridge/wire_convert.h"
+#include "config/config_loader.h"
+#include "persist/checkpoint_file.h"
+#include "persist/session_checkpoint.h"
+
+namespace rbsim {
+
+namespace {
+
+rbsim::ack_t ackFor(const std::string& client, int64_t seq, int8_t kind, int8_t request) {
+  rbsim::ack_t ack;
+  ack.utime = 0;
+  ack.client = client;
+  ack.seq = seq;
+  ack.kind = kind;
+  ack.request = request;
+  ack.accepted = false;
+  ack.effective_step = -1;
+  return ack;
+}
+
+CommandOutcome rejected(rbsim::ack_t ack, std::string reason) {
+  CommandOutcome outcome;
+  outcome.ack = std::move(ack);
+  outcome.ack.accepted = false;
+  outcome.ack.reason = std::move(reason);
+  outcome.ack.effective_step = -1;
+  return outcome;
+}
+
+CommandOutcome accepted(rbsim::ack_t ack, int64_t effectiveStep, std::string note = "") {
+  CommandOutcome outcome;
+  outcome.ack = std::move(ack);
+  outcome.ack.accepted = true;
+  outcome.ack.reason = std::move(note);
+  outcome.ack.effective_step = effectiveStep;
+  return outcome;
+}
+
+}  // namespace
+
+CommandHandler::CommandHandler(Session& session, ServerSettings settings,
+                               std::string spawnMeshDirectory)
+    : m_session(session),
+      m_settings(std::move(settings)),
+      m_spawnMeshDirectory(std::move(spawnMeshDirectory)),
+      m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
+      m_commandChannel(m_settings.channelPrefix + "COMMAND"),
+      m_rateLimiter(m_settings.clientRate, m_settings.clientBurst) {}
+
+std::optional<std::string> CommandHandler::sizeRefusal(std::size_t size) const {
+  if (static_cast<int64_t>(size) <= m_settings.maxMessageBytes) return std::nullopt;
+  return "message of " + std::to_string(size) + " bytes exceeds limits.max_message_bytes (" +
+         std::to_string(m_settings.maxMessageBytes) + ")";
+}
+
+std::optional<std::string> CommandHandler::admissionRefusal(const std::string& client, int64_t receivedAt) {
+  if (m_settings.readOnly) return std::string("the server is read-only: it takes no wrenches or commands");
+  if (!m_rateLimiter.allow(client, receivedAt))
+    return "rate limit: client '" + client + "' sends more than " + std::to_string(m_settings.clientRate) +
+           " messages/s (burst " + std::to_string(m_settings.clientBurst) + "); message dropped";
+  return std::nullopt;
+}
+
+std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, const void* data,
+                                                     std::size_t size, int64_t receivedAt) {
+  if (channel == m_wrenchChannel) return handleWrench(data, size, receivedAt);
+  if (channel == m_commandChannel) return handleCommand(data, size, receivedAt);
+  return std::nullopt;
+}
+
+CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, int64_t receivedAt) {
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1), *refusal);
+  rbsim::wrench_t message;
+  if (!decodeWholeMessage(message, data, size))
+    return rejected(ackFor("", -1, rbsim::ack_t::KIND_WRENCH, -1),
+                    "undecodable wrench_t message (" + std::to_string(size) + " bytes)");
+  rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_WRENCH, message.mode);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
+  if (m_settings.wrenchBodies && !message.body.empty() &&
+      std::find(m_settings.wrenchBodies->begin(), m_settings.wrenchBodies->end(), message.body) ==
+          m_settings.wrenchBodies->end())
+    return rejected(std::move(ack), "body '" + message.body +
+                                        "' does not accept external wrenches (not in limits.wrench_bodies)");
+  World& world = m_session.world();
+  const auto request = wrenchRequestFrom(message, world, world.stepCount() + 1, m_settings.limits);
+  if (!request) return rejected(std::move(ack), request.error().message);
+  m_session.wrenches().add(*request);
+  return accepted(std::move(ack), request->firstStep);
+}
+
+CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1), *refusal);
+  rbsim::command_t message;
+  if (!decodeWholeMessage(message, data, size))
+    return rejected(ackFor("", -1, rbsim::ack_t::KIND_COMMAND, -1),
+                    "undecodable command_t message (" + std::to_string(size) + " bytes)");
+  return applyCommand(message, receivedAt);
+}
+
+CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int64_t receivedAt) {
+  rbsim::ack_t ack = ackFor(message.client, message.seq, rbsim::ack_t::KIND_COMMAND, message.command);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
+  World& world = m_session.world();
+  const int64_t nextStep = world.stepCount() + 1;
+  const auto reject = [&](std::string reason) { return rejected(std::move(ack), std::move(reason)); };
+
+  switch (message.command) {
+    case rbsim::command_t::PAUSE: {
+      m_session.pause();
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.paceChanged = true;
+      return outcome;
+    }
+    case rbsim::command_t::RESUME: {
+      m_session.resume();
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.paceChanged = true;
+      return outcome;
+    }
+    case rbsim::command_t::STEP: {
+      if (!m_session.paused()) return reject("STEP needs the server to be paused (send PAUSE first)");
+      if (message.num_steps < 1 || message.num_steps > m_settings.maxStepsPerCommand)
+        return reject("num_steps must be between 1 and " +
+                      std::to_string(m_settings.maxStepsPerCommand));
+      // The first of these steps comes after the steps still pending from
+      // earlier STEP commands.
+      CommandOutcome outcome = accepted(std::move(ack), nextStep + m_session.stepsRequested());
+      m_session.requestSteps(message.num_steps);
+      outcome.paceChanged = true;
+      return outcome;
+    }
+    case rbsim::command_t::RESET: {
+      if (message.path.empty()) {
+        m_session.resetToInitialWorld();
+      } else {
+        const auto path = checkpointPathIn(m_settings.checkpointDirectory, message.path);
+        if (!path) return reject(path.error().message);
+        auto state = loadSessionCheckpoint(*path, m_session.initialWorld().settings(), true);
+        if (!state) return reject(state.error().message);
+        m_session.replaceWorld(std::move(state->world), std::move(state->wrenches));
+      }
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.paceChanged = true;
+      outcome.publishWorld = true;
+      outcome.publishState = true;
+      return outcome;
+    }
+    case rbsim::command_t::SET_REAL_TIME_FACTOR: {
+      if (!std::isfinite(message.real_time_factor) || message.real_time_factor < 0.0 ||
+          message.real_time_factor > m_settings.maxRealTimeFactor)
+        return reject("real_time_factor must be 0 (as fast as possible) or positive up to " +
+                      std::to_string(m_settings.maxRealTimeFactor));
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.realTimeFactor = message.real_time_factor;
+      outcome.paceChanged = true;
+      return outcome;
+    }
+    case rbsim::command_t::SPAWN: {
+      if (world.bodyCount() >= m_settings.maxBodies)
+        return reject("the world has " + std::to_string(world.bodyCount()) + " bodies, as many as " +
+                      "limits.max_bodies allows");
+      const auto def = parseSpawnedBodyDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory);
+      if (!def) return reject(def.error().message);
+      const auto id = world.createBody(*def);
+      if (!id) return reject(id.error().message);
+      m_session.noteWorldChanged();
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.publishWorld = true;
+      return outcome;
+    }
+    case rbsim::command_t::REMOVE: {
+      const BodyId id = world.findBody(message.body);
+      if (id.isNull()) return reject("unknown body '" + message.body + "'");
+      world.removeBody(id);
+      m_session.wrenches().removeBody(message.body);
+      m_session.noteWorldChanged();
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.publishWorld = true;
+      return outcome;
+    }
+    case rbsim::command_t::PUBLISH_WORLD: {
+      CommandOutcome outcome = accepted(std::move(ack), nextStep);
+      outcome.publishWorld = true;
+      return outcome;
+    }
+    case rbsim::command_t::SAVE_CHECKPOINT: {
+      const std::string name =
+          message.path.empty() ? "checkpoint-" + std::to_string(world.stepCount()) + ".rbck" : message.path;
+      const auto path = checkpointPathIn(m_settings.checkpointDirectory, name);
+      if (!path) return reject(path.error().message);
+      const auto saved = saveSessionCheckpoint(m_session, *path);
+      if (!saved) return reject("checkpoint not saved: " + saved.error().message);
+      return accepted(std::move(ack), nextStep, "saved " + *path);
+    }
+    default:
+      return reject("unknown command " + std::to_string(message.command));
+  }
+}
+
+}  // namespace rbsim

@@ -1,0 +1,347 @@
+#include "bridge/wire_convert.h"
+
+#include <cmath>
+#include <variant>
+
+namespace rbsim {
+
+namespace {
+
+template <std::size_t N>
+void copyTo(double (&out)[N], const Vec3& v) {
+  static_assert(N == 3);
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+void copyTo(double (&out)[4], const Quaternion& q) {
+  out[0] = q.w;
+  out[1] = q.x;
+  out[2] = q.y;
+  out[3] = q.z;
+}
+
+Vec3 vec3From(const double (&in)[3]) { return {in[0], in[1], in[2]}; }
+
+rbsim::body_state_t bodyState(const Body& body) {
+  rbsim::body_state_t out;
+  out.id = body.serial();
+  out.name = body.name();
+  copyTo(out.position, body.position());
+  copyTo(out.orientation, body.orientation());
+  copyTo(out.linear_velocity, body.linearVelocity());
+  copyTo(out.angular_velocity, body.angularVelocity());
+  return out;
+}
+
+// The dimensions of a solid, into the same-named fields of a
+// body_description_t or a compound_part_t (zero for the other shapes').
+template <class Message>
+void copyDimensions(Message& out, const CompoundPartShape& shape) {
+  out.radius = 0.0;
+  out.half_length = 0.0;
+  copyTo(out.half_extents, Vec3::Zero());
+  out.num_vertices = 0;
+  out.num_triangles = 0;
+  std::visit(
+      [&](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, SphereShape>) {
+          out.radius = s.radius;
+        } else if constexpr (std::is_same_v<S, BoxShape>) {
+          copyTo(out.half_extents, s.halfExtents);
+        } else if constexpr (std::is_same_v<S, CylinderShape> || std::is_same_v<S, CapsuleShape>) {
+          out.radius = s.radius;
+          out.half_length = s.halfLength;
+        } else {
+          static_assert(std::is_same_v<S, MeshShape>);
+          out.mesh_file = s.file;
+          // Vertices in the shape's (or part's) own frame.
+          const TriangleMesh& mesh = *s.mesh;
+          out.num_vertices = static_cast<int32_t>(mesh.vertices.size());
+          out.vertices.resize(mesh.vertices.size(), std::vector<double>(3));
+          for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+            for (int k = 0; k < 3; ++k)
+              out.vertices[i][static_cast<std::size_t>(k)] = mesh.vertices[i][k];
+          out.num_triangles = static_cast<int32_t>(mesh.triangles.size());
+          out.triangles.resize(mesh.triangles.size(), std::vector<int32_t>(3));
+          for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+            for (std::size_t k = 0; k < 3; ++k) out.triangles[i][k] = mesh.triangles[i][k];
+        }
+      },
+      shape);
+}
+
+rbsim::compound_part_t compoundPart(const CompoundPart& part) {
+  rbsim::compound_part_t out;
+  out.shape_type = shapeTypeName(part.shape);
+  copyTo(out.position, part.position);
+  copyTo(out.orientation, part.orientation.normalized());
+  copyDimensions(out, part.shape);
+  return out;
+}
+
+rbsim::body_description_t bodyDescription(const Body& body) {
+  const BodyDescription& d = body.description();
+  rbsim::body_description_t out;
+  out.id = body.serial();
+  out.name = d.name;
+  out.is_static = d.isStatic;
+  out.mass = body.mass();
+  copyTo(out.inertia, body.dynamics().inertiaBody);
+  out.mass_properties_given = d.massPropertiesGiven;
+  out.linear_damping = body.dynamics().linearDamping;
+  out.angular_damping = body.dynamics().angularDamping;
+  out.shape_type = shapeTypeName(d.shape);
+  copyTo(out.shape_position, d.shapeTranslation);
+  copyTo(out.shape_orientation, Quaternion::fromRotationMatrix(d.shapeRotation));
+  out.radius = 0.0;
+  out.half_length = 0.0;
+  out.plane_offset = 0.0;
+  copyTo(out.half_extents, Vec3::Zero());
+  copyTo(out.plane_normal, Vec3::Zero());
+  out.num_vertices = 0;
+  out.num_triangles = 0;
+  out.num_parts = 0;
+  if (const auto* plane = std::get_if<PlaneShape>(&d.shape)) {
+    copyTo(out.plane_normal, plane->normal);
+    out.plane_offset = plane->offset;
+  } else if (const auto* compound = std::get_if<CompoundShape>(&d.shape)) {
+    // Each part is placed in the shape frame, which shape_position and
+    // shape_orientation place in body space, as for any shape.
+    for (const CompoundPart& part : compound->parts) out.parts.push_back(compoundPart(part));
+    out.num_parts = static_cast<int32_t>(out.parts.size());
+  } else if (auto solid = toPartShape(d.shape)) {
+    copyDimensions(out, *solid);
+  }
+  return out;
+}
+
+// Splits items into pages whose encoded size stays under the budget. The
+// Fields policy names the page type's list and counters (bodies for states
+// and world descriptions, contacts for contacts).
+struct BodyFields {
+  template <class Page>
+  static auto& items(Page& page) { return page.bodies; }
+  template <class Page>
+  static void setCounts(Page& page, int32_t first, int32_t count, int32_t total) {
+    page.first_body_index = first;
+    page.num_bodies = count;
+    page.total_bodies = total;
+  }
+};
+struct ContactFields {
+  template <class Page>
+  static auto& items(Page& page) { return page.contacts; }
+  template <class Page>
+  static void setCounts(Page& page, int32_t first, int32_t count, int32_t total) {
+    page.first_contact_index = first;
+    page.num_contacts = count;
+    page.total_contacts = total;
+  }
+};
+
+// `header` needs only its own fields: paginate sets every paging field.
+template <class Fields, class Page, class Item>
+std::vector<Page> paginate(Page header, std::vector<Item> items) {
+  header.page = 0;
+  header.num_pages = 1;
+  Fields::setCounts(header, 0, 0, 0);
+  std::vector<Page> pages;
+  std::vector<int32_t> firstIndex;
+  Page current = header;
+  const auto emptySize = static_cast<std::size_t>(header.getEncodedSize());
+  std::size_t size = emptySize;
+  int32_t index = 0;
+  firstIndex.push_back(0);
+  for (Item& item : items) {
+    const auto itemSize = static_cast<std::size_t>(item._getEncodedSizeNoHash());
+    if (!Fields::items(current).empty() && size + itemSize > kMaxPagePayloadBytes) {
+      pages.push_back(std::move(current));
+      current = header;
+      firstIndex.push_back(index);
+      size = emptySize;
+    }
+    Fields::items(current).push_back(std::move(item));
+    size += itemSize;
+    ++index;
+  }
+  pages.push_back(std::move(current));
+  for (std::size_t i = 0; i < pages.size(); ++i) {
+    pages[i].page = static_cast<int32_t>(i);
+    pages[i].num_pages = static_cast<int32_t>(pages.size());
+    Fields::setCounts(pages[i], firstIndex[i], static_cast<int32_t>(Fields::items(pages[i]).size()),
+                      index);
+  }
+  return pages;
+}
+
+bool finite3(const double (&v)[3]) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+}  // namespace
+
+std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t utime,
+                                                  int64_t revision) {
+  rbsim::world_state_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.world_revision = revision;
+  std::vector<rbsim::body_state_t> bodies;
+  bodies.reserve(world.bodies().size());
+  for (const Body& body : world.bodies()) bodies.push_back(bodyState(body));
+  return paginate<BodyFields>(header, std::move(bodies));
+}
+
+std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
+                                                  int64_t revision) {
+  rbsim::world_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.world_revision = revision;
+  header.dt = world.settings().dt;
+  copyTo(header.gravity, world.settings().gravity);
+  header.integrator = std::string(integratorName(world.settings().integrator));
+  header.linear_damping = world.settings().linearDamping;
+  header.angular_damping = world.settings().angularDamping;
+  std::vector<rbsim::body_description_t> bodies;
+  bodies.reserve(world.bodies().size());
+  for (const Body& body : world.bodies()) bodies.push_back(bodyDescription(body));
+  return paginate<BodyFields>(header, std::move(bodies));
+}
+
+std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
+  rbsim::contacts_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  const double epsilon = world.settings().contact.classificationEpsilon;
+  std::vector<rbsim::contact_t> contacts;
+  for (const SolvedManifold& m : world.contacts()) {
+    for (int p = 0; p < m.pointCount; ++p) {
+      const SolvedContactPoint& point = m.points[p];
+      rbsim::contact_t c;
+      c.body_a = m.serialA;
+      c.body_b = m.serialB;
+      copyTo(c.position, point.point);
+      copyTo(c.normal, m.normal);
+      c.depth = point.depth;
+      c.normal_velocity = point.relativeNormalVelocity;
+      switch (classifyContact(point.relativeNormalVelocity, epsilon)) {
+        case ContactKind::Colliding:
+          c.classification = rbsim::contact_t::COLLIDING;
+          break;
+        case ContactKind::Resting:
+          c.classification = rbsim::contact_t::RESTING;
+          break;
+        case ContactKind::Separating:
+          c.classification = rbsim::contact_t::SEPARATING;
+          break;
+      }
+      c.normal_impulse = point.normalImpulse;
+      copyTo(c.friction_impulse, point.tangentImpulse);
+      contacts.push_back(c);
+    }
+  }
+  return paginate<ContactFields>(header, std::move(contacts));
+}
+
+namespace {
+
+Expected<WrenchFrame> wrenchFrameFrom(int8_t value, const char* field) {
+  if (value == rbsim::wrench_t::FRAME_WORLD) return WrenchFrame::World;
+  if (value == rbsim::wrench_t::FRAME_BODY) return WrenchFrame::Body;
+  return Error{std::string("unknown ") + field + " " + std::to_string(value)};
+}
+
+}  // namespace
+
+Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
+                                          int64_t nextStep, const WrenchLimits& limits) {
+  WrenchRequest request;
+  request.client = message.client;
+  request.seq = message.seq;
+  request.body = message.body;
+
+  switch (message.mode) {
+    case rbsim::wrench_t::MODE_ONE_STEP:
+      request.mode = WrenchMode::OneStep;
+      break;
+    case rbsim::wrench_t::MODE_DURATION:
+      request.mode = WrenchMode::Duration;
+      break;
+    case rbsim::wrench_t::MODE_PERSISTENT:
+      request.mode = WrenchMode::Persistent;
+      break;
+    case rbsim::wrench_t::MODE_CLEAR:
+      request.mode = WrenchMode::Clear;
+      break;
+    default:
+      return Error{"unknown mode " + std::to_string(message.mode)};
+  }
+  const auto frame = wrenchFrameFrom(message.frame, "frame");
+  if (!frame) return frame.error();
+  request.frame = *frame;
+  const auto pointFrame = wrenchFrameFrom(message.point_frame, "point_frame");
+  if (!pointFrame) return pointFrame.error();
+  request.pointFrame = *pointFrame;
+
+  const bool clearEverything = request.mode == WrenchMode::Clear && message.body.empty();
+  const BodyId id = world.findBody(message.body);
+  if (!clearEverything && id.isNull()) return Error{"unknown body '" + message.body + "'"};
+
+  if (message.apply_at_step == -1) {
+    request.firstStep = nextStep;
+  } else if (message.apply_at_step < nextStep) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) +
+                 " is in the past (next step is " + std::to_string(nextStep) + ")"};
+  } else if (message.apply_at_step - nextStep > limits.maxStepsAhead) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) + " is more than " +
+                 std::to_string(limits.maxStepsAhead) + " steps ahead"};
+  } else {
+    request.firstStep = message.apply_at_step;
+  }
+
+  if (request.mode == WrenchMode::Clear) return request;
+
+  if (!finite3(message.force) || !finite3(message.torque) || !finite3(message.point))
+    return Error{"force, torque and point must be finite"};
+  request.force = vec3From(message.force);
+  request.torque = vec3From(message.torque);
+  request.point = vec3From(message.point);
+  if (request.force.norm() > limits.maxForce)
+    return Error{"force magnitude " + std::to_string(request.force.norm()) + " N exceeds the limit of " +
+                 std::to_string(limits.maxForce) + " N"};
+  if (request.torque.norm() > limits.maxTorque)
+    return Error{"torque magnitude " + std::to_string(request.torque.norm()) +
+                 " N·m exceeds the limit of " + std::to_string(limits.maxTorque) + " N·m"};
+  const Body& body = world.body(id);
+  if (body.isStatic()) return Error{"body '" + message.body + "' is static"};
+  if (body.isFrozen())
+    return Error{"body '" + message.body + "' is frozen (" +
+                 std::string(freezeReasonName(body.freezeReason())) +
+                 "); RESET or REMOVE it"};
+  const double leverArm = request.pointFrame == WrenchFrame::World
+                              ? (request.point - body.position()).norm()
+                              : body.description().shapeToBodyPoint(request.point).norm();
+  if (leverArm > limits.maxLeverArm)
+    return Error{"point is " + std::to_string(leverArm) + " m from the centre of mass (limit " +
+                 std::to_string(limits.maxLeverArm) + " m)"};
+
+  if (request.mode == WrenchMode::Duration) {
+    if (!std::isfinite(message.duration) || message.duration <= 0.0)
+      return Error{"duration must be a positive number of seconds"};
+    if (message.duration > limits.maxDuration)
+      return Error{"duration " + std::to_string(message.duration) + " s exceeds the limit of " +
+                   std::to_string(limits.maxDuration) + " s"};
+    const double steps = std::round(message.duration / world.settings().dt);
+    request.durationSteps = std::max<int64_t>(1, static_cast<int64_t>(steps));
+  }
+  return request;
+}
+
+}  // namespace rbsim

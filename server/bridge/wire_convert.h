@@ -1,0 +1,50 @@
+#pragma once
+// Conversions between the physics library's values and the LCM wire types.
+// Pure functions: no LCM handle, no clock (the caller passes utime).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <rbsim/ack_t.hpp>
+#include <rbsim/contacts_t.hpp>
+#include <rbsim/status_t.hpp>
+#include <rbsim/world_state_t.hpp>
+#include <rbsim/world_t.hpp>
+#include <rbsim/wrench_t.hpp>
+
+#include "config/server_settings.h"
+#include "physics/common/expected.h"
+#include "physics/world/world.h"
+#include "session/wrench_scheduler.h"
+
+namespace rbsim {
+
+// Largest payload we put in one LCM message: LCM sends a message as one UDP
+// datagram when its header, channel and payload fit in 65499 bytes, and
+// fragments it otherwise (docs/lcm.md, "Message size and fragmentation").
+// Under that, a page is never fragmented and a lost datagram loses one page,
+// not a whole state.
+constexpr std::size_t kMaxPagePayloadBytes = 60000;
+
+// The world's state split into pages of whole bodies, each page encoding to
+// at most kMaxPagePayloadBytes. Bodies go in creation order (ascending id).
+std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t utime,
+                                                  int64_t revision);
+
+// The world's description, paged the same way (meshes make bodies large).
+std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
+                                                  int64_t revision);
+
+// The last step's contact points (positions, normals A→B, depths, solved
+// impulses, classification by relative normal velocity), paged like the
+// state. Bodies are named by their ids (serials).
+std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime);
+
+// Checks a wrench message against the world and the limits; on success the
+// request is ready for the WrenchScheduler. `nextStep` is the step the
+// server takes next (world.stepCount() + 1).
+Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
+                                          int64_t nextStep, const WrenchLimits& limits);
+
+}  // namespace rbsim

@@ -1,0 +1,120 @@
+#include "persist/session_checkpoint.h"
+
+#include "persist/checkpoint_file.h"
+#include "physics/common/byte_stream.h"
+#include "physics/world/world_snapshot.h"
+
+namespace rbsim {
+
+namespace {
+
+constexpr uint32_t kMagic = 0x53534252u;  // "RBSS"
+constexpr uint32_t kVersion = 2;          // 2: a wrench's point frame
+constexpr uint32_t kMaxTextLength = 4096;
+
+void writeRequest(const WrenchRequest& r, ByteWriter& out) {
+  out.string(r.client);
+  out.i64(r.seq);
+  out.string(r.body);
+  out.u8(static_cast<uint8_t>(r.frame));
+  out.u8(static_cast<uint8_t>(r.pointFrame));
+  out.vec3(r.force);
+  out.vec3(r.torque);
+  out.vec3(r.point);
+  out.u8(static_cast<uint8_t>(r.mode));
+  out.i64(r.durationSteps);
+  out.i64(r.firstStep);
+}
+
+WrenchRequest readRequest(ByteReader& in) {
+  WrenchRequest r;
+  r.client = in.string("wrench client", kMaxTextLength);
+  r.seq = in.i64("wrench seq");
+  r.body = in.string("wrench body", kMaxTextLength);
+  const uint8_t frame = in.u8("wrench frame");
+  const uint8_t pointFrame = in.u8("wrench point frame");
+  r.force = in.vec3("wrench force");
+  r.torque = in.vec3("wrench torque");
+  r.point = in.vec3("wrench point");
+  const uint8_t mode = in.u8("wrench mode");
+  r.durationSteps = in.i64("wrench duration");
+  r.firstStep = in.i64("wrench first step");
+  if (frame > static_cast<uint8_t>(WrenchFrame::Body) ||
+      pointFrame > static_cast<uint8_t>(WrenchFrame::Body) ||
+      mode > static_cast<uint8_t>(WrenchMode::Clear) || r.durationSteps < 1 ||
+      !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
+    in.fail("a wrench of client '" + r.client + "' has an invalid frame, mode, duration or value");
+  r.frame = static_cast<WrenchFrame>(frame);
+  r.pointFrame = static_cast<WrenchFrame>(pointFrame);
+  r.mode = static_cast<WrenchMode>(mode);
+  return r;
+}
+
+std::vector<WrenchRequest> readRequests(ByteReader& in, const char* what) {
+  std::vector<WrenchRequest> out;
+  const uint32_t count = in.count(what, 100);
+  for (uint32_t i = 0; i < count && !in.failed(); ++i) out.push_back(readRequest(in));
+  return out;
+}
+
+}  // namespace
+
+Expected<std::vector<uint8_t>> encodeSessionCheckpoint(const Session& session) {
+  ByteWriter out;
+  out.u32(kMagic);
+  out.u32(kVersion);
+  out.i64(session.worldRevision());
+  out.boolean(session.paused());
+  out.i64(session.stepsRequested());
+  if (auto written = WorldSnapshot::write(session.world(), out); !written) return written.error();
+  for (const auto* list : {&session.wrenches().pending(), &session.wrenches().active()}) {
+    out.u32(static_cast<uint32_t>(list->size()));
+    for (const WrenchRequest& r : *list) writeRequest(r, out);
+  }
+  return out.take();
+}
+
+Expected<SessionState> decodeSessionCheckpoint(std::span<const uint8_t> payload, const WorldSettings& settings) {
+  ByteReader in(payload);
+  const uint32_t magic = in.u32("session magic");
+  const uint32_t version = in.u32("session version");
+  if (in.failed()) return Error{"session: " + in.error()};
+  if (magic != kMagic) return Error{"session: not a session checkpoint (bad magic)"};
+  if (version != kVersion)
+    return Error{"session: version " + std::to_string(version) + " is not supported (this build reads " +
+                 std::to_string(kVersion) + ")"};
+  const int64_t revision = in.i64("world revision");
+  const bool paused = in.boolean("paused");
+  const int64_t stepsRequested = in.i64("steps requested");
+  if (in.failed()) return Error{"session: " + in.error()};
+  auto world = WorldSnapshot::read(in, settings);
+  if (!world) return world.error();
+  auto pending = readRequests(in, "pending wrench count");
+  auto active = readRequests(in, "active wrench count");
+  if (in.failed()) return Error{"session: " + in.error()};
+  if (in.remaining() != 0)
+    return Error{"session: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
+  if (revision < 1 || stepsRequested < 0) return Error{"session: invalid world revision or step count"};
+  SessionState state{std::move(world).value(), {}, revision, paused, stepsRequested};
+  state.wrenches.restore(std::move(pending), std::move(active));
+  return state;
+}
+
+Expected<bool> saveSessionCheckpoint(const Session& session, const std::string& path) {
+  const auto payload = encodeSessionCheckpoint(session);
+  if (!payload) return payload.error();
+  return writeFileAtomically(path, checkpointFileBytes(*payload));
+}
+
+Expected<SessionState> loadSessionCheckpoint(const std::string& path, const WorldSettings& settings,
+                                             bool noFollow) {
+  const auto file = readWholeFile(path, noFollow);
+  if (!file) return Error{"checkpoint: " + file.error().message};
+  const auto payload = checkpointPayload(*file, path);
+  if (!payload) return payload.error();
+  auto state = decodeSessionCheckpoint(*payload, settings);
+  if (!state) return Error{"checkpoint '" + path + "': " + state.error().message};
+  return state;
+}
+
+}  // namespace rbsim

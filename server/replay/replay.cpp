@@ -1,0 +1,240 @@
+#include "replay/replay.h"
+
+#include <deque>
+#include <map>
+#include <tuple>
+
+#include <rbsim/ack_t.hpp>
+#include <rbsim/command_t.hpp>
+#include <rbsim/handled_t.hpp>
+#include <rbsim/world_state_t.hpp>
+#include <rbsim/world_t.hpp>
+#include <rbsim/wrench_t.hpp>
+
+#include "bridge/message_decode.h"
+#include "bridge/wire_convert.h"
+#include "replay/state_comparison.h"
+
+namespace rbsim {
+
+namespace {
+
+template <class Message>
+std::optional<Message> decodeWhole(const std::vector<uint8_t>& data) {
+  Message message;
+  if (!decodeWholeMessage(message, data.data(), data.size())) return std::nullopt;
+  return message;
+}
+
+template <class Message>
+std::vector<uint8_t> encode(const Message& message) {
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Which acks stand for a change of the simulated world.
+bool changesTheWorld(const rbsim::ack_t& ack) {
+  if (ack.kind == rbsim::ack_t::KIND_WRENCH) return true;
+  return ack.kind == rbsim::ack_t::KIND_COMMAND &&
+         (ack.request == rbsim::command_t::SPAWN || ack.request == rbsim::command_t::REMOVE ||
+          ack.request == rbsim::command_t::RESET);
+}
+
+std::string describe(const rbsim::ack_t& ack) {
+  return std::string(ack.kind == rbsim::ack_t::KIND_WRENCH ? "wrench" : "command") + " seq " +
+         std::to_string(ack.seq) + " from '" + ack.client + "'";
+}
+
+}  // namespace
+
+// A received message waiting for its ack, by (kind, client, seq).
+struct Replay::Input {
+  std::string channel;
+  std::vector<uint8_t> data;
+  int64_t eventNumber = 0;
+  std::optional<int64_t> handledStep;  // from a handled_t (--record files)
+  std::optional<int64_t> handledRevision;
+  int64_t applyAtStep = -1;            // wrenches: as requested
+};
+
+struct Replay::Pending {
+  using Key = std::tuple<int8_t, std::string, int64_t>;
+  std::map<Key, std::deque<Input>> byKey;
+  Input* latest = nullptr;  // the last message read, for the handled_t after it
+};
+
+Replay::Replay(Session& session, CommandHandler& handler, std::string channelPrefix, bool verify,
+               Output output)
+    : m_session(session),
+      m_handler(handler),
+      m_prefix(std::move(channelPrefix)),
+      m_verify(verify),
+      m_output(std::move(output)),
+      m_pending(std::make_unique<Pending>()) {}
+
+Replay::~Replay() = default;
+
+Expected<ReplayReport> Replay::run(const std::string& logPath) {
+  LcmLogReader reader;
+  if (auto opened = reader.open(logPath); !opened) return opened.error();
+  m_report = {};
+  emitWorld(0);
+  const std::string wrench = m_prefix + "WRENCH", command = m_prefix + "COMMAND",
+                    handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE";
+  while (!m_report.difference) {
+    auto event = reader.next();
+    if (!event) return event.error();
+    if (!event->has_value()) break;
+    const LogEvent& e = **event;
+    ++m_report.eventsRead;
+    Expected<bool> done = true;
+    if (e.channel == wrench || e.channel == command) {
+      done = onInput(e);
+    } else if (e.channel == handled) {
+      done = onHandled(e);
+    } else if (e.channel == ack) {
+      done = onAck(e);
+    } else if (e.channel == state) {
+      done = onState(e);
+    }
+    if (!done) return Error{"log '" + logPath + "', event " + std::to_string(e.eventNumber) + " (" +
+                            e.channel + "): " + done.error().message};
+  }
+  return m_report;
+}
+
+Expected<bool> Replay::onInput(const LogEvent& event) {
+  Input input;
+  input.channel = event.channel;
+  input.data = event.data;
+  input.eventNumber = event.eventNumber;
+  Pending::Key key{0, "", -1};  // an undecodable message is answered as client "", seq -1
+  if (event.channel == m_prefix + "WRENCH") {
+    std::get<0>(key) = rbsim::ack_t::KIND_WRENCH;
+    if (const auto w = decodeWhole<rbsim::wrench_t>(event.data)) {
+      key = {rbsim::ack_t::KIND_WRENCH, w->client, w->seq};
+      input.applyAtStep = w->apply_at_step;
+    }
+  } else {
+    std::get<0>(key) = rbsim::ack_t::KIND_COMMAND;
+    if (const auto c = decodeWhole<rbsim::command_t>(event.data))
+      key = {rbsim::ack_t::KIND_COMMAND, c->client, c->seq};
+  }
+  auto& queue = m_pending->byKey[key];
+  queue.push_back(std::move(input));
+  m_pending->latest = &queue.back();
+  return true;
+}
+
+Expected<bool> Replay::onHandled(const LogEvent& event) {
+  const auto handled = decodeWhole<rbsim::handled_t>(event.data);
+  if (!handled) return Error{"undecodable handled_t"};
+  if (m_pending->latest == nullptr) return Error{"a handled_t that follows no wrench or command"};
+  m_pending->latest->handledStep = handled->step;
+  m_pending->latest->handledRevision = handled->world_revision;
+  m_pending->latest = nullptr;
+  return true;
+}
+
+Expected<bool> Replay::onAck(const LogEvent& event) {
+  const auto ack = decodeWhole<rbsim::ack_t>(event.data);
+  if (!ack) return Error{"undecodable ack_t"};
+  m_pending->latest = nullptr;
+  const auto found = m_pending->byKey.find({ack->kind, ack->client, ack->seq});
+  if (found == m_pending->byKey.end() || found->second.empty()) {
+    if (ack->accepted && changesTheWorld(*ack))
+      return Error{"the server accepted " + describe(*ack) + " but the log holds no such message "
+                   "before its ack (lost by the logger?): the session cannot be replayed"};
+    return true;  // a rejection, or an accepted message with no effect on the states
+  }
+  Input input = std::move(found->second.front());
+  found->second.pop_front();
+  if (found->second.empty()) m_pending->byKey.erase(found);
+  if (!ack->accepted || !changesTheWorld(*ack)) return true;
+
+  // Where the server handled it: recorded, or the latest point the ack allows.
+  int64_t step = m_session.world().stepCount();
+  if (input.handledStep) {
+    step = *input.handledStep;
+  } else if (ack->kind == rbsim::ack_t::KIND_COMMAND || input.applyAtStep == -1) {
+    step = ack->effective_step - 1;
+  }
+  if (auto advanced = advanceTo(step, describe(*ack)); !advanced) return advanced;
+  if (input.handledRevision && *input.handledRevision != m_session.worldRevision()) {
+    m_report.difference = "step " + std::to_string(step) + ": the server handled " + describe(*ack) +
+                          " at world revision " + std::to_string(*input.handledRevision) +
+                          ", the replay is at revision " + std::to_string(m_session.worldRevision());
+    return true;
+  }
+
+  const auto outcome = m_handler.handle(input.channel, input.data.data(), input.data.size(), 0);
+  ++m_report.messagesApplied;
+  if (!outcome || !outcome->ack.accepted || outcome->ack.effective_step != ack->effective_step) {
+    m_report.difference =
+        "step " + std::to_string(step) + ": the server accepted " + describe(*ack) +
+        " for step " + std::to_string(ack->effective_step) + ", the replay " +
+        (!outcome || !outcome->ack.accepted
+             ? "rejected it: " + (outcome ? outcome->ack.reason : std::string("not a wrench or command channel"))
+             : "scheduled it for step " + std::to_string(outcome->ack.effective_step));
+    return true;
+  }
+  if (outcome->publishWorld) emitWorld(event.timestamp);
+  return true;
+}
+
+Expected<bool> Replay::advanceTo(int64_t step, const std::string& why) {
+  const int64_t current = m_session.world().stepCount();
+  if (step < current)
+    return Error{why + " belongs to step " + std::to_string(step) + ", but the replay is already at step " +
+                 std::to_string(current) + " (a log out of order, or of another session)"};
+  for (int64_t s = current; s < step; ++s) {
+    m_session.step();
+    ++m_report.stepsSimulated;
+  }
+  return true;
+}
+
+Expected<bool> Replay::onState(const LogEvent& event) {
+  const auto recorded = decodeWhole<rbsim::world_state_t>(event.data);
+  if (!recorded) return Error{"undecodable world_state_t"};
+  if (auto advanced = advanceTo(recorded->step, "the state"); !advanced) return advanced;
+  // A bus log can also lose an ack: its command then waits here unanswered,
+  // and the replay cannot know whether it took effect. A logged world
+  // revision the replay has not reached says that it did.
+  if (recorded->world_revision != m_session.worldRevision()) {
+    for (const auto& [key, queue] : m_pending->byKey) {
+      if (std::get<0>(key) != rbsim::ack_t::KIND_COMMAND || queue.empty()) continue;
+      return Error{"step " + std::to_string(recorded->step) + ": the log is at world revision " +
+                   std::to_string(recorded->world_revision) + ", the replay at " +
+                   std::to_string(m_session.worldRevision()) + ", and the command of '" +
+                   std::get<1>(key) + "' seq " + std::to_string(std::get<2>(key)) +
+                   " has no ack (lost by the logger?): the session cannot be replayed"};
+    }
+  }
+  m_report.lastStep = recorded->step;
+  const auto pages = worldStatePages(m_session.world(), recorded->utime, m_session.worldRevision());
+  const auto index = static_cast<std::size_t>(recorded->page);
+  if (m_verify) {
+    ++m_report.pagesCompared;
+    if (recorded->page < 0 || index >= pages.size()) {
+      m_report.difference = "step " + std::to_string(recorded->step) + ": the log has page " +
+                            std::to_string(recorded->page) + " of " + std::to_string(recorded->num_pages) +
+                            ", the replay's state has " + std::to_string(pages.size()) + " pages";
+      return true;
+    }
+    m_report.difference = firstStateDifference(*recorded, pages[index]);
+    if (m_report.difference) return true;
+  }
+  if (m_output && recorded->page >= 0 && index < pages.size())
+    m_output(event.channel, encode(pages[index]), event.timestamp);
+  return true;
+}
+
+void Replay::emitWorld(int64_t timestamp) {
+  if (!m_output) return;
+  for (const auto& page : worldDescriptionPages(m_session.world(), timestamp, m_session.worldRevision()))
+    m_output(m_prefix + "WORLD", encode(page), timestamp);
+}
+
+}  // namespace rbsim

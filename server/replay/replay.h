@@ -1,0 +1,85 @@
+#pragma once
+// `rbserver --replay LOG`: re-simulates a recorded session as fast as
+// possible. The log is an rbserver --record file or an lcm-logger log of the
+// bus. The session starts from the config's world (or the checkpoint the
+// recorded server resumed from); each wrench or command the server accepted
+// and that changed the world (wrenches, SPAWN, REMOVE, RESET) goes through the
+// same CommandHandler at the step the server handled it, and the world is
+// stepped to every recorded state. With `verify`, every recorded state page
+// is compared bit for bit with the replayed one.
+//
+// Where a message was handled: a --record file says so exactly (a handled_t
+// after each received message). An lcm-logger log has only the acks: a
+// message acts from ack.effective_step, so it was handled after step
+// effective_step - 1; a wrench scheduled ahead with apply_at_step is handled
+// where the replay stands (the same order, possibly a few steps early,
+// which changes nothing unless it was at the edge of a limit).
+//
+// Messages the server rejected, and those that only pace the server (PAUSE,
+// RESUME, STEP, SET_REAL_TIME_FACTOR, PUBLISH_WORLD, SAVE_CHECKPOINT), are
+// skipped: they do not change the simulated states.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "bridge/command_handler.h"
+#include "physics/common/expected.h"
+#include "replay/lcm_log_reader.h"
+#include "session/session.h"
+
+namespace rbsim {
+
+struct ReplayReport {
+  int64_t eventsRead = 0;
+  int64_t messagesApplied = 0;  // accepted wrenches and commands re-applied
+  int64_t stepsSimulated = 0;
+  int64_t pagesCompared = 0;
+  int64_t lastStep = 0;         // of the last recorded state
+  // The first difference (verify), or the first decision the replay took
+  // differently from the recorded server; nullopt: identical.
+  std::optional<std::string> difference;
+};
+
+class Replay {
+ public:
+  // Receives every message the replay produces: state pages (at the steps the
+  // log has states) and world descriptions (at start and at every change),
+  // already encoded, with the recorded event's timestamp.
+  using Output = std::function<void(const std::string& channel, const std::vector<uint8_t>& data,
+                                    int64_t timestamp)>;
+
+  // `handler` must act on `session` and be configured like the recorded
+  // server (channel prefix, limits), without read-only mode or rate limits:
+  // the log says which messages were accepted.
+  Replay(Session& session, CommandHandler& handler, std::string channelPrefix, bool verify,
+         Output output);
+  ~Replay();
+
+  // Errors: an unreadable or corrupt log, or a log the replay cannot follow
+  // (a state or a message for a step the replay has already passed, an
+  // accepted message missing from the log).
+  Expected<ReplayReport> run(const std::string& logPath);
+
+ private:
+  struct Input;
+  Expected<bool> onInput(const LogEvent& event);
+  Expected<bool> onHandled(const LogEvent& event);
+  Expected<bool> onAck(const LogEvent& event);
+  Expected<bool> onState(const LogEvent& event);
+  Expected<bool> advanceTo(int64_t step, const std::string& why);
+  void emitWorld(int64_t timestamp);
+
+  Session& m_session;
+  CommandHandler& m_handler;
+  std::string m_prefix;
+  bool m_verify;
+  Output m_output;
+  ReplayReport m_report;
+  struct Pending;
+  std::unique_ptr<Pending> m_pending;
+};
+
+}  // namespace rbsim

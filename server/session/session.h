@@ -1,0 +1,63 @@
+#pragma once
+// What a running simulation is, apart from any network or clock: the world,
+// the world it started from (for RESET), the wrenches clients asked for, and
+// whether it is paused. The server steps it on a real-time schedule, a
+// replay steps it as fast as it can, a fuzzer pokes it with messages; all
+// through the same code, so what a recorded session did can be done again.
+
+#include <cstdint>
+
+#include "physics/world/world.h"
+#include "session/wrench_scheduler.h"
+
+namespace rbsim {
+
+class Session {
+ public:
+  // `initialWorld` is what RESET returns to; the session starts from it.
+  explicit Session(World initialWorld, bool startPaused = false);
+
+  const World& world() const { return m_world; }
+  World& world() { return m_world; }
+  const World& initialWorld() const { return m_initialWorld; }
+  const WrenchScheduler& wrenches() const { return m_wrenches; }
+  WrenchScheduler& wrenches() { return m_wrenches; }
+
+  // One step of the world with the wrenches due in it (numbered as on the
+  // wire: the step taken from stepCount() s is step s + 1).
+  void step();
+
+  bool paused() const { return m_paused; }
+  // STEP while paused: how many steps are still to be taken.
+  int64_t stepsRequested() const { return m_stepsRequested; }
+  void pause();
+  void resume();
+  void requestSteps(int64_t count) { m_stepsRequested += count; }
+  // True (and one fewer pending) if the next step is one that STEP asked for.
+  bool takeRequestedStep();
+
+  // Back to the initial world. Serials handed out stay taken (body ids are
+  // never reused), wrenches are dropped, the pause state is kept.
+  void resetToInitialWorld();
+  // Replaces world and wrenches (a checkpoint), with the same rules for serials.
+  void replaceWorld(World world, WrenchScheduler wrenches);
+
+  // Continues a checkpointed session: its world, wrenches, pause state and
+  // revision (serials continue after both worlds').
+  void resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
+                  int64_t stepsRequested);
+
+  // world_t revision: bumped at every change of the set of bodies.
+  int64_t worldRevision() const { return m_worldRevision; }
+  void noteWorldChanged() { ++m_worldRevision; }
+
+ private:
+  World m_initialWorld;
+  World m_world;
+  WrenchScheduler m_wrenches;
+  bool m_paused = false;
+  int64_t m_stepsRequested = 0;
+  int64_t m_worldRevision = 1;
+};
+
+}  // namespace rbsim

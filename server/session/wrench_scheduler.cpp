@@ -1,0 +1,80 @@
+#include "session/wrench_scheduler.h"
+
+#include <algorithm>
+
+namespace rbsim {
+
+void WrenchScheduler::add(const WrenchRequest& request) { m_pending.push_back(request); }
+
+void WrenchScheduler::start(const WrenchRequest& request) {
+  const auto sameClientAndBody = [&](const WrenchRequest& active) {
+    return active.client == request.client && (request.body.empty() || active.body == request.body);
+  };
+  if (request.mode == WrenchMode::Clear) {
+    std::erase_if(m_active, [&](const WrenchRequest& active) {
+      return sameClientAndBody(active) && active.mode != WrenchMode::OneStep;
+    });
+    return;
+  }
+  if (request.mode == WrenchMode::Persistent) {
+    std::erase_if(m_active, [&](const WrenchRequest& active) {
+      return sameClientAndBody(active) && active.mode == WrenchMode::Persistent;
+    });
+  }
+  m_active.push_back(request);
+}
+
+void WrenchScheduler::applyForStep(World& world, int64_t step) {
+  // Start what is due, in acceptance order; keep the rest waiting.
+  std::vector<WrenchRequest> stillPending;
+  for (const WrenchRequest& request : m_pending) {
+    if (request.firstStep <= step) {
+      start(request);
+    } else {
+      stillPending.push_back(request);
+    }
+  }
+  m_pending.swap(stillPending);
+
+  // Drop the wrenches of removed bodies, then fix world points of wrenches
+  // acting for the first time in their body (in its shape frame, the frame
+  // body points are given in) and apply them all.
+  std::erase_if(m_active,
+                [&](const WrenchRequest& active) { return world.findBody(active.body).isNull(); });
+  for (WrenchRequest& active : m_active) {
+    Body& body = world.body(world.findBody(active.body));
+    const BodyDescription& description = body.description();
+    if (active.pointFrame == WrenchFrame::World) {
+      active.point = description.bodyToShapePoint(body.worldToBody(active.point));
+      active.pointFrame = WrenchFrame::Body;
+    }
+    const Vec3 bodyPoint = description.shapeToBodyPoint(active.point);
+    if (active.frame == WrenchFrame::World) {
+      body.applyWorldWrenchAtBodyPoint(active.force, active.torque, bodyPoint);
+    } else {
+      body.applyBodyWrench(description.shapeToBodyVector(active.force),
+                           description.shapeToBodyVector(active.torque), bodyPoint);
+    }
+  }
+}
+
+void WrenchScheduler::finishStep(int64_t step) {
+  std::erase_if(m_active, [&](const WrenchRequest& active) {
+    switch (active.mode) {
+      case WrenchMode::OneStep:
+        return true;
+      case WrenchMode::Duration:
+        return step >= active.firstStep + active.durationSteps - 1;
+      default:
+        return false;
+    }
+  });
+}
+
+void WrenchScheduler::removeBody(const std::string& body) {
+  const auto onBody = [&](const WrenchRequest& r) { return r.body == body; };
+  std::erase_if(m_pending, onBody);
+  std::erase_if(m_active, onBody);
+}
+
+}  // namespace rbsim
