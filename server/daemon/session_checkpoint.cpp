@@ -1,7 +1,7 @@
 #include "daemon/session_checkpoint.h"
 
 #include "daemon/checkpoint_file.h"
-#include "physics/common/byte_stream.h"
+#include "physics/math/byte_stream.h"
 #include "physics/world/world_snapshot.h"
 
 namespace rbsim {
