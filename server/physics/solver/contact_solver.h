@@ -2,7 +2,7 @@
 // Impulse-based contact response for all contacts of one step: sequential
 // impulses (projected Gauss–Seidel on the velocity constraints) with
 // accumulated, clamped impulses and warm starting, as in Catto's "Iterative
-// Dynamics with Temporal Coherence" (GDC 2005) and Box2D/Bullet. The single
+// Dynamics with Temporal Coherence" (GDC 2005) and Box2D/Bullet. One contact's
 // impulse is that of Baraff, "Rigid Body Simulation" (SIGGRAPH course notes).
 //
 //  - Normal: Baraff's impulse j = −(1+e) v_rel / (1/Ma + 1/Mb + n·(Ia⁻¹(ra×n))×ra
