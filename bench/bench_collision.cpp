@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "physics/collision/broad_phase.h"
-#include "physics/collision/collision_detector.h"
+#include "physics/world/contact_detection.h"
 #include "physics/world/world.h"
 #include "scenes/free_bodies_scene.h"
 #include "scenes/pile_scene.h"
@@ -112,7 +112,7 @@ void BM_Collision_SettledPile(benchmark::State& state) {
   }
   CollisionDetector detector;
   for (auto _ : state) {
-    detector.detect(*world);
+    detectContacts(detector, *world);
     benchmark::DoNotOptimize(detector.contacts().data());
   }
   setPerBody(state, count);
@@ -135,7 +135,7 @@ void stepFreeBodies(benchmark::State& state, bool detect) {
   CollisionDetector detector;
   for (auto _ : state) {
     world->step();
-    if (detect) detector.detect(*world);
+    if (detect) detectContacts(detector, *world);
     benchmark::DoNotOptimize(detector.contacts().data());
   }
   setPerBody(state, count);

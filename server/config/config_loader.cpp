@@ -19,7 +19,7 @@
 #include "config/server_sections.h"
 #include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
-#include "physics/geometry/mesh_io.h"
+#include "meshio/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
 
 namespace rbsim {

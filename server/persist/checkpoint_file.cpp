@@ -9,7 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "physics/common/byte_stream.h"
+#include "physics/math/byte_stream.h"
 
 namespace rbsim {
 

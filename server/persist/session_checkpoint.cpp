@@ -1,7 +1,7 @@
 #include "persist/session_checkpoint.h"
 
 #include "persist/checkpoint_file.h"
-#include "physics/common/byte_stream.h"
+#include "physics/math/byte_stream.h"
 #include "physics/world/world_snapshot.h"
 
 namespace rbsim {

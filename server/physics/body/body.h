@@ -9,13 +9,16 @@
 #include "physics/body/external_load.h"
 #include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
-#include "physics/collision/collider.h"
 #include "physics/geometry/shape.h"
 #include "physics/mass/mass_properties.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
 
 namespace rbsim {
+
+// The body's collision geometry. The collision layer (collision/collider.h)
+// builds and reads it; a body only carries it, so it is only named here.
+struct Collider;
 
 // What a body is, fixed at creation. Shared (immutably) between copies of a
 // world, so copying a world for a look-ahead or a checkpoint is cheap.

@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
+#include "physics/body/material.h"
 #include "physics/geometry/shape.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
-#include "physics/solver/material.h"
 
 namespace rbsim {
 
@@ -31,8 +31,8 @@ struct BodyDef {
 
   // Pose of the shape's frame (the frame its dimensions or mesh vertices are
   // given in) in the world. The body frame itself has its origin at the
-  // centre of mass and its axes along the principal axes of inertia (the
-  // seed's body space); for the primitives the two frames coincide.
+  // centre of mass and its axes along the principal axes of inertia (Baraff's
+  // "body space"); for the primitives the two frames coincide.
   Vec3 position = Vec3::Zero();                         // m
   Quaternion orientation = Quaternion::identity();      // shape -> world
   Vec3 linearVelocity = Vec3::Zero();                   // m/s, of the centre of mass, world frame

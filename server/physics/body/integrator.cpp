@@ -4,7 +4,8 @@ namespace rbsim {
 
 namespace {
 
-// dq/dt = ½ [0, ω] q (the seed's quaternion kinematics, ω in the world frame).
+// dq/dt = ½ [0, ω] q, ω in the world frame (quaternion kinematics as in
+// Baraff's rigid-body notes).
 [[gnu::always_inline]] inline Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
   const Quaternion w{0.0, omega.x(), omega.y(), omega.z()};
   const Quaternion product = w * q;

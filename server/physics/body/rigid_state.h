@@ -1,5 +1,6 @@
 #pragma once
-// The seed's state vector of one rigid body: 13 numbers (x, q, P, L).
+// The state vector of one rigid body: 13 numbers (x, q, P, L), as in
+// Baraff, "Rigid Body Simulation", SIGGRAPH course notes.
 
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
@@ -25,7 +26,8 @@ struct BodyDynamics {
 };
 
 // ω = I⁻¹(t) L with I⁻¹(t) = R Ibody⁻¹ Rᵀ: taken to body space, scaled by
-// the principal inverse moments, taken back (the seed's "intuitively").
+// the principal inverse moments, taken back (the reading of R Ibody⁻¹ Rᵀ
+// that Baraff's rigid-body notes give).
 inline Vec3 angularVelocityFrom(const Mat3& rotation, const Vec3& inverseInertiaBody,
                                 const Vec3& angularMomentum) {
   return rotation * inverseInertiaBody.cwiseProduct(rotation.transpose() * angularMomentum);

@@ -46,9 +46,8 @@ BroadPhaseBody BroadPhaseShape::placed(int32_t serial, int index, const Transfor
   return body;
 }
 
-void BroadPhase::update(const World& world) {
+void BroadPhase::update(std::span<const Body> bodies) {
   m_inputs.clear();
-  const std::vector<Body>& bodies = world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const BroadPhaseShape shape = BroadPhaseShape::of(body);

@@ -20,14 +20,14 @@
 #include <span>
 #include <vector>
 
+#include "physics/body/body.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/dynamic_aabb_tree.h"
 #include "physics/math/transform.h"
-#include "physics/world/world.h"
 
 namespace rbsim {
 
-// Two bodies by dense index into world.bodies(), ordered so that
+// Two bodies by dense index into the bodies given to update(), ordered so that
 // serial(a) < serial(b).
 struct BodyPair {
   int a = 0;
@@ -55,11 +55,11 @@ inline double lowestAlong(const Aabb& box, const Vec3& normal) {
   return lowest;
 }
 
-// One body as the broad phase sees it: what update(World) extracts from each
+// One body as the broad phase sees it: what update(bodies) extracts from each
 // body with collision geometry, or what a test or benchmark gives directly.
 struct BroadPhaseBody {
   int32_t serial = 0;  // identity: strictly ascending along the input, never reused
-  int index = 0;       // what BodyPair reports (the dense index in World::bodies())
+  int index = 0;       // what BodyPair reports (the body's dense index)
   bool isStatic = false;
   std::optional<Aabb> box;         // world box of the convex pieces; none: no pieces
   std::optional<HalfSpace> plane;  // the body's half-space, if it is a plane
@@ -86,10 +86,11 @@ class BroadPhase {
   // (the narrow phase's contact margin, so that no near contact is missed).
   explicit BroadPhase(double fatMargin = 0.05, double contactMargin = 0.0);
 
-  // Brings the proxies in line with the world (bodies added, removed,
-  // moved) and recomputes the candidate pairs. Bodies without a collider
-  // (a null description().collider) take no part.
-  void update(const World& world);
+  // Brings the proxies in line with the bodies (added, removed, moved since
+  // the last update) and recomputes the candidate pairs; `bodies` in
+  // ascending serial order, as a World keeps them. Bodies without a
+  // collider (a null description().collider) and frozen ones take no part.
+  void update(std::span<const Body> bodies);
   // The same from explicit inputs, in ascending serial order. A serial seen
   // before must keep its isStatic; a new serial must exceed every serial
   // seen before (as World's do), otherwise everything is rebuilt.
@@ -145,7 +146,7 @@ class BroadPhase {
   std::vector<Candidate> m_found;
   std::vector<Candidate> m_merged;
   std::vector<Candidate> m_touching;
-  std::vector<BroadPhaseBody> m_inputs;  // scratch for update(World)
+  std::vector<BroadPhaseBody> m_inputs;  // scratch for update(bodies)
   std::vector<BodyPair> m_pairs;
   int m_movedCount = 0;
 };

@@ -42,14 +42,13 @@ uint64_t pairKey(int32_t serialA, int32_t serialB) {
 CollisionDetector::CollisionDetector(const ContactSettings& settings, double fatMargin)
     : m_settings(settings), m_broadPhase(fatMargin, settings.margin) {}
 
-void CollisionDetector::detect(const World& world) {
+void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep& step) {
   // One pass in body order gathers what the broad phase and the pairs need
   // into a compact array. Each body's collider is looked up only when the
   // body at that index changes: its description (which the entry keeps
   // alive, so the address cannot be reused) is immutable.
-  const std::vector<Body>& bodies = world.bodies();
-  const bool speculative = world.settings().contact.model == ContactModel::Impulse;
-  const double dt = world.settings().dt;
+  const bool speculative = step.speculative;
+  const double dt = step.dt;
   m_geometry.resize(bodies.size());
   m_broadPhaseInputs.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {

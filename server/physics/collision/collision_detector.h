@@ -6,14 +6,24 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
+#include "physics/body/body.h"
 #include "physics/collision/body_contact.h"
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/contact_generation.h"
-#include "physics/world/world.h"
 
 namespace rbsim {
+
+// What the detector needs to know of the step its contacts are for.
+struct DetectionStep {
+  double dt = 0.0;  // s
+  // Speculative contacts (the impulse model): a fast body's pairs reach as
+  // far as it may move within dt, so its impact is seen in the step it
+  // happens. Off, only the contact margin counts.
+  bool speculative = false;
+};
 
 class CollisionDetector {
  public:
@@ -21,9 +31,11 @@ class CollisionDetector {
   // bodies within settings.margin of each other.
   explicit CollisionDetector(const ContactSettings& settings = {}, double fatMargin = 0.05);
 
-  // Finds every contact of the world's current state. Deterministic: the
-  // contacts come sorted by (serial A, serial B, piece A, piece B).
-  void detect(const World& world);
+  // Finds every contact of the bodies' current state; `bodies` in ascending
+  // serial order, as a World keeps them (world/contact_detection.h passes
+  // a world's). Deterministic: the contacts come sorted by (serial A,
+  // serial B, piece A, piece B), bodies by their index in `bodies`.
+  void detect(std::span<const Body> bodies, const DetectionStep& step);
 
   const std::vector<BodyContact>& contacts() const { return m_contacts; }
   int contactPointCount() const;

@@ -1,5 +1,5 @@
 #pragma once
-// Contacts(A, B) of the seed: where two bodies touch, as a manifold of up to
+// Where two bodies touch, as a manifold of up to
 // four points sharing one normal.
 
 #include <array>
@@ -21,7 +21,7 @@ struct ContactPoint {
 
 struct ContactManifold {
   Vec3 normal = Vec3::UnitZ();  // unit, world, from A to B; face–vertex: the face's normal,
-                                // edge–edge: the cross product of the edges (the seed's rule)
+                                // edge–edge: the cross product of the edges (Baraff's rule)
   std::array<ContactPoint, 4> points{};
   int pointCount = 0;
 

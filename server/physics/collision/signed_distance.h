@@ -1,5 +1,5 @@
 #pragma once
-// Distance(A, B) of the seed: the signed distance between two convex solids
+// The signed distance between two convex solids
 // and their closest (or deepest) points.
 //  - apart: GJK distance (our own implementation; libccd has no distance
 //    query), with a signed-volume simplex solver that stays robust for

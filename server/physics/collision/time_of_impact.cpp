@@ -91,13 +91,13 @@ SignedDistance colliderDistance(const Collider& a, const Transform& poseA, const
 
 // ---------------------------------------------------------------- bisection
 
-PoseAtFraction integratedMotion(const Body& body, const WorldSettings& settings) {
+PoseAtFraction integratedMotion(const Body& body, IntegratorKind integrator, const Vec3& gravity,
+                                double dt) {
   if (body.isStatic()) {
     return [pose = Transform{body.rotation(), body.position()}](double) { return pose; };
   }
   return [state = body.state(), rotation = body.rotation(), dynamics = body.dynamics(),
-          load = body.load(), gravity = settings.gravity, integrator = settings.integrator,
-          dt = settings.dt](double fraction) {
+          load = body.load(), gravity, integrator, dt](double fraction) {
     ForceInputs inputs;
     inputs.gravity = gravity;
     inputs.load = load.active ? &load : nullptr;
@@ -113,7 +113,7 @@ PoseAtFraction interpolatedMotion(const RigidState& start, const RigidState& end
   };
 }
 
-// The seed's findCollisionTime for one pair, with try_t − t written as a
+// Bisection for the collision time of one pair, the trial time written as a
 // fraction of the step: [low, high] always brackets the first contact, with
 // the bodies apart at `low` and overlapping at `high`.
 TimeOfImpact bisectCollisionTime(const Collider& a, const PoseAtFraction& motionA,

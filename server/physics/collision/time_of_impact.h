@@ -1,15 +1,16 @@
 #pragma once
 // Time of collision within one step, two ways:
 //
-//  - bisectCollisionTime: the seed's findCollisionTime. The pose of each body
-//    at a fraction s of the step comes from a function, which may integrate a
-//    copy of the body from the step's start by s·dt (the seed's
-//    Compute_New_Body_States(Scopy, t, try_t − t), integratedMotion) or
-//    interpolate between the start and end states (interpolatedMotion). If the
-//    bodies overlap at the end of the step, the step is halved until the
-//    signed distance lies in (0, tolerance]. It only sees what the end state
-//    shows: a body that passes right through another within the step goes
-//    unnoticed (tunnelling).
+//  - bisectCollisionTime: backing up to the time of collision by bisection,
+//    as Baraff's notes do it (Baraff, "Rigid Body Simulation", SIGGRAPH
+//    course notes, on finding the collision time). The pose of each body at
+//    a fraction s of the step comes from a function, which may integrate a
+//    copy of the body's state from the step's start by s·dt
+//    (integratedMotion) or interpolate between the start and end states
+//    (interpolatedMotion). If the bodies overlap at the end of the step, the
+//    step is halved until the signed distance lies in (0, tolerance]. It only
+//    sees what the end state shows: a body that passes right through another
+//    within the step goes unnoticed (tunnelling).
 //
 //  - conservativeAdvancement: continuous collision detection for fast bodies
 //    (Mirtich, "Impulse-based dynamic simulation of rigid body systems",
@@ -31,12 +32,12 @@
 #include <functional>
 
 #include "physics/body/body.h"
+#include "physics/body/integrator_kind.h"
 #include "physics/body/rigid_state.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/signed_distance.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/transform.h"
-#include "physics/world/world_settings.h"
 
 namespace rbsim {
 
@@ -69,10 +70,12 @@ SignedDistance colliderDistance(const Collider& a, const Transform& poseA, const
 using PoseAtFraction = std::function<Transform(double fraction)>;
 
 // Integrates a copy of the body from its current state by s·dt with the
-// world's integrator, gravity and the body's pending external load (the
-// seed's choice: exact for whatever the integrator does within one step).
+// world's integrator, gravity and the body's pending external load (exact
+// for whatever the integrator does within one step, so the time found is
+// that of the motion the step really takes).
 // A static body stays where it is.
-PoseAtFraction integratedMotion(const Body& body, const WorldSettings& settings);
+PoseAtFraction integratedMotion(const Body& body, IntegratorKind integrator, const Vec3& gravity,
+                                double dt);
 // Interpolates between two states of a body: the centre linearly, the
 // orientation at a constant rate about a fixed axis (slerp). Cheap, and
 // needs only the states before and after a step.

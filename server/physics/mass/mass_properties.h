@@ -41,18 +41,6 @@ MassProperties capsuleMassProperties(double radius, double halfLength, double de
 // validateClosedMesh.
 MassProperties polyhedronMassProperties(const TriangleMesh& mesh, double density);
 
-// Monte Carlo estimate by sampling points uniformly in the bounding box and
-// testing them against the mesh: an independent cross-check of the exact
-// integrals. Each field comes with its standard error.
-struct MonteCarloMassProperties {
-  MassProperties estimate;
-  MassProperties standardError;  // one standard error of each field (inertia element-wise)
-  int samples = 0;
-  int insideSamples = 0;
-};
-MonteCarloMassProperties monteCarloMassProperties(const TriangleMesh& mesh, double density,
-                                                   int samples, unsigned long long seed);
-
 // One solid of a union: its mass properties in its own frame, and where
 // that frame sits (part frame -> the union's frame).
 struct PlacedMassProperties {

@@ -4,7 +4,8 @@
 // We keep our own small type rather than Eigen::Quaterniond because Eigen
 // stores (x, y, z, w): one order in code, config and messages leaves no room
 // for a silent swap. A quaternion q = [s, v] with s = cos(θ/2) and
-// v = sin(θ/2) u rotates by θ about the unit axis u (the seed lecture).
+// v = sin(θ/2) u rotates by θ about the unit axis u
+// (Baraff, "Rigid Body Simulation", SIGGRAPH course notes).
 
 #include <array>
 #include <cmath>

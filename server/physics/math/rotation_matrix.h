@@ -5,10 +5,11 @@
 
 namespace rbsim {
 
-// Restores orthonormality of a rotation matrix that has drifted (the seed's
-// fix for accumulated round-off) by Gram–Schmidt on its columns: the first
-// column keeps its direction, the second is made orthogonal to it, the third
-// is their cross product so the result is a proper rotation (det = +1).
+// Restores orthonormality of a rotation matrix that has drifted (the usual
+// fix for accumulated round-off, which Baraff's rigid-body notes discuss) by
+// Gram–Schmidt on its columns: the first column keeps its direction, the
+// second is made orthogonal to it, the third is their cross product so the
+// result is a proper rotation (det = +1).
 Mat3 gramSchmidtOrthonormalize(const Mat3& drifted);
 
 // Largest absolute entry of RᵀR − 1: 0 for an exact rotation.

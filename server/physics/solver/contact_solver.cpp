@@ -43,11 +43,18 @@ bool invertLeadingBlock(const Mat3& k, int size, Mat3& inverse) {
   return true;
 }
 
-// Which rows of the shock sweep feel body A and body B.
-bool movesA(int frozen) { return frozen != 1; }
-bool movesB(int frozen) { return frozen != 2; }
-
 using ManifoldKey = std::tuple<int32_t, int32_t, int, int>;
+
+// Last step's manifold with this key (same bodies and pieces), or null.
+// `previous` is sorted by key and so are the calls: `cursor` only moves on.
+const SolvedManifold* previousManifold(const std::vector<SolvedManifold>& previous,
+                                       const ManifoldKey& key, std::size_t& cursor) {
+  const auto keyOf = [](const SolvedManifold& s) {
+    return ManifoldKey{s.serialA, s.serialB, s.pieceA, s.pieceB};
+  };
+  while (cursor < previous.size() && keyOf(previous[cursor]) < key) ++cursor;
+  return cursor < previous.size() && keyOf(previous[cursor]) == key ? &previous[cursor] : nullptr;
+}
 
 constexpr int kLocalSweeps = 4;  // Gauss–Seidel passes over a manifold's points when the block solution is infeasible
 
@@ -151,220 +158,289 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
     const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
     c.inverseMassA = a.inverseMass;
     c.inverseMassB = b.inverseMass;
-    // Shock propagation: in the last sweep the body nearer the ground (fewer
-    // contacts from a static body) holds still, so the bodies above cannot
-    // push it down or sideways: weight is carried, not fought over.
-    c.frozen = Frozen::None;
-    if (!levels.empty()) {
-      const int la = levels[static_cast<std::size_t>(c.bodyA)];
-      const int lb = levels[static_cast<std::size_t>(c.bodyB)];
-      if (la < lb) c.frozen = Frozen::A;
-      if (lb < la) c.frozen = Frozen::B;
-    }
-    // Holding a static body still changes nothing: the shock sweep's masses
-    // are then the regular ones.
-    const bool frozenIsStatic = (c.frozen == Frozen::A && a.inverseMass == 0.0) ||
-                                (c.frozen == Frozen::B && b.inverseMass == 0.0);
-    const int frozen = frozenIsStatic ? 0 : c.frozen == Frozen::A ? 1 : c.frozen == Frozen::B ? 2 : 0;
 
-    // The patch: rows at the centroid of the points.
-    Vec3 centroid = Vec3::Zero();
-    for (int p = 0; p < c.pointCount; ++p) {
-      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
-      centroid += 0.5 * (raw.pointA + raw.pointB);
-    }
-    centroid /= std::max(1, c.pointCount);
-    const Vec3 rA = centroid - a.position;
-    const Vec3 rB = centroid - b.position;
-    const Mat3& invIA = a.inverseInertia;
-    const Mat3& invIB = b.inverseInertia;
-    c.normalRow.set(c.normal, rA.cross(c.normal), rB.cross(c.normal), invIA, invIB);
-    c.tangentRows[0].set(c.tangent1, rA.cross(c.tangent1), rB.cross(c.tangent1), invIA, invIB);
-    c.tangentRows[1].set(c.tangent2, rA.cross(c.tangent2), rB.cross(c.tangent2), invIA, invIB);
-    c.twistRow.set(Vec3::Zero(), c.normal, c.normal, invIA, invIB);
-
-    // Tilt axes: principal axes of Σ g_i g_iᵀ, g_i = (p_i − c)×n, in the tangent plane.
-    Vec3 offsets[4];
-    double s11 = 0.0, s12 = 0.0, s22 = 0.0;
-    c.twistRadius = 0.0;
-    for (int p = 0; p < c.pointCount; ++p) {
-      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
-      const Vec3 d = 0.5 * (raw.pointA + raw.pointB) - centroid;
-      c.twistRadius += d.norm();
-      offsets[p] = d.cross(c.normal);
-      const double g1 = offsets[p].dot(c.tangent1), g2 = offsets[p].dot(c.tangent2);
-      s11 += g1 * g1;
-      s12 += g1 * g2;
-      s22 += g2 * g2;
-    }
-    c.twistRadius /= std::max(1, c.pointCount);
-    const double angle = 0.5 * std::atan2(2.0 * s12, s11 - s22);
-    const Vec3 axes[2] = {std::cos(angle) * c.tangent1 + std::sin(angle) * c.tangent2,
-                          -std::sin(angle) * c.tangent1 + std::cos(angle) * c.tangent2};
-    NormalBlock& block = c.block;
-    block.size = 1;
-    double largestMoment = 0.0;
-    for (int k = 0; k < 2; ++k) {
-      double moment = 0.0;
-      for (int p = 0; p < c.pointCount; ++p) moment += offsets[p].dot(axes[k]) * offsets[p].dot(axes[k]);
-      largestMoment = std::max(largestMoment, moment);
-      // An axis the points hardly spread along (a line of points, one point)
-      // carries no independent tilt.
-      constexpr double kMinimumMoment = 1e-10;  // m²: points 10 µm apart
-      const bool kept = moment > kMinimumMoment && moment > 1e-8 * largestMoment;
-      const int slot = block.size - 1;
-      if (!kept) continue;
-      block.tiltMoment[slot] = moment;
-      c.tiltRows[slot].set(Vec3::Zero(), axes[k], axes[k], invIA, invIB);
-      for (int p = 0; p < c.pointCount; ++p) c.points[p].direction[slot + 1] = offsets[p].dot(axes[k]);
-      ++block.size;
-    }
-    for (int slot = block.size - 1; slot < 2; ++slot) {
-      block.tiltMoment[slot] = 0.0;
-      c.tiltRows[slot] = VelocityRow{};
-      for (int p = 0; p < c.pointCount; ++p) c.points[p].direction[slot + 1] = 0.0;
-    }
-    const VelocityRow* rows[3] = {&c.normalRow, &c.tiltRows[0], &c.tiltRows[1]};
-    block.coupling.setZero();
-    for (int i = 0; i < block.size; ++i)
-      for (int j = 0; j <= i; ++j)
-        block.coupling(i, j) = block.coupling(j, i) =
-            rows[i]->coupling(*rows[j], a.inverseMass, b.inverseMass, true, true);
-    const bool invertible = invertLeadingBlock(block.coupling, block.size, block.inverse);
-    bool shockInvertible = invertible;
-    if (frozen == 0) {
-      block.shockCoupling = block.coupling;
-      block.shockInverse = block.inverse;
-    } else {
-      block.shockCoupling.setZero();
-      for (int i = 0; i < block.size; ++i)
-        for (int j = 0; j <= i; ++j)
-          block.shockCoupling(i, j) = block.shockCoupling(j, i) = rows[i]->coupling(
-              *rows[j], a.inverseMass, b.inverseMass, movesA(frozen), movesB(frozen));
-      shockInvertible = invertLeadingBlock(block.shockCoupling, block.size, block.shockInverse);
-    }
-
+    const ShockHold hold = chooseShockHold(c, a, b, levels);
+    const Vec3 centroid = setPatchRows(c, contact.manifold, a, b);
+    setTiltAxes(c, contact.manifold, centroid, a, b);
+    const BlockInverses inverses = setNormalBlockCoupling(c, a, b, hold);
     const ManifoldKey key{serials[static_cast<std::size_t>(c.bodyA)],
                           serials[static_cast<std::size_t>(c.bodyB)], contact.pieceA,
                           contact.pieceB};
-    const auto keyOf = [](const SolvedManifold& s) {
-      return ManifoldKey{s.serialA, s.serialB, s.pieceA, s.pieceB};
-    };
-    while (previousIndex < previous.size() && keyOf(previous[previousIndex]) < key) ++previousIndex;
-    const SolvedManifold* old = previousIndex < previous.size() && keyOf(previous[previousIndex]) == key
-                                    ? &previous[previousIndex]
-                                    : nullptr;
+    const SolvedManifold* old = previousManifold(previous, key, previousIndex);
+    setPointTargets(c, contact.manifold, a, b, material.restitution,
+                    settings.warmStarting ? old : nullptr, settings, dt);
+    setBlockGoals(c, inverses, settings, dt);
+    setFrictionPatch(c, a, b, hold, material, old, settings.warmStarting);
+  }
+}
 
-    // Reduced velocities now (after this step's forces) and at the step start.
-    const Vec3 u(c.normalRow.velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity),
-                 c.tiltRows[0].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity),
-                 c.tiltRows[1].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity));
-    const Vec3 uStart(c.normalRow.velocity(a.startLinearVelocity, a.startAngularVelocity,
+// Shock propagation: in the last sweep the body nearer the ground (fewer
+// contacts from a static body) holds still, so the bodies above cannot push
+// it down or sideways: weight is carried, not fought over. Returns the hold
+// that changes the shock sweep's masses: none when the held body is static,
+// since holding it still changes nothing.
+ContactSolver::ShockHold ContactSolver::chooseShockHold(ManifoldConstraint& c, const SolverBody& a,
+                                                        const SolverBody& b,
+                                                        const std::vector<int>& levels) {
+  c.held = ShockHold::None;
+  if (!levels.empty()) {
+    const int la = levels[static_cast<std::size_t>(c.bodyA)];
+    const int lb = levels[static_cast<std::size_t>(c.bodyB)];
+    if (la < lb) c.held = ShockHold::A;
+    if (lb < la) c.held = ShockHold::B;
+  }
+  const bool heldIsStatic = (c.held == ShockHold::A && a.inverseMass == 0.0) ||
+                            (c.held == ShockHold::B && b.inverseMass == 0.0);
+  return heldIsStatic ? ShockHold::None : c.held;
+}
+
+// The patch: the normal, friction and twist rows act at the centroid of the
+// points, so that friction is one impulse per manifold rather than one per
+// corner (see the header). Returns the centroid.
+Vec3 ContactSolver::setPatchRows(ManifoldConstraint& c, const ContactManifold& manifold,
+                                 const SolverBody& a, const SolverBody& b) {
+  Vec3 centroid = Vec3::Zero();
+  for (int p = 0; p < c.pointCount; ++p) {
+    const ContactPoint& raw = manifold.points[static_cast<std::size_t>(p)];
+    centroid += 0.5 * (raw.pointA + raw.pointB);
+  }
+  centroid /= std::max(1, c.pointCount);
+  const Vec3 rA = centroid - a.position;
+  const Vec3 rB = centroid - b.position;
+  const Mat3& invIA = a.inverseInertia;
+  const Mat3& invIB = b.inverseInertia;
+  c.normalRow.set(c.normal, rA.cross(c.normal), rB.cross(c.normal), invIA, invIB);
+  c.tangentRows[0].set(c.tangent1, rA.cross(c.tangent1), rB.cross(c.tangent1), invIA, invIB);
+  c.tangentRows[1].set(c.tangent2, rA.cross(c.tangent2), rB.cross(c.tangent2), invIA, invIB);
+  c.twistRow.set(Vec3::Zero(), c.normal, c.normal, invIA, invIB);
+  return centroid;
+}
+
+// Tilt axes: the principal axes of Σ g_i g_iᵀ, g_i = (p_i − c)×n, in the
+// tangent plane. Along them the points' normal velocities decouple into the
+// reduced coordinates of the normal block; an axis the points hardly spread
+// along is dropped. Also sets the twist radius (the points' mean distance
+// from the centroid), which the torsional friction needs.
+void ContactSolver::setTiltAxes(ManifoldConstraint& c, const ContactManifold& manifold,
+                                const Vec3& centroid, const SolverBody& a, const SolverBody& b) {
+  Vec3 offsets[4];
+  double s11 = 0.0, s12 = 0.0, s22 = 0.0;
+  c.twistRadius = 0.0;
+  for (int p = 0; p < c.pointCount; ++p) {
+    const ContactPoint& raw = manifold.points[static_cast<std::size_t>(p)];
+    const Vec3 d = 0.5 * (raw.pointA + raw.pointB) - centroid;
+    c.twistRadius += d.norm();
+    offsets[p] = d.cross(c.normal);
+    const double g1 = offsets[p].dot(c.tangent1), g2 = offsets[p].dot(c.tangent2);
+    s11 += g1 * g1;
+    s12 += g1 * g2;
+    s22 += g2 * g2;
+  }
+  c.twistRadius /= std::max(1, c.pointCount);
+  const double angle = 0.5 * std::atan2(2.0 * s12, s11 - s22);
+  const Vec3 axes[2] = {std::cos(angle) * c.tangent1 + std::sin(angle) * c.tangent2,
+                        -std::sin(angle) * c.tangent1 + std::cos(angle) * c.tangent2};
+  NormalBlock& block = c.block;
+  block.size = 1;
+  double largestMoment = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    double moment = 0.0;
+    for (int p = 0; p < c.pointCount; ++p)
+      moment += offsets[p].dot(axes[k]) * offsets[p].dot(axes[k]);
+    largestMoment = std::max(largestMoment, moment);
+    // An axis the points hardly spread along (a line of points, one point)
+    // carries no independent tilt.
+    constexpr double kMinimumMoment = 1e-10;  // m²: points 10 µm apart
+    const bool kept = moment > kMinimumMoment && moment > 1e-8 * largestMoment;
+    const int slot = block.size - 1;
+    if (!kept) continue;
+    block.tiltMoment[slot] = moment;
+    c.tiltRows[slot].set(Vec3::Zero(), axes[k], axes[k], a.inverseInertia, b.inverseInertia);
+    for (int p = 0; p < c.pointCount; ++p)
+      c.points[p].direction[slot + 1] = offsets[p].dot(axes[k]);
+    ++block.size;
+  }
+  for (int slot = block.size - 1; slot < 2; ++slot) {
+    block.tiltMoment[slot] = 0.0;
+    c.tiltRows[slot] = VelocityRow{};
+    for (int p = 0; p < c.pointCount; ++p) c.points[p].direction[slot + 1] = 0.0;
+  }
+}
+
+// The normal block's effective inverse mass K over the normal and tilt rows,
+// and its inverse; again with the shock sweep's held body still (the same
+// matrices when nothing that moves is held). Says which of the two can be
+// inverted: only those may be solved as a whole.
+ContactSolver::BlockInverses ContactSolver::setNormalBlockCoupling(ManifoldConstraint& c,
+                                                                   const SolverBody& a,
+                                                                   const SolverBody& b,
+                                                                   ShockHold hold) {
+  NormalBlock& block = c.block;
+  const VelocityRow* rows[3] = {&c.normalRow, &c.tiltRows[0], &c.tiltRows[1]};
+  block.coupling.setZero();
+  for (int i = 0; i < block.size; ++i)
+    for (int j = 0; j <= i; ++j)
+      block.coupling(i, j) = block.coupling(j, i) =
+          rows[i]->coupling(*rows[j], a.inverseMass, b.inverseMass, true, true);
+  BlockInverses inverses;
+  inverses.regular = invertLeadingBlock(block.coupling, block.size, block.inverse);
+  inverses.shock = inverses.regular;
+  if (hold == ShockHold::None) {
+    block.shockCoupling = block.coupling;
+    block.shockInverse = block.inverse;
+  } else {
+    block.shockCoupling.setZero();
+    for (int i = 0; i < block.size; ++i)
+      for (int j = 0; j <= i; ++j)
+        block.shockCoupling(i, j) = block.shockCoupling(j, i) =
+            rows[i]->coupling(*rows[j], a.inverseMass, b.inverseMass, movesA(hold), movesB(hold));
+    inverses.shock = invertLeadingBlock(block.shockCoupling, block.size, block.shockInverse);
+  }
+  return inverses;
+}
+
+// Per point: its share of the block (affine pressure, effective masses), the
+// normal velocity the impulses aim for, the split-impulse target, and the
+// normal impulse it starts from: last step's at the same feature of `old`
+// (the same manifold last step; null when there was none or warm starting
+// is off).
+void ContactSolver::setPointTargets(ManifoldConstraint& c, const ContactManifold& manifold,
+                                    const SolverBody& a, const SolverBody& b, double restitution,
+                                    const SolvedManifold* old,
+                                    const ContactSolverSettings& settings, double dt) {
+  const NormalBlock& block = c.block;
+  // Reduced velocities now (after this step's forces) and at the step start.
+  const Vec3 u(c.normalRow.velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity,
+                                    b.angularVelocity),
+               c.tiltRows[0].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity,
+                                      b.angularVelocity),
+               c.tiltRows[1].velocity(a.linearVelocity, a.angularVelocity, b.linearVelocity,
+                                      b.angularVelocity));
+  const Vec3 uStart(c.normalRow.velocity(a.startLinearVelocity, a.startAngularVelocity,
+                                         b.startLinearVelocity, b.startAngularVelocity),
+                    c.tiltRows[0].velocity(a.startLinearVelocity, a.startAngularVelocity,
                                            b.startLinearVelocity, b.startAngularVelocity),
-                      c.tiltRows[0].velocity(a.startLinearVelocity, a.startAngularVelocity,
-                                             b.startLinearVelocity, b.startAngularVelocity),
-                      c.tiltRows[1].velocity(a.startLinearVelocity, a.startAngularVelocity,
-                                             b.startLinearVelocity, b.startAngularVelocity));
-    for (int p = 0; p < c.pointCount; ++p) {
-      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
-      PointConstraint& pc = c.points[p];
-      pc.depth = raw.depth;
-      pc.featureId = raw.featureId;
-      pc.direction[0] = 1.0;
-      const Vec3& weights = pc.direction;
-      pc.pressure = Vec3(1.0 / c.pointCount,
-                         block.size > 1 ? weights[1] / block.tiltMoment[0] : 0.0,
-                         block.size > 2 ? weights[2] / block.tiltMoment[1] : 0.0);
-      pc.normalMass = inverseOrZero(weights.dot(block.coupling * weights));
-      pc.shockNormalMass = inverseOrZero(weights.dot(block.shockCoupling * weights));
-      pc.pseudoImpulse = 0.0;
+                    c.tiltRows[1].velocity(a.startLinearVelocity, a.startAngularVelocity,
+                                           b.startLinearVelocity, b.startAngularVelocity));
+  for (int p = 0; p < c.pointCount; ++p) {
+    const ContactPoint& raw = manifold.points[static_cast<std::size_t>(p)];
+    PointConstraint& pc = c.points[p];
+    pc.depth = raw.depth;
+    pc.featureId = raw.featureId;
+    pc.direction[0] = 1.0;
+    const Vec3& weights = pc.direction;
+    pc.pressure = Vec3(1.0 / c.pointCount, block.size > 1 ? weights[1] / block.tiltMoment[0] : 0.0,
+                       block.size > 2 ? weights[2] / block.tiltMoment[1] : 0.0);
+    pc.normalMass = inverseOrZero(weights.dot(block.coupling * weights));
+    pc.shockNormalMass = inverseOrZero(weights.dot(block.shockCoupling * weights));
+    pc.pseudoImpulse = 0.0;
 
-      // Target normal velocity. A touching contact hit faster than the
-      // threshold bounces with −e v_rel (the seed's law of restitution); a
-      // gap (depth < 0) may close within the step but no further
-      // (speculative contact); penetration itself is left to the position pass.
-      const double vn = weights.dot(u);
-      pc.relativeNormalVelocity = weights.dot(uStart);
-      const double gap = -raw.depth;
-      const bool touching = gap <= settings.touchingDistance;
-      if (vn < -settings.restitutionThreshold && touching && material.restitution > 0.0) {
-        pc.targetVelocity = -material.restitution * vn;
-      } else {
-        pc.targetVelocity = gap > 0.0 ? -gap / dt : 0.0;
-      }
-      // Split impulses remove a fraction of the penetration beyond the slop.
-      const double error = raw.depth - settings.linearSlop;
-      pc.positionTarget =
-          std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
+    // Target normal velocity. A touching contact hit faster than the
+    // threshold bounces with −e v_rel (Newton's law of restitution, as in
+    // Baraff's rigid-body notes); a gap (depth < 0) may close within the
+    // step but no further (speculative contact); penetration itself is left
+    // to the position pass.
+    const double vn = weights.dot(u);
+    pc.relativeNormalVelocity = weights.dot(uStart);
+    const double gap = -raw.depth;
+    const bool touching = gap <= settings.touchingDistance;
+    if (vn < -settings.restitutionThreshold && touching && restitution > 0.0) {
+      pc.targetVelocity = -restitution * vn;
+    } else {
+      pc.targetVelocity = gap > 0.0 ? -gap / dt : 0.0;
+    }
+    // Split impulses remove a fraction of the penetration beyond the slop.
+    const double error = raw.depth - settings.linearSlop;
+    pc.positionTarget =
+        std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
 
-      pc.normalImpulse = 0.0;
-      if (old != nullptr && settings.warmStarting) {
-        for (int q = 0; q < old->pointCount; ++q) {
-          if (old->points[q].featureId != raw.featureId) continue;
-          pc.normalImpulse = old->points[q].normalImpulse;
-          break;
-        }
+    pc.normalImpulse = 0.0;
+    if (old != nullptr) {
+      for (int q = 0; q < old->pointCount; ++q) {
+        if (old->points[q].featureId != raw.featureId) continue;
+        pc.normalImpulse = old->points[q].normalImpulse;
+        break;
       }
     }
-    // Least-squares reduced goals: u_goal = (AᵀA)⁻¹ Aᵀ t, with AᵀA = diag(n, σ1, σ2).
-    block.velocityGoal.setZero();
-    block.positionGoal.setZero();
+  }
+}
+
+// The reduced goals of the block solves, u_goal = (AᵀA)⁻¹ Aᵀ t with AᵀA =
+// diag(n, σ1, σ2) (least squares over the points' targets), and whether the
+// block solution may be tried: K invertible and one motion meeting every
+// point's target (see NormalBlock).
+void ContactSolver::setBlockGoals(ManifoldConstraint& c, const BlockInverses& inverses,
+                                  const ContactSolverSettings& settings, double dt) {
+  NormalBlock& block = c.block;
+  block.velocityGoal.setZero();
+  block.positionGoal.setZero();
+  for (int p = 0; p < c.pointCount; ++p) {
+    const PointConstraint& pc = c.points[p];
+    block.velocityGoal[0] += pc.targetVelocity;
+    block.positionGoal[0] += pc.positionTarget;
+    for (int k = 0; k + 1 < block.size; ++k) {
+      block.velocityGoal[k + 1] += pc.direction[k + 1] * pc.targetVelocity;
+      block.positionGoal[k + 1] += pc.direction[k + 1] * pc.positionTarget;
+    }
+  }
+  block.velocityGoal[0] /= std::max(1, c.pointCount);
+  block.positionGoal[0] /= std::max(1, c.pointCount);
+  for (int k = 0; k + 1 < block.size; ++k) {
+    block.velocityGoal[k + 1] /= block.tiltMoment[k];
+    block.positionGoal[k + 1] /= block.tiltMoment[k];
+  }
+  // Targets count as met by one motion when the least-squares goal misses
+  // none by more than a hundredth of the slop over the step (e.g. a resting
+  // face whose corners are a few nanometres apart or into the ground).
+  const double tolerance = 0.01 * settings.linearSlop / dt;
+  const auto consistent = [&](const Vec3& goal, double PointConstraint::*target) {
     for (int p = 0; p < c.pointCount; ++p) {
       const PointConstraint& pc = c.points[p];
-      block.velocityGoal[0] += pc.targetVelocity;
-      block.positionGoal[0] += pc.positionTarget;
-      for (int k = 0; k + 1 < block.size; ++k) {
-        block.velocityGoal[k + 1] += pc.direction[k + 1] * pc.targetVelocity;
-        block.positionGoal[k + 1] += pc.direction[k + 1] * pc.positionTarget;
-      }
+      const double reached = pc.direction.dot(goal);
+      if (std::abs(reached - pc.*target) > tolerance) return false;
     }
-    block.velocityGoal[0] /= std::max(1, c.pointCount);
-    block.positionGoal[0] /= std::max(1, c.pointCount);
-    for (int k = 0; k + 1 < block.size; ++k) {
-      block.velocityGoal[k + 1] /= block.tiltMoment[k];
-      block.positionGoal[k + 1] /= block.tiltMoment[k];
-    }
-    // Targets count as met by one motion when the least-squares goal misses
-    // none by more than a hundredth of the slop over the step (e.g. a resting
-    // face whose corners are a few nanometres apart or into the ground).
-    const double tolerance = 0.01 * settings.linearSlop / dt;
-    const auto consistent = [&](const Vec3& goal, double PointConstraint::*target) {
-      for (int p = 0; p < c.pointCount; ++p) {
-        const PointConstraint& pc = c.points[p];
-        const double reached = pc.direction.dot(goal);
-        if (std::abs(reached - pc.*target) > tolerance) return false;
-      }
-      return true;
-    };
-    const bool velocityConsistent = consistent(block.velocityGoal, &PointConstraint::targetVelocity);
-    block.velocityExact = invertible && velocityConsistent;
-    block.shockExact = shockInvertible && velocityConsistent;
-    block.positionExact = invertible &&
-                          consistent(block.positionGoal, &PointConstraint::positionTarget);
+    return true;
+  };
+  const bool velocityConsistent = consistent(block.velocityGoal, &PointConstraint::targetVelocity);
+  block.velocityExact = inverses.regular && velocityConsistent;
+  block.shockExact = inverses.shock && velocityConsistent;
+  block.positionExact =
+      inverses.regular && consistent(block.positionGoal, &PointConstraint::positionTarget);
+}
 
-    // The friction patch.
-    for (int k = 0; k < 2; ++k) {
-      const VelocityRow& row = c.tangentRows[k];
-      c.tangentMass[k] = inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass, true, true));
-      c.shockTangentMass[k] = frozen == 0 ? c.tangentMass[k]
-                                          : inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass,
-                                                                       movesA(frozen), movesB(frozen)));
+// The friction patch: effective masses of the two tangent rows and the
+// twist row (regular and with the shock sweep's held body still), the
+// impulses they start from (last step's patch impulse, projected on this
+// step's tangents), and μ: static when the patch was sticking last step.
+void ContactSolver::setFrictionPatch(ManifoldConstraint& c, const SolverBody& a,
+                                     const SolverBody& b, ShockHold hold,
+                                     const PairMaterial& material, const SolvedManifold* old,
+                                     bool warmStarting) {
+  for (int k = 0; k < 2; ++k) {
+    const VelocityRow& row = c.tangentRows[k];
+    c.tangentMass[k] = inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass, true, true));
+    c.shockTangentMass[k] = hold == ShockHold::None
+                                ? c.tangentMass[k]
+                                : inverseOrZero(row.coupling(row, a.inverseMass, b.inverseMass,
+                                                             movesA(hold), movesB(hold)));
+  }
+  c.twistMass =
+      inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass, true, true));
+  c.shockTwistMass =
+      hold == ShockHold::None
+          ? c.twistMass
+          : inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass,
+                                              movesA(hold), movesB(hold)));
+  c.tangentImpulse[0] = c.tangentImpulse[1] = 0.0;
+  c.twistImpulse = 0.0;
+  c.friction = material.friction;
+  if (old != nullptr) {
+    if (warmStarting) {
+      c.tangentImpulse[0] = old->frictionImpulse.dot(c.tangent1);
+      c.tangentImpulse[1] = old->frictionImpulse.dot(c.tangent2);
+      c.twistImpulse = c.twistRadius > 0.0 ? old->twistImpulse : 0.0;  // a point has no torsion
     }
-    c.twistMass = inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass, true, true));
-    c.shockTwistMass = frozen == 0 ? c.twistMass
-                                   : inverseOrZero(c.twistRow.coupling(c.twistRow, a.inverseMass, b.inverseMass,
-                                                                       movesA(frozen), movesB(frozen)));
-    c.tangentImpulse[0] = c.tangentImpulse[1] = 0.0;
-    c.twistImpulse = 0.0;
-    c.friction = material.friction;
-    if (old != nullptr) {
-      if (settings.warmStarting) {
-        c.tangentImpulse[0] = old->frictionImpulse.dot(c.tangent1);
-        c.tangentImpulse[1] = old->frictionImpulse.dot(c.tangent2);
-        c.twistImpulse = c.twistRadius > 0.0 ? old->twistImpulse : 0.0;  // a point has no torsion
-      }
-      if (old->sticking) c.friction = material.staticFriction;
-    }
+    if (old->sticking) c.friction = material.staticFriction;
   }
 }
 
@@ -446,16 +522,16 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock)
     SolverBody& realB = bodies[static_cast<std::size_t>(c.bodyB)];
     // A body the shock sweep holds still: its velocities are read, and the
     // impulses on it go to a copy that is thrown away (and never changes).
-    const bool freezeA = shock && c.frozen == Frozen::A;
-    const bool freezeB = shock && c.frozen == Frozen::B;
-    const bool oneSided = freezeA || freezeB;
-    Vec3 heldLinear = freezeA ? realA.linearVelocity : realB.linearVelocity;
-    Vec3 heldAngular = freezeA ? realA.angularVelocity : realB.angularVelocity;
+    const bool holdA = shock && c.held == ShockHold::A;
+    const bool holdB = shock && c.held == ShockHold::B;
+    const bool oneSided = holdA || holdB;
+    Vec3 heldLinear = holdA ? realA.linearVelocity : realB.linearVelocity;
+    Vec3 heldAngular = holdA ? realA.angularVelocity : realB.angularVelocity;
     const Vec3 vHeld = heldLinear, wHeld = heldAngular;
-    Vec3& vA = freezeA ? heldLinear : realA.linearVelocity;
-    Vec3& wA = freezeA ? heldAngular : realA.angularVelocity;
-    Vec3& vB = freezeB ? heldLinear : realB.linearVelocity;
-    Vec3& wB = freezeB ? heldAngular : realB.angularVelocity;
+    Vec3& vA = holdA ? heldLinear : realA.linearVelocity;
+    Vec3& wA = holdA ? heldAngular : realA.angularVelocity;
+    Vec3& vB = holdB ? heldLinear : realB.linearVelocity;
+    Vec3& wB = holdB ? heldAngular : realB.angularVelocity;
     const auto apply = [&](const VelocityRow& row, double impulse) {
       row.apply(impulse, c.inverseMassA, c.inverseMassB, vA, wA, vB, wB);
       if (oneSided) {

@@ -2,9 +2,10 @@
 // Impulse-based contact response for all contacts of one step: sequential
 // impulses (projected Gauss–Seidel on the velocity constraints) with
 // accumulated, clamped impulses and warm starting, as in Catto's "Iterative
-// Dynamics with Temporal Coherence" (GDC 2005) and Box2D/Bullet.
+// Dynamics with Temporal Coherence" (GDC 2005) and Box2D/Bullet. One contact's
+// impulse is that of Baraff, "Rigid Body Simulation" (SIGGRAPH course notes).
 //
-//  - Normal: the seed's impulse j = −(1+e) v_rel / (1/Ma + 1/Mb + n·(Ia⁻¹(ra×n))×ra
+//  - Normal: Baraff's impulse j = −(1+e) v_rel / (1/Ma + 1/Mb + n·(Ia⁻¹(ra×n))×ra
 //    + n·(Ib⁻¹(rb×n))×rb), applied iteratively over all points at once:
 //    each iteration adds Δj = −m_n (v_rel − v_target) and clamps the
 //    accumulated j at 0 (contacts push, never pull). The target normal
@@ -145,7 +146,13 @@ class ContactSolver {
     double relativeNormalVelocity = 0.0;  // m/s at the step's start state (for classification)
     uint32_t featureId = 0;
   };
-  enum class Frozen { None, A, B };  // which body a shock sweep holds still
+  // Which body of a contact the shock sweep holds still (the lower one).
+  // Not to be confused with the numerical guard's frozen bodies, which are
+  // out of the simulation altogether (body/freeze_reason.h).
+  enum class ShockHold { None, A, B };
+  // Which rows of the shock sweep feel body A and body B.
+  static bool movesA(ShockHold hold) { return hold != ShockHold::A; }
+  static bool movesB(ShockHold hold) { return hold != ShockHold::B; }
   struct NormalBlock {
     int size = 1;                         // 1 + number of tilt axes
     double tiltMoment[2] = {0.0, 0.0};    // m²: σ_k = Σ w_ik²
@@ -168,7 +175,7 @@ class ContactSolver {
   struct ManifoldConstraint {
     int bodyA = 0, bodyB = 0;
     double inverseMassA = 0.0, inverseMassB = 0.0;
-    Frozen frozen = Frozen::None;
+    ShockHold held = ShockHold::None;  // the lower body, held still by the shock sweep
     Vec3 normal, tangent1, tangent2;
     int pointCount = 0;
     PointConstraint points[4];
@@ -197,6 +204,28 @@ class ContactSolver {
                const std::vector<SolverBody>& bodies, const std::vector<int32_t>& serials,
                const std::vector<SolvedManifold>& previous, const ContactSolverSettings& settings,
                double dt, const std::vector<int>& levels);
+  // prepare()'s steps for one manifold, in this order (each says why below).
+  struct BlockInverses {
+    bool regular = false;  // K could be inverted
+    bool shock = false;    // K with the held body still could be inverted
+  };
+  static ShockHold chooseShockHold(ManifoldConstraint& c, const SolverBody& a, const SolverBody& b,
+                                   const std::vector<int>& levels);
+  static Vec3 setPatchRows(ManifoldConstraint& c, const ContactManifold& manifold,
+                           const SolverBody& a, const SolverBody& b);
+  static void setTiltAxes(ManifoldConstraint& c, const ContactManifold& manifold,
+                          const Vec3& centroid, const SolverBody& a, const SolverBody& b);
+  static BlockInverses setNormalBlockCoupling(ManifoldConstraint& c, const SolverBody& a,
+                                              const SolverBody& b, ShockHold hold);
+  static void setPointTargets(ManifoldConstraint& c, const ContactManifold& manifold,
+                              const SolverBody& a, const SolverBody& b, double restitution,
+                              const SolvedManifold* old, const ContactSolverSettings& settings,
+                              double dt);
+  static void setBlockGoals(ManifoldConstraint& c, const BlockInverses& inverses,
+                            const ContactSolverSettings& settings, double dt);
+  static void setFrictionPatch(ManifoldConstraint& c, const SolverBody& a, const SolverBody& b,
+                               ShockHold hold, const PairMaterial& material,
+                               const SolvedManifold* old, bool warmStarting);
   void warmStart(std::vector<SolverBody>& bodies) const;
   // One Gauss–Seidel sweep over all contacts; a shock sweep holds the lower
   // body of each contact still.

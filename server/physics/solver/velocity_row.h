@@ -7,8 +7,8 @@
 // The responses I⁻¹ arm are computed once per step, so the solver's sweeps
 // need only dot products and scaled additions (no matrix products).
 //
-// A contact point's normal row has linear = n, armA = rA×n, armB = rB×n (the
-// seed's impulse formula in row form); a pure rotation row (torsion, tilt)
+// A contact point's normal row has linear = n, armA = rA×n, armB = rB×n (Baraff's
+// impulse formula in row form); a pure rotation row (torsion, tilt)
 // has linear = 0 and armA = armB = the axis.
 
 #include "physics/math/types.h"

@@ -2,7 +2,7 @@
 // Colliding contacts at the time of impact.
 //
 // A contact whose bodies close faster than the restitution threshold and
-// meet within the step is a collision (the seed's colliding contact). Its
+// meet within the step is a collision (a colliding contact in Baraff's terms). Its
 // impulse must act with the geometry of the moment the surfaces meet: there
 // the normal, the contact points and the lever arms are those of touching
 // bodies, and the bodies leave with exactly −e v_rel. Answering it at the
@@ -30,7 +30,7 @@ namespace rbsim {
 
 // How the root is found. Regula falsi (the Illinois variant: Dowell and
 // Jarratt, BIT 11, 1971) converges superlinearly on the smooth gap of a free
-// flight; bisection is the seed's findCollisionTime (backtracking), halving
+// flight; bisection is the classic backtracking (Baraff's rigid-body notes), halving
 // the interval until the gap is within the tolerance. Both stop at the same
 // condition, so they answer the same to the tolerance.
 enum class ImpactSearchMethod { RegulaFalsi, Bisection };

@@ -5,7 +5,7 @@
 #include <tuple>
 
 #include "physics/body/integrator.h"
-#include "physics/collision/collision_detector.h"
+#include "physics/world/contact_detection.h"
 #include "physics/world/impacts.h"
 #include "physics/world/world.h"
 
@@ -30,7 +30,7 @@ int World::contactPointCount() const {
 }
 
 void World::findContacts() {
-  m_detector->detect(*this);
+  detectContacts(*m_detector, *this);
 }
 
 void World::stepImpulse() {

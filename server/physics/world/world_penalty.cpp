@@ -344,7 +344,8 @@ BodyMotion motionAtStart(const Body& body) {
 }  // namespace
 
 void World::stepPenalty() {
-  // Spring–damper forces from the penetration (the seed's penalty method):
+  // Spring–damper forces from the penetration (a penalty method, the
+  // alternative to impulses that Baraff's rigid-body notes describe):
   // along the normal F = k d + c ḋ (PenaltyLaw: clamped at zero or not),
   // tangentially a viscous force capped at the Coulomb limit μ F_n.
   // Stiffness and damping are per manifold and shared by its points, so a

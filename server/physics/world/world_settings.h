@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/body/body_def.h"
+#include "physics/body/integrator_kind.h"
 #include "physics/collision/contact_generation.h"
 #include "physics/math/types.h"
 #include "physics/solver/contact_solver_settings.h"
@@ -14,15 +15,6 @@
 #include "physics/world/state_guard.h"
 
 namespace rbsim {
-
-enum class IntegratorKind {
-  ExplicitEuler,      // the seed's: every state term advanced with the derivative at the step start
-  SemiImplicitEuler,  // momenta first, then position and orientation with the new velocities
-  Rk4,                // classical 4th-order Runge–Kutta, forces re-evaluated at every stage
-};
-
-std::string_view integratorName(IntegratorKind kind);                   // "explicit_euler", ...
-std::optional<IntegratorKind> integratorFromName(std::string_view name);  // inverse of integratorName
 
 enum class ContactModel {
   Impulse,  // velocity-level impulses with restitution and friction (the default)

@@ -25,7 +25,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/common/byte_stream.h"
+#include "physics/math/byte_stream.h"
 #include "physics/common/expected.h"
 #include "physics/world/world.h"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <tuple>
 
-#include "physics/collision/collision_detector.h"
+#include "physics/world/contact_detection.h"
 #include "physics/world/world.h"
 #include "scenes/pile_scene.h"
 
@@ -49,7 +49,7 @@ TEST(CollisionDetector, ABoxOnTheGroundGivesOneManifoldOfFourPoints) {
   ASSERT_TRUE(world.createBody(groundDef()));
   ASSERT_TRUE(world.createBody(boxDef("box", Vec3(0, 0, 0.499))));
   CollisionDetector detector;
-  detector.detect(world);
+  detectContacts(detector, world);
   ASSERT_EQ(detector.contacts().size(), 1u);
   const BodyContact& contact = detector.contacts().front();
   EXPECT_EQ(contact.bodyA, 0);
@@ -66,7 +66,7 @@ TEST(CollisionDetector, APlaneSecondInSerialOrderStillGivesANormalFromAToB) {
   ASSERT_TRUE(world.createBody(boxDef("box", Vec3(0, 0, 0.499))));
   ASSERT_TRUE(world.createBody(groundDef()));
   CollisionDetector detector;
-  detector.detect(world);
+  detectContacts(detector, world);
   ASSERT_EQ(detector.contacts().size(), 1u);
   const BodyContact& contact = detector.contacts().front();
   EXPECT_EQ(contact.bodyA, 0);  // the box
@@ -84,7 +84,7 @@ TEST(CollisionDetector, SkipsStaticPairsAndSeparatedBodies) {
   ASSERT_TRUE(world.createBody(boxDef("fixed", Vec3(0, 0, 0.4), true)));  // static in the ground
   ASSERT_TRUE(world.createBody(boxDef("flying", Vec3(3, 0, 2))));
   CollisionDetector detector;
-  detector.detect(world);
+  detectContacts(detector, world);
   EXPECT_TRUE(detector.contacts().empty());
 }
 
@@ -92,7 +92,7 @@ TEST(CollisionDetector, TheSettledPileGivesOneFourPointManifoldPerRestingFaceInO
   auto world = World::fromDef(scenes::makePileScene(300, scenes::PileVariant::Settled));
   ASSERT_TRUE(world.ok()) << world.error().message;
   CollisionDetector detector;
-  detector.detect(*world);
+  detectContacts(detector, *world);
   // 100 cubes on the ground, 200 on other cubes.
   ASSERT_EQ(detector.contacts().size(), 300u);
   EXPECT_EQ(detector.contactPointCount(), 1200);
@@ -107,7 +107,7 @@ TEST(CollisionDetector, TheSettledPileGivesOneFourPointManifoldPerRestingFaceInO
 
   // Detecting again on the same state gives the same contacts.
   const std::vector<BodyContact> first = detector.contacts();
-  detector.detect(*world);
+  detectContacts(detector, *world);
   ASSERT_EQ(detector.contacts().size(), first.size());
   for (std::size_t k = 0; k < first.size(); ++k) {
     EXPECT_EQ(detector.contacts()[k].bodyA, first[k].bodyA);
@@ -131,7 +131,7 @@ TEST(CollisionDetector, ComparesOnlyThePiecesOfCompoundsThatMeet) {
   ASSERT_TRUE(world.createBody(small));
 
   CollisionDetector detector;
-  detector.detect(world);
+  detectContacts(detector, world);
   // Both cubes of the twin on the ground; the small box on one of them only.
   ASSERT_EQ(detector.contacts().size(), 3u);
   const auto& contacts = detector.contacts();

@@ -1,6 +1,6 @@
-// The seed's contact classification by relative normal velocity, and the
-// symmetry of collideConvex under swapping its solids, over every pair of
-// geometry types.
+// Contact classification by relative normal velocity (Baraff, "Rigid Body
+// Simulation", SIGGRAPH course notes), and the symmetry of collideConvex
+// under swapping its solids, over every pair of geometry types.
 #include <vector>
 
 #include "unit/collision/test_contacts_common.h"

@@ -85,7 +85,7 @@ TEST(TimeOfImpact, BisectionFindsASphereFallingOntoABox) {
   EXPECT_TRUE(toi.normal.isApprox(-Vec3::UnitZ(), 1e-6));  // from the sphere down to the box
 }
 
-// Under gravity, integrating a copy of the body as the seed does: RK4 is
+// Under gravity, integrating a copy of the body's state (integratedMotion): RK4 is
 // exact for constant acceleration, so contact is at the root of
 // h + v0 t − ½ g t² = r; semi-implicit Euler over one step of τ gives
 // h + (v0 − g τ) τ instead, and the search must find its root.
@@ -111,7 +111,8 @@ TEST(TimeOfImpact, BisectionUnderGravityMatchesTheIntegratorsClosedForm) {
 
     const TimeOfImpact toi = bisectCollisionTime(
         groundCollider(), fixedAt(Transform::identity()), convexCollider(SphereShape{radius}),
-        integratedMotion(world.body(*id), world.settings()), bisection());
+        integratedMotion(world.body(*id), settings.integrator, settings.gravity, settings.dt),
+        bisection());
     ASSERT_EQ(toi.status, ImpactStatus::Hit);
     // quadratic t² + v0 t + (h − r) = 0, the first positive root.
     const double a = c.quadratic, b = v0, k = height - radius;

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "physics/geometry/mesh_io.h"
+#include "meshio/mesh_io.h"
 #include "physics/mass/mass_properties.h"
 #include "physics/world/world.h"
 

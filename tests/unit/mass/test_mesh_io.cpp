@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "physics/geometry/mesh_io.h"
+#include "meshio/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
 #include "physics/mass/mass_properties.h"
 

@@ -12,6 +12,7 @@
 
 #include "physics/geometry/triangle_mesh.h"
 #include "physics/mass/mass_properties.h"
+#include "support/monte_carlo_mass.h"
 
 namespace rbsim {
 namespace {

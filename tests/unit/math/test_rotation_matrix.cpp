@@ -26,8 +26,8 @@ TEST(GramSchmidt, RestoresOrthonormalityOfADriftedMatrix) {
 }
 
 TEST(GramSchmidt, RepeatedMultiplicationDriftIsRemoved) {
-  // Composing many small rotations as matrices accumulates round-off (the
-  // seed's motivation); re-orthonormalising brings it back to machine precision.
+  // Composing many small rotations as matrices accumulates round-off (why
+  // Baraff's notes prefer quaternions); re-orthonormalising brings it back to machine precision.
   const Mat3 small = Quaternion::fromAxisAngle(Vec3(1, 2, 3), 1e-3).toRotationMatrix();
   Mat3 r = Mat3::Identity();
   for (int i = 0; i < 100000; ++i) r = small * r;

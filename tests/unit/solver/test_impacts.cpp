@@ -1,7 +1,7 @@
 // Colliding contacts answered at the time of impact (world/impacts.h),
 // against closed forms, for every integrator, two step sizes, and both ways
-// of finding the time of impact (regula falsi by default, the seed's
-// bisection in the backtracking mode).
+// of finding the time of impact (regula falsi by default, bisection
+// in the backtracking mode).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,7 +52,7 @@ class Impacts : public ::testing::TestWithParam<Case> {
 
 // Two frictionless spheres in zero gravity, set up to touch at a chosen time
 // with a chosen normal: before it they fly straight, so the closed form is
-// the seed's impulse along the line of centres at that moment,
+// the impulse along the line of centres at that moment,
 //   J = −(1 + e) v_n / (1/m1 + 1/m2) n,  v1' = u1 − J/m1,  v2' = u2 + J/m2,
 // and after it they fly straight again from where they touched.
 TEST_P(Impacts, ObliqueSphereImpactsMatchTheClosedForm) {
@@ -165,11 +165,11 @@ TEST_P(Impacts, BouncingBallApexRatiosStayAtESquared) {
 }
 
 // A frictionless box tilted so that one corner is lowest, falling on the
-// ground: it must take the seed's impulse j = −(1+e) v_rel / (1/M +
+// ground: it must take Baraff's impulse j = −(1+e) v_rel / (1/M +
 // n·(I⁻¹(r×n))×r) at the corner, with the state of the moment the corner
 // touches. The test finds that moment itself, by bisection on the corner's
 // height along the integrator's free flight.
-TEST_P(Impacts, BoxLandingOnACornerGetsTheSeedsImpulseWhereItTouches) {
+TEST_P(Impacts, BoxLandingOnACornerGetsTheImpulseWhereItTouches) {
   const double e = 0.6;
   const WorldSettings s = settings(e, 0.0);
   World world(s);

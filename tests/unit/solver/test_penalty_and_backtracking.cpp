@@ -1,5 +1,6 @@
-// The alternatives to the impulse model: penalty forces and the seed's
-// backtracking to the time of collision.
+// The alternatives to the impulse model: penalty forces and
+// backtracking to the time of collision (both in Baraff, "Rigid Body
+// Simulation", SIGGRAPH course notes).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// Colliding contact: the seed's impulse with restitution, against closed forms.
+// Colliding contact: the impulse with restitution of Baraff, "Rigid Body
+// Simulation" (SIGGRAPH course notes), against closed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>

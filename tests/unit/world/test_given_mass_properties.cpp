@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "physics/geometry/mesh_io.h"
+#include "meshio/mesh_io.h"
 #include "physics/world/world_snapshot.h"
 
 namespace rbsim {

@@ -1,4 +1,4 @@
-#include "physics/common/byte_stream.h"
+#include "physics/math/byte_stream.h"
 
 #include <array>
 #include <bit>

@@ -17,6 +17,8 @@
 //            SE(Î_jk) = ρ V_B s(ψ_jk)/√N with s the sample standard deviation
 //            over ALL N samples, outside ones contributing ψ = 0. Those zeros
 //            are what carry the mass uncertainty into the inertia's error.
+#include "support/monte_carlo_mass.h"
+
 #include <array>
 #include <cassert>
 #include <cmath>
@@ -24,8 +26,6 @@
 #include <limits>
 #include <numbers>
 #include <vector>
-
-#include "physics/mass/mass_properties.h"
 
 namespace rbsim {
 namespace {

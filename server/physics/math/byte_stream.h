@@ -1,6 +1,8 @@
 #pragma once
 // Little-endian binary encoding for snapshots and checkpoints: fixed-width
-// integers, doubles as their exact bit patterns, length-prefixed strings.
+// integers, doubles as their exact bit patterns, length-prefixed strings,
+// and the math types (vectors, matrices, quaternions), which is why it lives
+// in math/.
 //
 // The reader is for untrusted bytes. It never reads past the end, and every
 // count is checked against the bytes that remain before anything is

@@ -1,4 +1,4 @@
-#include "physics/geometry/mesh_io.h"
+#include "meshio/mesh_io.h"
 
 #include <algorithm>
 #include <array>

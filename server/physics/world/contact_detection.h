@@ -1,0 +1,21 @@
+#pragma once
+// Collision detection of a world's current state: the world's bodies and
+// settings handed to the collision layer, which does not know World.
+
+#include "physics/collision/collision_detector.h"
+#include "physics/world/world.h"
+#include "physics/world/world_settings.h"
+
+namespace rbsim {
+
+// Speculative contacts belong to the impulse model: the penalty model
+// pushes on overlaps only and needs none.
+inline DetectionStep detectionStep(const WorldSettings& settings) {
+  return {settings.dt, settings.contact.model == ContactModel::Impulse};
+}
+
+inline void detectContacts(CollisionDetector& detector, const World& world) {
+  detector.detect(world.bodies(), detectionStep(world.settings()));
+}
+
+}  // namespace rbsim

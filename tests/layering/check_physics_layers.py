@@ -1,0 +1,65 @@
+"""Fails when an include inside the physics library points up its layers.
+
+The library's directories form one order, lowest first; a file may include
+headers of its own directory and of directories below it, never above, and
+nothing outside the library (meshes come in as data; files are read
+elsewhere). Every violation is printed as file:line with the include, and
+the exit code is 1.
+
+Usage: check_physics_layers.py PHYSICS_DIR   (the server/physics directory)
+"""
+
+import pathlib
+import re
+import sys
+
+# Lowest first. common/ holds plain utilities (Expected, DeepCopyPtr) that
+# know nothing of physics; world/ sits on top and ties the others together.
+LAYERS = ["common", "math", "geometry", "mass", "body", "collision", "solver", "world"]
+
+QUOTED_INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
+
+
+def violations(physics_dir):
+    found = []
+    files = sorted(p for p in physics_dir.rglob("*") if p.suffix in (".h", ".cpp"))
+    for path in files:
+        relative = path.relative_to(physics_dir)
+        layer = relative.parts[0] if len(relative.parts) > 1 else None
+        if layer not in LAYERS:
+            found.append(f"{relative}: in no layer (the layers are {', '.join(LAYERS)})")
+            continue
+        text = path.read_text(encoding="utf-8")
+        for number, line in enumerate(text.splitlines(), start=1):
+            match = QUOTED_INCLUDE.match(line)
+            if not match:
+                continue
+            target = match.group(1).split("/")
+            where = f"{relative}:{number}: {line.strip()}"
+            if len(target) < 3 or target[0] != "physics":
+                found.append(f"{where}: outside the physics library")
+            elif target[1] not in LAYERS:
+                found.append(f"{where}: physics/{target[1]}/ is in no layer")
+            elif LAYERS.index(target[1]) > LAYERS.index(layer):
+                found.append(f"{where}: {layer}/ may not include {target[1]}/, which is above it")
+    return found, len(files)
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
+        return 2
+    physics_dir = pathlib.Path(argv[1])
+    found, count = violations(physics_dir)
+    for line in found:
+        print(line)
+    if count == 0:
+        print(f"no .h or .cpp files under {physics_dir}")
+        return 1
+    print(f"{count} files, {len(found)} includes against the order "
+          f"{' <- '.join(LAYERS)}")
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

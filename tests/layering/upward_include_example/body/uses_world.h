@@ -1,0 +1,5 @@
+#pragma once
+// Not built: the layering check's own test reads it. The first include points
+// down (allowed), the second up (reported).
+#include "physics/math/types.h"
+#include "physics/world/world.h"
