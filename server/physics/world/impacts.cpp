@@ -52,18 +52,36 @@ std::optional<Impact> findImpact(const Body& a, const Body& b, const BodyContact
   // Already touching or overlapping: the impact is now, with the detected geometry.
   const double startGap = gapOf(contact.manifold);
   if (startGap <= search.tolerance) return Impact{0.0, contact.manifold};
-  double high = dt;
-  double highGap = gapAt(dt);
-  if (highGap > search.tolerance && predictedTime > 0.0 && predictedTime < dt) {
-    high = predictedTime;
-    highGap = gapAt(predictedTime);
+  // [low, high] brackets the first contact: apart at low, overlapping at high.
+  double low = 0.0, lowGap = startGap;
+  Impact best{0.0, contact.manifold};  // the latest trial known to be apart
+  double high = dt, highGap = 0.0;
+  const bool hinted = predictedTime > 0.0 && predictedTime < dt;
+  if (hinted && search.method == ImpactSearchMethod::RegulaFalsi) {
+    // Where the gap closes at its current rate: on a nearly straight flight
+    // that is nearly the root, and one side of the bracket either way.
+    const double gap = gapAt(predictedTime);
+    if (touching(gap)) return trial;
+    if (gap < 0.0) {
+      high = predictedTime;
+      highGap = gap;
+    } else {
+      low = predictedTime;
+      lowGap = gap;
+      best = trial;
+      highGap = gapAt(dt);
+    }
+  } else {
+    highGap = gapAt(dt);
+    if (highGap > search.tolerance && hinted) {
+      // A body that passes a thin piece within the step is apart again at dt.
+      high = predictedTime;
+      highGap = gapAt(predictedTime);
+    }
   }
   if (highGap > search.tolerance) return std::nullopt;  // apart when the step ends
   if (touching(highGap)) return trial;
 
-  // [low, high] brackets the first contact: apart at low, overlapping at high.
-  double low = 0.0, lowGap = startGap;
-  Impact best{0.0, contact.manifold};  // the latest trial known to be apart
   int side = 0;                        // which end the last regula falsi step moved
   for (int i = 0; i < kMaxIterations; ++i) {
     double t = 0.5 * (low + high);
