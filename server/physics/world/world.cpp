@@ -301,6 +301,16 @@ void World::step() {
   guardStates();
 }
 
+ForceInputs World::forcesOn(const Body& body) {
+  ForceInputs inputs;
+  inputs.gravity = m_settings.gravity;
+  if (body.m_load.active) {
+    inputs.load = &body.m_load;
+    m_loadsSeen = true;
+  }
+  return inputs;
+}
+
 void World::clearLoads() {
   // Every pushed body was integrated (a push wakes a sleeping one; static
   // bodies take none; frozen ones drop theirs), and the integration noted it.
@@ -385,12 +395,7 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
       body.m_lastGoodOrientation = body.m_state.orientation;
       continue;
     }
-    ForceInputs inputs;
-    inputs.gravity = m_settings.gravity;
-    if (body.m_load.active) {
-      inputs.load = &body.m_load;
-      m_loadsSeen = true;
-    }
+    const ForceInputs inputs = forcesOn(body);
     const RigidState next =
         integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     // The guard's check, on the new state while it is at hand. A body it

@@ -14,6 +14,7 @@
 
 #include "physics/body/body.h"
 #include "physics/body/body_def.h"
+#include "physics/body/integrator.h"
 #include "physics/common/deep_copy_ptr.h"
 #include "physics/common/expected.h"
 #include "physics/solver/contact_solver.h"
@@ -125,6 +126,9 @@ class World {
   // Puts a frozen body back at its last good pose with zero momenta, whatever
   // a contact path did to it during the step.
   static void holdFrozen(Body& body);
+  // Gravity and the body's external load, for the integrator; notes that a
+  // load was seen, so that clearLoads() has something to do.
+  ForceInputs forcesOn(const Body& body);
   // External loads act for one step: cleared here, once, at its end.
   void clearLoads();
   void findContacts();

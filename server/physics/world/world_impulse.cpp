@@ -91,12 +91,7 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     SolverBody& sb = m_solverBodies[i];
     sb.position = body.m_state.position;
     if (!solving[i]) continue;
-    ForceInputs inputs;
-    inputs.gravity = m_settings.gravity;
-    if (body.m_load.active) {
-      inputs.load = &body.m_load;
-      m_loadsSeen = true;
-    }
+    const ForceInputs inputs = forcesOn(body);
     const Momenta momenta =
         integrateMomenta(body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
     sb.inverseMass = body.m_dynamics.inverseMass;
@@ -269,9 +264,7 @@ void World::integrateSolvedBodies(const ContactStep& step,
     if (!step.solving[i]) continue;
     Body& body = m_bodies[i];
     const SolverBody& sb = m_solverBodies[i];
-    ForceInputs inputs;
-    inputs.gravity = m_settings.gravity;
-    inputs.load = body.m_load.active ? &body.m_load : nullptr;
+    const ForceInputs inputs = forcesOn(body);
     const bool pseudo = !isZero(sb.pseudoLinear) || !isZero(sb.pseudoAngular);
     const double impactTime = step.impactTime.empty() ? -1.0 : step.impactTime[i];
     if (impactTime >= 0.0) {

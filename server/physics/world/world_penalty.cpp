@@ -373,12 +373,7 @@ void World::stepPenalty() {
       systemIndex[k] = static_cast<int>(system.size());
       denseOf.push_back(i);
       const Body& body = m_bodies[k];
-      ForceInputs inputs;
-      inputs.gravity = m_settings.gravity;
-      if (body.m_load.active) {
-        inputs.load = &body.m_load;
-        m_loadsSeen = true;
-      }
+      const ForceInputs inputs = forcesOn(body);
       system.push_back({body.m_state, body.m_rotation, body.m_dynamics, inputs});
     }
   }
