@@ -7,7 +7,9 @@
 # Build the anchors harness first (it is not part of this repository; its
 # own README says how).
 # Environment: CASES overrides the list ("scene:n ..."), ENGINES the engines
-# ("rbsim bullet bullet-nosleep ode mujoco"), CPU the core (1).
+# ("rbsim bullet bullet-nosleep ode mujoco"), CPU the core (1). To compare a
+# change with the code before it in one run, build the earlier commit too and
+# add rbsim-before and rbsim-before-nosleep to ENGINES with BEFORE=its build dir.
 set -eu
 build=$1
 anchors=$2
@@ -22,6 +24,8 @@ for case in $cases; do
     case $engine in
       rbsim) cmd="$build/bench/bench_anchors_ours --sleep 1" ;;
       rbsim-nosleep) cmd="$build/bench/bench_anchors_ours --sleep 0 --label rbsim-nosleep" ;;
+      rbsim-before) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/bench_anchors_ours --sleep 1 --label rbsim-before" ;;
+      rbsim-before-nosleep) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/bench_anchors_ours --sleep 0 --label rbsim-before-nosleep" ;;
       bullet) cmd="$anchors/bench_bullet --sleep 1" ;;
       bullet-nosleep) cmd="$anchors/bench_bullet --sleep 0 --label bullet-nosleep" ;;
       ode) cmd="$anchors/bench_ode" ;;
