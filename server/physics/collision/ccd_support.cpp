@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "physics/collision/aabb.h"
+
 namespace rbsim {
 
 namespace {
@@ -183,10 +185,22 @@ Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
   // momentum overflowed its position in one step), or from products of
   // coordinates beyond ~1e100 m (EPA and MPR multiply three of them). Such
   // pairs skip libccd and get the candidate axes' answer below.
+  // The same goes for a pose whose rotation is not one (found by
+  // fuzz_checkpoint: a compound part restored with entries near 1e259, whose
+  // box reached that far though its centre sat at the origin): the pieces'
+  // world boxes must stay within that reach too. And pieces whose boxes are
+  // apart cannot overlap: libccd has nothing to measure there.
+  const Aabb worldBoxA = transformedAabb(geometryBounds(*a.geometry), a.pose);
+  const Aabb worldBoxB = transformedAabb(geometryBounds(*b.geometry), b.pose);
+  const auto within = [](const Aabb& box) {
+    return box.min.allFinite() && box.max.allFinite() &&
+           box.min.cwiseAbs().maxCoeff() < kMaxLibccdReach &&
+           box.max.cwiseAbs().maxCoeff() < kMaxLibccdReach;
+  };
   const double reach = (objectB.center - objectA.center).norm() + scale;
   const bool libccdCanRun = std::isfinite(reach) && reach < kMaxLibccdReach &&
-                            a.pose.rotation.allFinite() && b.pose.rotation.allFinite();
-
+                            a.pose.rotation.allFinite() && b.pose.rotation.allFinite() &&
+                            within(worldBoxA) && within(worldBoxB) && worldBoxA.overlaps(worldBoxB);
   Penetration result;
   ccd_real_t depth = 0.0;
   ccd_vec3_t direction{};
