@@ -159,4 +159,9 @@ Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBod
       shape);
 }
 
+double colliderRadius(const Collider& collider) {
+  if (collider.plane) return 0.0;
+  return collider.bounds.min.cwiseAbs().cwiseMax(collider.bounds.max.cwiseAbs()).norm();
+}
+
 }  // namespace rbsim

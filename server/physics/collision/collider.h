@@ -36,6 +36,10 @@ struct Collider {
 Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBody,
                                  const std::string& sourceName);
 
+// No point of the collider lies farther than this from the body origin (m):
+// the farthest corner of its box. 0 for a plane, which is static.
+double colliderRadius(const Collider& collider);
+
 // A convex piece placed in the world: what the narrow phase works on.
 struct PlacedConvex {
   const ConvexGeometry* geometry = nullptr;

@@ -25,16 +25,9 @@ bool samePose(const Transform& x, const Transform& y) {
 
 constexpr double kSlowReach = 0.5;  // of the contact margin per step
 
-// Bounds the distance from the body origin of any point of a collider by
-// the farthest corner of its box (planes are static and never need it).
-double boundingRadius(const Collider* collider) {
-  if (collider == nullptr || collider->plane) return 0.0;
-  const Vec3 farthest = collider->bounds.min.cwiseAbs().cwiseMax(collider->bounds.max.cwiseAbs());
-  return farthest.norm();
-}
-
 uint64_t pairKey(int32_t serialA, int32_t serialB) {
-  return (static_cast<uint64_t>(static_cast<uint32_t>(serialA)) << 32) | static_cast<uint32_t>(serialB);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(serialA)) << 32) |
+         static_cast<uint32_t>(serialB);
 }
 
 }  // namespace
@@ -55,12 +48,13 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
     const Body& body = bodies[i];
     BodyGeometry& geometry = m_geometry[i];
     const Transform pose = poseOf(body);
-    const bool sameBody = geometry.description.get() == &body.description() && geometry.serial == body.serial();
+    const bool sameBody =
+        geometry.description.get() == &body.description() && geometry.serial == body.serial();
     if (geometry.description.get() != &body.description()) {
       geometry.description = body.sharedDescription();
       geometry.collider = geometry.description->collider.get();
       geometry.shape = BroadPhaseShape::of(body);
-      geometry.radius = boundingRadius(geometry.collider);
+      geometry.radius = geometry.collider ? colliderRadius(*geometry.collider) : 0.0;
     }
     double reach = 0.0;
     if (speculative && !geometry.shape.isStatic && !body.isSleeping()) {
@@ -73,7 +67,8 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
       const double speed2 = body.linearVelocity().squaredNorm();
       const double spin2 = body.angularVelocity().squaredNorm() * geometry.radius * geometry.radius;
       const double slow = kSlowReach * m_settings.margin / dt;  // m/s
-      if (2.0 * (speed2 + spin2) >= slow * slow) reach = dt * (std::sqrt(speed2) + std::sqrt(spin2));
+      if (2.0 * (speed2 + spin2) >= slow * slow)
+        reach = dt * (std::sqrt(speed2) + std::sqrt(spin2));
     }
     geometry.unchanged = sameBody && samePose(geometry.pose, pose) && geometry.reach == reach;
     geometry.serial = body.serial();
@@ -81,7 +76,8 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
     geometry.reach = reach;
     // A frozen body is out of the simulation: nothing collides with it.
     if (geometry.shape.hasGeometry() && !body.isFrozen()) {
-      m_broadPhaseInputs.push_back(geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
+      m_broadPhaseInputs.push_back(
+          geometry.shape.placed(body.serial(), static_cast<int>(i), geometry.pose));
       std::optional<Aabb>& box = m_broadPhaseInputs.back().box;
       if (reach > 0.0 && box) box = box->fattened(reach);
     }
@@ -99,15 +95,18 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
     const BodyGeometry& b = m_geometry[at(pair.b)];
     const uint64_t key = pairKey(a.serial, b.serial);
     m_pairKeys.push_back(key);
-    if (!(a.unchanged && b.unchanged && reusePair(key, pair.a, pair.b))) collidePair(pair.a, pair.b);
+    if (!(a.unchanged && b.unchanged && reusePair(key, pair.a, pair.b)))
+      collidePair(pair.a, pair.b);
     m_contactKeys.resize(m_contacts.size(), key);
   }
 }
 
 bool CollisionDetector::reusePair(uint64_t key, int indexA, int indexB) {
-  while (m_previousPairCursor < m_previousPairKeys.size() && m_previousPairKeys[m_previousPairCursor] < key)
+  while (m_previousPairCursor < m_previousPairKeys.size() &&
+         m_previousPairKeys[m_previousPairCursor] < key)
     ++m_previousPairCursor;
-  if (m_previousPairCursor == m_previousPairKeys.size() || m_previousPairKeys[m_previousPairCursor] != key)
+  if (m_previousPairCursor == m_previousPairKeys.size() ||
+      m_previousPairKeys[m_previousPairCursor] != key)
     return false;
   while (m_previousContactCursor < m_previousContactKeys.size() &&
          m_previousContactKeys[m_previousContactCursor] < key)

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "physics/body/integrator.h"
+#include "physics/collision/collider.h"
 #include "physics/world/contact_detection.h"
 #include "physics/world/impacts.h"
 #include "physics/world/world.h"
@@ -117,7 +118,7 @@ void World::findImpacts(ContactStep& step) {
 
   // Per body: whether any of its points may move faster than half the
   // threshold; a pair of bodies that are both slower cannot collide. (|v| +
-  // |ω| r <= sqrt(2 (|v|² + |ω|² r²)), with r bounded by the collider's box.)
+  // |ω| r <= sqrt(2 (|v|² + |ω|² r²)), r the collider's radius.)
   const std::size_t n = m_bodies.size();
   std::vector<char> fast(n, 0);
   const double slow2 = 0.125 * threshold * threshold;  // (threshold / 2)² / 2
@@ -127,8 +128,8 @@ void World::findImpacts(ContactStep& step) {
     double speed2 = sb.linearVelocity.squaredNorm();
     const double spin2 = sb.angularVelocity.squaredNorm();
     if (spin2 > 0.0) {
-      const Aabb& bounds = m_bodies[i].description().collider->bounds;
-      speed2 += spin2 * bounds.min.cwiseAbs().cwiseMax(bounds.max.cwiseAbs()).squaredNorm();
+      const double radius = colliderRadius(*m_bodies[i].description().collider);
+      speed2 += spin2 * radius * radius;
     }
     fast[i] = speed2 >= slow2;
   }
@@ -136,7 +137,8 @@ void World::findImpacts(ContactStep& step) {
   const std::vector<BodyContact>& contacts = *step.contacts;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
-    if (!fast[static_cast<std::size_t>(c.bodyA)] && !fast[static_cast<std::size_t>(c.bodyB)]) continue;
+    if (!fast[static_cast<std::size_t>(c.bodyA)] && !fast[static_cast<std::size_t>(c.bodyB)])
+      continue;
     // Cheap test first: a point approaching faster than the threshold (with
     // the velocities after the step's forces) whose gap closes within the step.
     const SolverBody& a = m_solverBodies[static_cast<std::size_t>(c.bodyA)];
