@@ -17,7 +17,7 @@
 
 #include "physics/collision/broad_phase.h"
 #include "physics/world/contact_detection.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "scenes/free_bodies_scene.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"

@@ -10,7 +10,7 @@
 //       --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "scenes/free_bodies_scene.h"
 
 namespace rbsim {

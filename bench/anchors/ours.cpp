@@ -6,7 +6,7 @@
 // One timed step = World::step(): collision detection, contact response, integration.
 #include "scene.hpp"
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace {
 
@@ -62,7 +62,7 @@ struct RbsimEngine : anchors::Engine {
   void step() override { world->step(); }
 
   void state(int i, double p[3], double v[3], double w[3]) const override {
-    const rbsim::Body& body = world->bodies()[static_cast<std::size_t>(i)];
+    const rbsim::BodyView body = world->bodyAt(i);
     for (int k = 0; k < 3; ++k) {
       p[k] = body.position()[k];
       v[k] = body.linearVelocity()[k];

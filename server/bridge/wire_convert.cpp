@@ -24,7 +24,7 @@ void copyTo(double (&out)[4], const Quaternion& q) {
 
 Vec3 vec3From(const double (&in)[3]) { return {in[0], in[1], in[2]}; }
 
-rbsim::body_state_t bodyState(const Body& body) {
+rbsim::body_state_t bodyState(BodyView body) {
   rbsim::body_state_t out;
   out.id = body.serial();
   out.name = body.name();
@@ -82,7 +82,7 @@ rbsim::compound_part_t compoundPart(const CompoundPart& part) {
   return out;
 }
 
-rbsim::body_description_t bodyDescription(const Body& body) {
+rbsim::body_description_t bodyDescription(BodyView body) {
   const BodyDescription& d = body.description();
   rbsim::body_description_t out;
   out.id = body.serial();
@@ -192,7 +192,7 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
   header.world_revision = revision;
   std::vector<rbsim::body_state_t> bodies;
   bodies.reserve(world.bodies().size());
-  for (const Body& body : world.bodies()) bodies.push_back(bodyState(body));
+  for (const BodyView body : world.bodies()) bodies.push_back(bodyState(body));
   return paginate<BodyFields>(header, std::move(bodies));
 }
 
@@ -210,7 +210,7 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   header.angular_damping = world.settings().angularDamping;
   std::vector<rbsim::body_description_t> bodies;
   bodies.reserve(world.bodies().size());
-  for (const Body& body : world.bodies()) bodies.push_back(bodyDescription(body));
+  for (const BodyView body : world.bodies()) bodies.push_back(bodyDescription(body));
   return paginate<BodyFields>(header, std::move(bodies));
 }
 
@@ -319,7 +319,7 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
   if (request.torque.norm() > limits.maxTorque)
     return Error{"torque magnitude " + std::to_string(request.torque.norm()) +
                  " N·m exceeds the limit of " + std::to_string(limits.maxTorque) + " N·m"};
-  const Body& body = world.body(id);
+  const BodyView body = world.body(id);
   if (body.isStatic()) return Error{"body '" + message.body + "' is static"};
   if (body.isFrozen())
     return Error{"body '" + message.body + "' is frozen (" +

@@ -14,8 +14,8 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "config/server_settings.h"
-#include "physics/common/expected.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/world.h"
 #include "session/wrench_scheduler.h"
 
 namespace rbsim {

@@ -20,7 +20,7 @@
 #include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
 #include "meshio/mesh_io.h"
-#include "physics/geometry/triangle_mesh.h"
+#include "rbsim/physics/shapes.h"
 
 namespace rbsim {
 

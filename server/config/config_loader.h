@@ -10,9 +10,9 @@
 #include <string>
 
 #include "config/server_settings.h"
-#include "physics/body/body_def.h"
-#include "physics/common/expected.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

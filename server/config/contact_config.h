@@ -4,9 +4,8 @@
 #include <optional>
 
 #include "config/yaml_reader.h"
-#include "physics/common/expected.h"
-#include "physics/solver/material.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

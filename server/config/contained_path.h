@@ -18,7 +18,7 @@
 
 #include <string>
 
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

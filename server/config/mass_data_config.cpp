@@ -1,6 +1,6 @@
 #include "config/mass_data_config.h"
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/body_definition.h"
 
 namespace rbsim {
 

@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "config/yaml_reader.h"
-#include "physics/body/body_def.h"
-#include "physics/common/expected.h"
+#include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

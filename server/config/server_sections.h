@@ -8,7 +8,7 @@
 
 #include "config/server_settings.h"
 #include "config/yaml_reader.h"
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

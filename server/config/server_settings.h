@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/world/state_guard.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

@@ -16,8 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "physics/common/expected.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

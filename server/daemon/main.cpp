@@ -15,7 +15,7 @@
 #include "daemon/server.h"
 #include "daemon/signal_events.h"
 #include "persist/session_checkpoint.h"
-#include "physics/world/rotation_drift.h"
+#include "rbsim/physics/rotation_drift.h"
 
 using namespace rbsim;
 

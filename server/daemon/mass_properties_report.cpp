@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "physics/common/exact_text.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 
@@ -41,7 +41,7 @@ std::string massPropertiesJson(const World& world) {
   std::ostringstream out;
   out << "{\n  \"bodies\": [";
   bool first = true;
-  for (const Body& body : world.bodies()) {
+  for (const BodyView body : world.bodies()) {
     const BodyDescription& d = body.description();
     const MassProperties& m = d.massProperties;
     // Principal axes in the shape frame are the rows of shapeRotation (it

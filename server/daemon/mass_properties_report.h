@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

@@ -10,7 +10,7 @@
 #include "config/server_settings.h"
 #include "daemon/options.h"
 #include "persist/session_checkpoint.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 

@@ -17,7 +17,7 @@
 #include "daemon/signal_events.h"
 #include "daemon/step_clock.h"
 #include "persist/session_checkpoint.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "replay/event_recorder.h"
 #include "session/session.h"
 

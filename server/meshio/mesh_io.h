@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "physics/common/expected.h"
-#include "physics/geometry/triangle_mesh.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/shapes.h"
 
 namespace rbsim {
 

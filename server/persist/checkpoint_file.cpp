@@ -9,7 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "physics/math/byte_stream.h"
+#include "rbsim/physics/byte_stream.h"
 
 namespace rbsim {
 

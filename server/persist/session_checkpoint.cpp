@@ -1,8 +1,8 @@
 #include "persist/session_checkpoint.h"
 
 #include "persist/checkpoint_file.h"
-#include "physics/math/byte_stream.h"
-#include "physics/world/world_snapshot.h"
+#include "rbsim/physics/byte_stream.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 
@@ -66,7 +66,7 @@ Expected<std::vector<uint8_t>> encodeSessionCheckpoint(const Session& session) {
   out.i64(session.worldRevision());
   out.boolean(session.paused());
   out.i64(session.stepsRequested());
-  if (auto written = WorldSnapshot::write(session.world(), out); !written) return written.error();
+  if (auto written = session.world().writeSnapshot(out); !written) return written.error();
   for (const auto* list : {&session.wrenches().pending(), &session.wrenches().active()}) {
     out.u32(static_cast<uint32_t>(list->size()));
     for (const WrenchRequest& r : *list) writeRequest(r, out);
@@ -87,7 +87,7 @@ Expected<SessionState> decodeSessionCheckpoint(std::span<const uint8_t> payload,
   const bool paused = in.boolean("paused");
   const int64_t stepsRequested = in.i64("steps requested");
   if (in.failed()) return Error{"session: " + in.error()};
-  auto world = WorldSnapshot::read(in, settings);
+  auto world = World::readSnapshot(in, settings);
   if (!world) return world.error();
   auto pending = readRequests(in, "pending wrench count");
   auto active = readRequests(in, "active wrench count");

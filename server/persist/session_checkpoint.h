@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 #include "session/session.h"
 
 namespace rbsim {

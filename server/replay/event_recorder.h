@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 
 struct _lcm_eventlog_t;
 

@@ -26,7 +26,7 @@
 #include <string>
 
 #include "bridge/command_handler.h"
-#include "physics/common/expected.h"
+#include "rbsim/physics/types.h"
 #include "replay/lcm_log_reader.h"
 #include "session/session.h"
 

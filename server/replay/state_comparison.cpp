@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "physics/common/exact_text.h"
+#include "rbsim/physics/types.h"
 
 namespace rbsim {
 

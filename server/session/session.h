@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "session/wrench_scheduler.h"
 
 namespace rbsim {

@@ -1,6 +1,7 @@
 #include "session/wrench_scheduler.h"
 
 #include <algorithm>
+#include <cassert>
 
 namespace rbsim {
 
@@ -42,19 +43,27 @@ void WrenchScheduler::applyForStep(World& world, int64_t step) {
   std::erase_if(m_active,
                 [&](const WrenchRequest& active) { return world.findBody(active.body).isNull(); });
   for (WrenchRequest& active : m_active) {
-    Body& body = world.body(world.findBody(active.body));
+    const BodyId id = world.findBody(active.body);
+    const BodyView body = world.body(id);
     const BodyDescription& description = body.description();
     if (active.pointFrame == WrenchFrame::World) {
       active.point = description.bodyToShapePoint(body.worldToBody(active.point));
       active.pointFrame = WrenchFrame::Body;
     }
-    const Vec3 bodyPoint = description.shapeToBodyPoint(active.point);
+    Wrench wrench;
+    wrench.point = description.shapeToBodyPoint(active.point);
     if (active.frame == WrenchFrame::World) {
-      body.applyWorldWrenchAtBodyPoint(active.force, active.torque, bodyPoint);
+      wrench.force = active.force;
+      wrench.torque = active.torque;
+      wrench.frame = Wrench::Frame::WorldAtBodyPoint;
     } else {
-      body.applyBodyWrench(description.shapeToBodyVector(active.force),
-                           description.shapeToBodyVector(active.torque), bodyPoint);
+      wrench.force = description.shapeToBodyVector(active.force);
+      wrench.torque = description.shapeToBodyVector(active.torque);
+      wrench.frame = Wrench::Frame::Body;
     }
+    // Limits and decoding have checked the values; an error here is a bug.
+    [[maybe_unused]] const auto applied = world.applyWrench(id, wrench);
+    assert(applied);
   }
 }
 

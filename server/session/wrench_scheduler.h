@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "physics/math/types.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "config/config_loader.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace rbsim;

@@ -3,7 +3,7 @@
 // different shapes, some touching the ground, so that wrenches and steps
 // reach the contact code. Body names are in tests/fuzz/dictionaries/lcm.dict.
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim::fuzz {
 

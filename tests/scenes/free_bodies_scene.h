@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/world_settings.h"
 #include "scenes/scene_random.h"
 
 namespace rbsim::scenes {

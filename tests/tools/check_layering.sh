@@ -30,6 +30,10 @@ forbid bridge '#include "(replay|daemon)/' "is below replay and daemon"
 forbid bridge '#include <(lcm/lcm|yaml-cpp/)' "has no LCM handle and does not read YAML itself"
 forbid replay '#include "daemon/' "is below daemon"
 forbid replay '#include <yaml-cpp/' "does not read YAML"
+# Outside the physics library, physics is used through its public headers.
+for library in meshio config session persist bridge replay daemon; do
+  forbid $library '#include "physics/' "uses physics through its public headers (rbsim/physics/) only"
+done
 # The config file is read once, by config/: nothing else parses YAML.
 forbid daemon '#include <yaml-cpp/' "gets its settings from config/ (the file is parsed once)"
 exit $status

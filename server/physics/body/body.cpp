@@ -49,6 +49,16 @@ void Body::setDamping(double linear, double angular) {
   m_dynamics.angularDamping = angular;
 }
 
+void Body::holdAtLastGoodPose() {
+  m_state.position = m_lastGoodPosition;
+  m_state.orientation = m_lastGoodOrientation;
+  m_state.linearMomentum.setZero();
+  m_state.angularMomentum.setZero();
+  m_load.clear();
+  wake();
+  updateDerived();
+}
+
 void Body::updateDerived() {
   m_rotation = m_state.orientation.toRotationMatrix();
   m_invInertiaWorld =

@@ -1,54 +1,21 @@
 #pragma once
-// A rigid body: its immutable description and its moving state.
+// A rigid body: its immutable description and its moving state. Internal to
+// the physics library: users read bodies through BodyView (rbsim/physics/
+// body_view.h) and change them through World, which keeps its bookkeeping
+// (sleep, the guard, load tracking) consistent with every change.
 
 #include <cstdint>
 #include <memory>
 #include <string>
 
-#include "physics/body/body_def.h"
 #include "physics/body/external_load.h"
 #include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
-#include "physics/geometry/shape.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/body_view.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
 
 namespace rbsim {
-
-// The body's collision geometry. The collision layer (collision/collider.h)
-// builds and reads it; a body only carries it, so it is only named here.
-struct Collider;
-
-// What a body is, fixed at creation. Shared (immutably) between copies of a
-// world, so copying a world for a look-ahead or a checkpoint is cheap.
-struct BodyDescription {
-  std::string name;
-  Shape shape;                  // in the shape's own frame, as the user gave it
-  bool isStatic = false;
-  MassProperties massProperties;  // in the shape's frame (zero for static bodies)
-  // True when the mass, centre of mass and inertia were given (BodyDef::
-  // inertia) rather than computed from the shape; the volume is the shape's
-  // either way.
-  bool massPropertiesGiven = false;
-  // Placement of the shape's frame in body space (origin at the centre of
-  // mass, axes along the principal axes): p_body = shapeRotation p_shape + shapeTranslation.
-  Mat3 shapeRotation = Mat3::Identity();
-  Vec3 shapeTranslation = Vec3::Zero();  // m
-  Vec3 shapeToBodyPoint(const Vec3& shapePoint) const {
-    return shapeRotation * shapePoint + shapeTranslation;
-  }
-  Vec3 shapeToBodyVector(const Vec3& shapeVector) const { return shapeRotation * shapeVector; }
-  Vec3 bodyToShapePoint(const Vec3& bodyPoint) const {
-    return shapeRotation.transpose() * (bodyPoint - shapeTranslation);
-  }
-  // For mesh shapes: the mesh re-expressed in body space. Null otherwise.
-  std::shared_ptr<const TriangleMesh> bodySpaceMesh;
-  // Collision geometry in body space (null until collision detection builds it).
-  std::shared_ptr<const Collider> collider;
-  Material material;                 // resolved against the world's defaults
-  bool continuousCollision = false;  // swept against fast motion (see BodyDef)
-};
 
 class Body {
  public:
@@ -129,6 +96,40 @@ class Body {
   bool isFrozen() const { return m_freezeReason != FreezeReason::None; }
   FreezeReason freezeReason() const { return m_freezeReason; }
 
+  // What the world's stepping and restoring write; nothing else should.
+  void setSerial(int32_t serial) { m_serial = serial; }
+  // The stepping paths: the integrator's new state as it is (its quaternion
+  // already normalised) and the derived values with it, in one pass.
+  void moveTo(const RigidState& state) {
+    m_state = state;
+    updateDerived();
+  }
+  void setMomenta(const Vec3& linearMomentum, const Vec3& angularMomentum) {
+    m_state.linearMomentum = linearMomentum;
+    m_state.angularMomentum = angularMomentum;
+    updateDerived();
+  }
+  void setLoad(const ExternalLoad& load) { m_load = load; }
+  void setSleeping(bool sleeping) { m_sleeping = sleeping; }
+  double restTime() const { return m_restTime; }  // s below the sleep velocities
+  void setRestTime(double restTime) { m_restTime = restTime; }
+  void wake() {
+    m_sleeping = false;
+    m_restTime = 0.0;
+  }
+  // The numerical guard's bookkeeping (world/state_guard.h).
+  const Vec3& lastGoodPosition() const { return m_lastGoodPosition; }
+  const Quaternion& lastGoodOrientation() const { return m_lastGoodOrientation; }
+  void keepPoseAsGood() {
+    m_lastGoodPosition = m_state.position;
+    m_lastGoodOrientation = m_state.orientation;
+  }
+  void setFreezeReason(FreezeReason reason) { m_freezeReason = reason; }
+  // Back at the last good pose with zero momenta, no load, awake (a frozen
+  // body is not at rest in an island, and waking it must not be what brings
+  // it back).
+  void holdAtLastGoodPose();
+
  private:
   void updateDerived();
 
@@ -150,9 +151,6 @@ class Body {
   Vec3 m_lastGoodPosition = Vec3::Zero();
   Quaternion m_lastGoodOrientation = Quaternion::identity();
   FreezeReason m_freezeReason = FreezeReason::None;
-
-  friend class World;  // the stepping loop writes state and derived values in one pass
-  friend class WorldSnapshot;  // checkpoints restore the state bit for bit
 };
 
 }  // namespace rbsim

@@ -20,7 +20,7 @@ Quaternion addScaled(const Quaternion& q, const Quaternion& rate, double h) {
 
 StateRate stateRate(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                     const ForceInputs& inputs) {
-  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, true);
+  const NetWrench wrench = evaluateWrench(state, rotation, dynamics, inputs, true);
   const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, state.angularMomentum);
   return {state.linearMomentum * dynamics.inverseMass, orientationRate(state.orientation, omega),
           wrench.force, wrench.torque};
@@ -50,9 +50,9 @@ RigidState rk4Combine(const RigidState& state, const StateRate& k1, const StateR
   return next;
 }
 
-Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+NetWrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                       const ForceInputs& inputs, bool includeDamping) {
-  Wrench wrench;
+  NetWrench wrench;
   wrench.force = dynamics.mass * inputs.gravity;
   if (inputs.load != nullptr && inputs.load->active) {
     const Vec3 external = inputs.load->forceAt(rotation);
@@ -79,7 +79,7 @@ namespace {
 // free-body step inlines them (the free loop runs this for every body).
 [[gnu::always_inline]] inline Momenta momentaAfterForces(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                            const ForceInputs& inputs, double dt) {
-  const Wrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
+  const NetWrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
   Momenta next{state.linearMomentum + dt * wrench.force, state.angularMomentum + dt * wrench.torque};
   // Implicit (backward Euler) damping: P' = P* − c dt P'. Skipped when zero so
   // that undamped bodies pay no division.

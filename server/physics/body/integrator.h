@@ -21,11 +21,11 @@ struct ForceInputs {
 };
 
 // Total force and torque (about the centre of mass) at a state, damping included.
-struct Wrench {
+struct NetWrench {
   Vec3 force = Vec3::Zero();   // N, world
   Vec3 torque = Vec3::Zero();  // N·m, world
 };
-Wrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+NetWrench evaluateWrench(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                       const ForceInputs& inputs, bool includeDamping);
 
 // `rotation` must be state.orientation's rotation matrix (callers cache it).

@@ -10,7 +10,7 @@
 #include "physics/collision/aabb.h"
 #include "physics/collision/convex_geometry.h"
 #include "physics/common/expected.h"
-#include "physics/geometry/shape.h"
+#include "rbsim/physics/shapes.h"
 #include "physics/math/transform.h"
 
 namespace rbsim {

@@ -12,7 +12,7 @@
 
 #include "physics/collision/contact_generation.h"
 #include "physics/collision/convex_hull.h"
-#include "physics/geometry/shape.h"
+#include "rbsim/physics/shapes.h"
 #include "physics/math/transform.h"
 
 namespace rbsim {

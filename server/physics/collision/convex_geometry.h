@@ -8,7 +8,7 @@
 
 #include "physics/collision/aabb.h"
 #include "physics/collision/convex_hull.h"
-#include "physics/geometry/shape.h"
+#include "rbsim/physics/shapes.h"
 #include "physics/math/transform.h"
 #include "physics/math/types.h"
 

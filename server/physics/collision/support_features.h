@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "physics/collision/collider.h"
-#include "physics/geometry/shape.h"
+#include "rbsim/physics/shapes.h"
 #include "physics/math/types.h"
 
 namespace rbsim {

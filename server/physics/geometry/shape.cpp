@@ -1,4 +1,4 @@
-#include "physics/geometry/shape.h"
+#include "rbsim/physics/shapes.h"
 
 #include <type_traits>
 #include <utility>

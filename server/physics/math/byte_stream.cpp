@@ -1,4 +1,4 @@
-#include "physics/math/byte_stream.h"
+#include "rbsim/physics/byte_stream.h"
 
 #include <array>
 #include <bit>

@@ -6,6 +6,19 @@
 
 namespace rbsim {
 
+SolvedManifold manifoldIdentity(const BodyContact& contact, int32_t serialA, int32_t serialB) {
+  SolvedManifold m;
+  m.serialA = serialA;
+  m.serialB = serialB;
+  m.pieceA = contact.pieceA;
+  m.pieceB = contact.pieceB;
+  m.bodyA = contact.bodyA;
+  m.bodyB = contact.bodyB;
+  m.normal = contact.manifold.normal;
+  m.pointCount = contact.manifold.pointCount;
+  return m;
+}
+
 namespace {
 
 // A tangent basis that depends only on the normal, so that friction impulses
@@ -104,7 +117,7 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
   for (std::size_t m = 0; m < m_constraints.size(); ++m) {
     const ManifoldConstraint& c = m_constraints[m];
     const BodyContact& contact = contacts[m];
-    SolvedManifold solved = SolvedManifold::identityOf(
+    SolvedManifold solved = manifoldIdentity(
         contact, serials[static_cast<std::size_t>(c.bodyA)], serials[static_cast<std::size_t>(c.bodyB)]);
     const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];

@@ -42,6 +42,7 @@
 #include "physics/solver/contact_solver_settings.h"
 #include "physics/solver/material.h"
 #include "physics/solver/velocity_row.h"
+#include "rbsim/physics/contacts.h"
 
 namespace rbsim {
 
@@ -62,46 +63,9 @@ struct SolverBody {
   Vec3 position = Vec3::Zero();           // m: centre of mass when the impulses act
 };
 
-// One solved contact point, kept for warm starting the next step and for
-// reporting (RBSIM_CONTACTS).
-struct SolvedContactPoint {
-  Vec3 point = Vec3::Zero();         // m, world, midway between the surfaces
-  double depth = 0.0;                // m
-  double normalImpulse = 0.0;        // N·s, accumulated this step
-  Vec3 tangentImpulse = Vec3::Zero();  // N·s, world: the patch's friction shared by normal load
-  double relativeNormalVelocity = 0.0;  // m/s at the step's start state (negative: approaching)
-  bool sticking = false;
-  uint32_t featureId = 0;
-};
-
-struct SolvedManifold {
-  int32_t serialA = 0;
-  int32_t serialB = 0;
-  int pieceA = 0;
-  int pieceB = 0;
-  int bodyA = 0;  // dense indices at the time of the step
-  int bodyB = 0;
-  Vec3 normal = Vec3::UnitZ();
-  Vec3 frictionImpulse = Vec3::Zero();  // N·s, world, tangential, at the patch centroid
-  double twistImpulse = 0.0;            // N·m·s about the normal
-  bool sticking = false;                // the patch did not slip
-  int pointCount = 0;
-  SolvedContactPoint points[4];
-
-  // Which bodies, pieces, normal and point count: everything but the impulses.
-  static SolvedManifold identityOf(const BodyContact& contact, int32_t serialA, int32_t serialB) {
-    SolvedManifold m;
-    m.serialA = serialA;
-    m.serialB = serialB;
-    m.pieceA = contact.pieceA;
-    m.pieceB = contact.pieceB;
-    m.bodyA = contact.bodyA;
-    m.bodyB = contact.bodyB;
-    m.normal = contact.manifold.normal;
-    m.pointCount = contact.manifold.pointCount;
-    return m;
-  }
-};
+// Which bodies, pieces, normal and point count of a detected contact:
+// everything of its solved manifold but the impulses.
+SolvedManifold manifoldIdentity(const BodyContact& contact, int32_t serialA, int32_t serialB);
 
 class ContactSolver {
  public:

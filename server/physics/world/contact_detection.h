@@ -3,8 +3,8 @@
 // settings handed to the collision layer, which does not know World.
 
 #include "physics/collision/collision_detector.h"
-#include "physics/world/world.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/world.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 
@@ -15,7 +15,7 @@ inline DetectionStep detectionStep(const WorldSettings& settings) {
 }
 
 inline void detectContacts(CollisionDetector& detector, const World& world) {
-  detector.detect(world.bodies(), detectionStep(world.settings()));
+  detector.detect(world.internalBodies(), detectionStep(world.settings()));
 }
 
 }  // namespace rbsim

@@ -1,3 +1,4 @@
+#include "physics/body/body.h"
 #include "physics/world/impacts.h"
 
 #include <algorithm>

@@ -24,7 +24,7 @@
 #include "physics/collision/body_contact.h"
 #include "physics/collision/contact_generation.h"
 #include "physics/math/types.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

@@ -13,7 +13,7 @@
 // below the error of keeping the detected features over the step.
 
 #include "physics/math/types.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

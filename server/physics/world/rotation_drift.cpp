@@ -1,4 +1,4 @@
-#include "physics/world/rotation_drift.h"
+#include "rbsim/physics/rotation_drift.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@ std::vector<RotationDriftWarning> rotationDriftWarnings(const World& world, doub
   const double dt = settings.dt;
   constexpr double kMaxSteps = 1e7;  // per body: a horizon beyond it is checked up to it
   const auto steps = static_cast<long>(std::min(std::ceil(horizon / dt), kMaxSteps));
-  for (const Body& body : world.bodies()) {
+  for (const BodyView body : world.bodies()) {
     if (body.isStatic() || body.isSleeping() || body.isFrozen()) continue;
     BodyDynamics dynamics = body.dynamics();
     dynamics.linearDamping = dynamics.angularDamping = 0.0;  // damping only takes energy out

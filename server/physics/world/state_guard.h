@@ -24,7 +24,7 @@
 #include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
 #include "physics/math/types.h"
-#include "physics/world/body_id.h"
+#include "rbsim/physics/ids.h"
 
 namespace rbsim {
 

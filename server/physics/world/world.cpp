@@ -1,13 +1,17 @@
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 
+#include "physics/body/body.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collision_detector.h"
+#include "physics/solver/contact_solver.h"
 
 namespace rbsim {
 
@@ -83,6 +87,14 @@ Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
   return std::visit(Visitor{where, def.density.value_or(BodyDef::kDefaultDensity)}, def.shape);
 }
 
+// Tags for the ids of worlds built anew; copies keep theirs. Only an id's
+// validity depends on it, never a step, so its global order cannot leak
+// into a simulation.
+uint32_t newWorldTag() {
+  static std::atomic<uint32_t> last{0};
+  return ++last;
+}
+
 MassProperties scaled(const MassProperties& unit, double density) {
   MassProperties result = unit;
   result.mass = unit.mass * density;
@@ -94,7 +106,9 @@ MassProperties scaled(const MassProperties& unit, double density) {
 
 World::World(const WorldSettings& settings)
     : m_settings(settings),
-      m_detector(std::make_unique<CollisionDetector>(settings.contact.detection)) {}
+      m_detector(std::make_unique<CollisionDetector>(settings.contact.detection)),
+      m_tag(newWorldTag()),
+      m_solver(std::make_unique<ContactSolver>()) {}
 
 World::World(const World& other) = default;
 World::World(World&& other) noexcept = default;
@@ -229,8 +243,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     m_slots.push_back({});
   }
   m_slots[static_cast<size_t>(slot)].denseIndex = static_cast<int32_t>(m_bodies.size());
-  const BodyId id{slot + 1, m_slots[static_cast<size_t>(slot)].generation};
-  body.m_serial = ++m_lastSerial;
+  const BodyId id{slot + 1, m_slots[static_cast<size_t>(slot)].generation, m_tag};
+  body.setSerial(++m_lastSerial);
   m_idByName.emplace(def.name, id);
   if (body.description().collider) ++m_collidingBodies;
   if (def.continuousCollision && !def.isStatic) ++m_continuousBodies;
@@ -239,8 +253,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   return id;
 }
 
-bool World::removeBody(BodyId id) {
-  if (!isValid(id)) return false;
+Expected<bool> World::removeBody(BodyId id) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot remove: " + why};
   Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
   const auto dense = static_cast<size_t>(slot.denseIndex);
   m_idByName.erase(m_bodies[dense].name());
@@ -263,20 +277,84 @@ BodyId World::findBody(std::string_view name) const {
   return found == m_idByName.end() ? BodyId{} : found->second;
 }
 
-bool World::isValid(BodyId id) const {
-  if (id.index <= 0 || static_cast<size_t>(id.index) > m_slots.size()) return false;
+bool World::isValid(BodyId id) const { return invalidIdReason(id).empty(); }
+
+std::string World::invalidIdReason(BodyId id) const {
+  const std::string named = "body id (index " + std::to_string(id.index) + ", generation " +
+                            std::to_string(id.generation) + ", world " + std::to_string(id.world) + ")";
+  if (id.isNull()) return "a null body id";
+  if (id.world != m_tag) return named + " is of another world";
+  if (id.index < 0 || static_cast<size_t>(id.index) > m_slots.size())
+    return named + " names no slot of this world";
   const Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
-  return slot.denseIndex >= 0 && slot.generation == id.generation;
+  if (slot.denseIndex < 0 || slot.generation != id.generation)
+    return named + " is stale: its body was removed";
+  return {};
 }
 
-const Body& World::body(BodyId id) const {
-  assert(isValid(id));
+BodyView World::body(BodyId id) const {
+  if (const std::string why = invalidIdReason(id); !why.empty()) throw std::invalid_argument(why);
+  return BodyView(m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)]);
+}
+
+BodyView World::bodyAt(int denseIndex) const {
+  return BodyView(m_bodies[static_cast<size_t>(denseIndex)]);
+}
+
+std::span<const Body> World::internalBodies() const { return m_bodies; }
+
+Body& World::bodyRef(BodyId id) {
   return m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)];
 }
 
-Body& World::body(BodyId id) {
-  assert(isValid(id));
-  return m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)];
+Expected<bool> World::applyWrench(BodyId id, const Wrench& wrench) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot push: " + why};
+  Body& target = bodyRef(id);
+  if (target.isStatic()) return true;  // nothing moves it
+  switch (wrench.frame) {
+    case Wrench::Frame::World:
+      target.applyWorldWrench(wrench.force, wrench.torque, wrench.point);
+      break;
+    case Wrench::Frame::WorldAtBodyPoint:
+      target.applyWorldWrenchAtBodyPoint(wrench.force, wrench.torque, wrench.point);
+      break;
+    case Wrench::Frame::Body:
+      target.applyBodyWrench(wrench.force, wrench.torque, wrench.point);
+      break;
+  }
+  return true;
+}
+
+Expected<bool> World::setBodyState(BodyId id, const RigidState& state) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot set the state: " + why};
+  Body& target = bodyRef(id);
+  if (!state.position.allFinite() || !state.orientation.isFinite() || state.orientation.norm() < 1e-9 ||
+      !state.linearMomentum.allFinite() || !state.angularMomentum.allFinite())
+    return Error{"body '" + target.name() + "': a state must be finite, its quaternion non-zero"};
+  target.setState(state);
+  target.wake();
+  return true;
+}
+
+Expected<bool> World::setBodyVelocities(BodyId id, const Vec3& linearVelocity, const Vec3& angularVelocity) {
+  if (const std::string why = invalidIdReason(id); !why.empty())
+    return Error{"cannot set the velocities: " + why};
+  Body& target = bodyRef(id);
+  if (!linearVelocity.allFinite() || !angularVelocity.allFinite())
+    return Error{"body '" + target.name() + "': velocities must be finite"};
+  if (target.isStatic() || target.isFrozen()) return true;  // held still either way
+  target.setVelocities(linearVelocity, angularVelocity);
+  target.wake();
+  return true;
+}
+
+Expected<bool> World::setBodyDamping(BodyId id, double linear, double angular) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot set damping: " + why};
+  Body& target = bodyRef(id);
+  if (!(std::isfinite(linear) && linear >= 0.0) || !(std::isfinite(angular) && angular >= 0.0))
+    return Error{"body '" + target.name() + "': damping must be finite and not negative"};
+  target.setDamping(linear, angular);
+  return true;
 }
 
 void World::step() {
@@ -285,7 +363,7 @@ void World::step() {
   std::vector<RigidState> starts;
   if (anyContact && m_continuousBodies > 0) {
     starts.reserve(m_bodies.size());
-    for (const Body& body : m_bodies) starts.push_back(body.m_state);
+    for (const Body& body : m_bodies) starts.push_back(body.state());
   }
   if (!anyContact) {
     integrateFree(m_settings.dt, {});
@@ -304,8 +382,8 @@ void World::step() {
 ForceInputs World::forcesOn(const Body& body) {
   ForceInputs inputs;
   inputs.gravity = m_settings.gravity;
-  if (body.m_load.active) {
-    inputs.load = &body.m_load;
+  if (body.load().active) {
+    inputs.load = &body.load();
     m_loadsSeen = true;
   }
   return inputs;
@@ -316,7 +394,7 @@ void World::clearLoads() {
   // bodies take none; frozen ones drop theirs), and the integration noted it.
   if (!m_loadsSeen) return;
   for (Body& body : m_bodies)
-    if (body.m_load.active) body.m_load.clear();
+    if (body.load().active) body.clearLoad();
   m_loadsSeen = false;
 }
 
@@ -332,45 +410,34 @@ void World::guardStates() {
     Body& body = m_bodies[i];
     if (body.isStatic()) continue;
     if (body.isFrozen()) {
-      holdFrozen(body);
+      // Back where it froze, whatever a contact path did to it in the step.
+      body.holdAtLastGoodPose();
       continue;
     }
-    if (body.m_sleeping) continue;  // it has not moved since it last passed
-    if (isHealthy(body.m_state, body.m_linearVelocity, body.m_angularVelocity, maxLinear2, maxAngular2)) {
-      body.m_lastGoodPosition = body.m_state.position;
-      body.m_lastGoodOrientation = body.m_state.orientation;
+    if (body.isSleeping()) continue;  // it has not moved since it last passed
+    if (isHealthy(body.state(), body.linearVelocity(), body.angularVelocity(), maxLinear2, maxAngular2)) {
+      body.keepPoseAsGood();
       continue;
     }
     const StateVerdict verdict =
-        judgeState(body.m_state, body.m_linearVelocity, body.m_angularVelocity, limits);
+        judgeState(body.state(), body.linearVelocity(), body.angularVelocity(), limits);
     if (verdict.reason == FreezeReason::None) continue;  // a pose sum that overflowed: none does
-    body.m_freezeReason = verdict.reason;
+    body.setFreezeReason(verdict.reason);
     ++m_frozenBodies;
-    holdFrozen(body);
+    body.holdAtLastGoodPose();
     m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict});
   }
 }
 
-void World::holdFrozen(Body& body) {
-  body.m_state.position = body.m_lastGoodPosition;
-  body.m_state.orientation = body.m_lastGoodOrientation;
-  body.m_state.linearMomentum.setZero();
-  body.m_state.angularMomentum.setZero();
-  body.m_load.clear();
-  // Never asleep: a frozen body is not at rest in an island, and waking it
-  // must not be what brings it back.
-  body.m_sleeping = false;
-  body.m_restTime = 0.0;
-  body.updateDerived();
-}
-
-bool World::freezeBody(BodyId id, FreezeReason reason) {
-  if (!isValid(id) || reason == FreezeReason::None) return false;
-  Body& frozen = body(id);
-  if (frozen.isStatic() || frozen.isFrozen()) return false;
-  frozen.m_freezeReason = reason;
+Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot freeze: " + why};
+  Body& frozen = bodyRef(id);
+  if (reason == FreezeReason::None) return Error{"body '" + frozen.name() + "': a freeze needs a reason"};
+  if (frozen.isStatic()) return Error{"body '" + frozen.name() + "' is static: nothing to freeze"};
+  if (frozen.isFrozen()) return Error{"body '" + frozen.name() + "' is frozen already"};
+  frozen.setFreezeReason(reason);
   ++m_frozenBodies;
-  holdFrozen(frozen);
+  frozen.holdAtLastGoodPose();
   return true;
 }
 
@@ -383,7 +450,7 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
   const bool laterMoves = m_continuousBodies > 0;
   for (std::size_t i = 0; i < m_bodies.size(); ++i) {
     Body& body = m_bodies[i];
-    if (body.isStatic() || body.m_sleeping) {
+    if (body.isStatic() || body.isSleeping()) {
       m_judged[i] = 1;  // nothing to check: it does not move this step
       continue;
     }
@@ -391,27 +458,22 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
     if (!skip.empty() && skip[i]) {
       // In contact: the solver moves it later in this step, and guardStates
       // judges it then, against the pose it has now.
-      body.m_lastGoodPosition = body.m_state.position;
-      body.m_lastGoodOrientation = body.m_state.orientation;
+      body.keepPoseAsGood();
       continue;
     }
     const ForceInputs inputs = forcesOn(body);
     const RigidState next =
-        integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
+        integrateStep(integrator, body.state(), body.rotation(), body.dynamics(), inputs, h);
     // The guard's check, on the new state while it is at hand. A body it
     // cannot clear (or that continuous collision may still move) is judged
     // again in guardStates, and frozen there at the pose it has now.
     const bool judgedHere =
-        surelyHealthy(next, body.m_dynamics.inverseMass, body.m_dynamics.inverseInertiaBody,
+        surelyHealthy(next, body.dynamics().inverseMass, body.dynamics().inverseInertiaBody,
                       maxLinear2, maxAngular2) &&
         !(laterMoves && body.description().continuousCollision);
-    if (!judgedHere) {
-      body.m_lastGoodPosition = body.m_state.position;
-      body.m_lastGoodOrientation = body.m_state.orientation;
-    }
+    if (!judgedHere) body.keepPoseAsGood();
     m_judged[i] = judgedHere ? 1 : 0;
-    body.m_state = next;
-    body.updateDerived();
+    body.moveTo(next);
   }
 }
 

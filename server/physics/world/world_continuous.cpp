@@ -2,9 +2,10 @@
 #include <algorithm>
 #include <utility>
 
+#include "physics/body/body.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/collision/time_of_impact.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 
@@ -16,7 +17,7 @@ void World::applyContinuousCollision(const std::vector<RigidState>& starts) {
     const Aabb bounds = body.description().collider->bounds;
     const Aabb atStart =
         transformedAabb(bounds, Transform::fromPose(starts[i].position, starts[i].orientation));
-    const Aabb atEnd = transformedAabb(bounds, Transform{body.m_rotation, body.m_state.position});
+    const Aabb atEnd = transformedAabb(bounds, Transform{body.rotation(), body.state().position});
     return atStart.merged(atEnd).fattened(m_settings.contact.detection.margin);
   };
   // Pairs the step's contacts already held (within the margin, or the
@@ -27,17 +28,17 @@ void World::applyContinuousCollision(const std::vector<RigidState>& starts) {
   if (m_detector) {
     inContact.reserve(m_detector->contacts().size());
     for (const BodyContact& c : m_detector->contacts())
-      inContact.emplace_back(m_bodies[static_cast<std::size_t>(c.bodyA)].m_serial,
-                             m_bodies[static_cast<std::size_t>(c.bodyB)].m_serial);
+      inContact.emplace_back(m_bodies[static_cast<std::size_t>(c.bodyA)].serial(),
+                             m_bodies[static_cast<std::size_t>(c.bodyB)].serial());
   }
   const auto touched = [&](const Body& a, const Body& b) {
-    const auto key = std::minmax(a.m_serial, b.m_serial);
+    const auto key = std::minmax(a.serial(), b.serial());
     return std::binary_search(inContact.begin(), inContact.end(),
                               std::make_pair(key.first, key.second));
   };
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
-    if (!body.description().continuousCollision || body.isStatic() || body.m_sleeping ||
+    if (!body.description().continuousCollision || body.isStatic() || body.isSleeping() ||
         body.isFrozen() || !body.description().collider)
       continue;
     const Aabb sweptI = sweptBox(i);
@@ -53,17 +54,18 @@ void World::applyContinuousCollision(const std::vector<RigidState>& starts) {
       Body startJ = m_bodies[j];
       startJ.setState(starts[j]);
       const TimeOfImpact impact =
-          continuousTimeOfImpact(startI, body.m_state, startJ, m_bodies[j].m_state);
+          continuousTimeOfImpact(startI, body.state(), startJ, m_bodies[j].state());
       if (impact.status == ImpactStatus::Hit && impact.fraction < earliest)
         earliest = impact.fraction;
     }
     if (earliest < 1.0) {
       // Back to the pose at the time of impact; the momenta stay, so the
       // contact found there next step takes the approach out.
-      const Transform pose = SweptMotion::between(starts[i], body.m_state).poseAt(earliest);
-      body.m_state.position = pose.translation;
-      body.m_state.orientation = Quaternion::fromRotationMatrix(pose.rotation);
-      body.updateDerived();
+      const Transform pose = SweptMotion::between(starts[i], body.state()).poseAt(earliest);
+      RigidState state = body.state();
+      state.position = pose.translation;
+      state.orientation = Quaternion::fromRotationMatrix(pose.rotation);
+      body.moveTo(state);
     }
   }
 }

@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <tuple>
 
+#include "physics/body/body.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collider.h"
 #include "physics/world/contact_detection.h"
+#include "physics/solver/contact_solver.h"
 #include "physics/world/impacts.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 
@@ -62,7 +64,7 @@ World::ContactStep World::selectContacts(const std::vector<BodyContact>& detecte
   // step's result (for reporting, and for warm starting when they wake).
   const auto awake = [&](int i) {
     const Body& b = m_bodies[static_cast<std::size_t>(i)];
-    return !b.isStatic() && !b.m_sleeping;
+    return !b.isStatic() && !b.isSleeping();
   };
   const std::size_t n = m_bodies.size();
   ContactStep step;
@@ -90,15 +92,15 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
   for (std::size_t i = 0; i < n; ++i) {
     const Body& body = m_bodies[i];
     SolverBody& sb = m_solverBodies[i];
-    sb.position = body.m_state.position;
+    sb.position = body.state().position;
     if (!solving[i]) continue;
     const ForceInputs inputs = forcesOn(body);
     const Momenta momenta =
-        integrateMomenta(body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
-    sb.inverseMass = body.m_dynamics.inverseMass;
-    sb.inverseInertia = body.m_invInertiaWorld;
-    sb.startLinearVelocity = body.m_linearVelocity;
-    sb.startAngularVelocity = body.m_angularVelocity;
+        integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
+    sb.inverseMass = body.dynamics().inverseMass;
+    sb.inverseInertia = body.inverseInertiaWorld();
+    sb.startLinearVelocity = body.linearVelocity();
+    sb.startAngularVelocity = body.angularVelocity();
     sb.linearVelocity = momenta.linear * sb.inverseMass;
     sb.angularVelocity = sb.inverseInertia * momenta.angular;
   }
@@ -186,7 +188,7 @@ void World::findImpacts(ContactStep& step) {
     SolverBody& sb = m_solverBodies[i];
     sb.position = flight.position;
     sb.inverseInertia =
-        rotation * body.m_dynamics.inverseInertiaBody.asDiagonal() * rotation.transpose();
+        rotation * body.dynamics().inverseInertiaBody.asDiagonal() * rotation.transpose();
     sb.linearVelocity = flight.linearMomentum * sb.inverseMass;
     sb.angularVelocity = sb.inverseInertia * flight.angularMomentum;
     sb.startLinearVelocity = sb.linearVelocity;
@@ -198,14 +200,14 @@ void World::solveContacts(const std::vector<BodyContact>& active,
                           const ContactSolverSettings& settings, double h,
                           std::vector<SolvedManifold>& solved) {
   std::vector<int32_t> serials(m_bodies.size());
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) serials[i] = m_bodies[i].m_serial;
+  for (std::size_t i = 0; i < m_bodies.size(); ++i) serials[i] = m_bodies[i].serial();
   std::vector<PairMaterial> materials;
   materials.reserve(active.size());
   for (const BodyContact& c : active)
     materials.push_back(
         combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
                          m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
-  m_solver.solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
+  m_solver->solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
                  contactLevels(active));
 }
 
@@ -275,26 +277,26 @@ void World::integrateSolvedBodies(const ContactStep& step,
       // over the rest of the step.
       RigidState state = freeFlight(body, integrator, m_settings.gravity, impactTime);
       const Mat3 rotation = state.orientation.toRotationMatrix();
-      state.linearMomentum = body.m_dynamics.mass * sb.linearVelocity;
-      state.angularMomentum = rotation * body.m_dynamics.inertiaBody.asDiagonal() *
+      state.linearMomentum = body.dynamics().mass * sb.linearVelocity;
+      state.angularMomentum = rotation * body.dynamics().inertiaBody.asDiagonal() *
                               rotation.transpose() * sb.angularVelocity;
       if (h > impactTime)
-        state = integrateStep(integrator, state, rotation, body.m_dynamics, inputs, h - impactTime);
+        state = integrateStep(integrator, state, rotation, body.dynamics(), inputs, h - impactTime);
       if (pseudo)
         integratePose(state.position, state.orientation, sb.pseudoLinear, sb.pseudoAngular, h);
-      body.m_state = state;
+      body.moveTo(state);
     } else if (!pseudo && !pushed[i]) {
       // No impulse reached it (a gap that stayed open): it flew free.
-      body.m_state =
-          integrateStep(integrator, body.m_state, body.m_rotation, body.m_dynamics, inputs, h);
+      body.moveTo(integrateStep(integrator, body.state(), body.rotation(), body.dynamics(), inputs, h));
     } else {
       // The solver worked with the inertia of the step start: L = I(t0) ω.
-      body.m_state.linearMomentum = body.m_dynamics.mass * sb.linearVelocity;
-      body.m_state.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
-      integratePose(body.m_state.position, body.m_state.orientation,
-                    sb.linearVelocity + sb.pseudoLinear, sb.angularVelocity + sb.pseudoAngular, h);
+      RigidState state = body.state();
+      state.linearMomentum = body.dynamics().mass * sb.linearVelocity;
+      state.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
+      integratePose(state.position, state.orientation, sb.linearVelocity + sb.pseudoLinear,
+                    sb.angularVelocity + sb.pseudoAngular, h);
+      body.moveTo(state);
     }
-    body.updateDerived();
   }
 }
 
@@ -302,14 +304,14 @@ void World::keepSleepingContacts(const std::vector<BodyContact>& detected,
                                  std::vector<SolvedManifold>& solved) const {
   const auto asleep = [&](int i) {
     const Body& b = m_bodies[static_cast<std::size_t>(i)];
-    return b.isStatic() || b.m_sleeping;
+    return b.isStatic() || b.isSleeping();
   };
   std::vector<SolvedManifold> kept;
   for (const BodyContact& c : detected) {
     if (!asleep(c.bodyA) || !asleep(c.bodyB)) continue;
     const auto key =
-        std::make_tuple(m_bodies[static_cast<std::size_t>(c.bodyA)].m_serial,
-                        m_bodies[static_cast<std::size_t>(c.bodyB)].m_serial, c.pieceA, c.pieceB);
+        std::make_tuple(m_bodies[static_cast<std::size_t>(c.bodyA)].serial(),
+                        m_bodies[static_cast<std::size_t>(c.bodyB)].serial(), c.pieceA, c.pieceB);
     const auto found =
         std::lower_bound(m_contacts.begin(), m_contacts.end(), key,
                          [](const SolvedManifold& m, const auto& k) { return manifoldKey(m) < k; });

@@ -4,7 +4,9 @@
 #include <limits>
 #include <numeric>
 
-#include "physics/world/world.h"
+#include "physics/body/body.h"
+#include "physics/collision/body_contact.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 
@@ -38,14 +40,13 @@ class DisjointSets {
 
 int World::sleepingBodyCount() const {
   return static_cast<int>(
-      std::count_if(m_bodies.begin(), m_bodies.end(), [](const Body& b) { return b.m_sleeping; }));
+      std::count_if(m_bodies.begin(), m_bodies.end(), [](const Body& b) { return b.isSleeping(); }));
 }
 
-void World::wakeUp(BodyId id) {
-  if (!isValid(id)) return;
-  Body& body = this->body(id);
-  body.m_sleeping = false;
-  body.m_restTime = 0.0;
+Expected<bool> World::wakeUp(BodyId id) {
+  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot wake: " + why};
+  bodyRef(id).wake();
+  return true;
 }
 
 std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) const {
@@ -73,7 +74,7 @@ void World::wakeIslands(const std::vector<int>& islandOf) {
   std::vector<char> islandAwake;
   for (std::size_t i = 0; i < n; ++i) {
     // Only a sleeping body has anything to wake; most steps find none.
-    if (!m_bodies[i].m_sleeping) continue;
+    if (!m_bodies[i].isSleeping()) continue;
     if (islandAwake.empty()) {
       // An island is awake when it holds an awake or a pushed body (a push
       // wakes it before the step in which the push first acts). Static
@@ -81,15 +82,12 @@ void World::wakeIslands(const std::vector<int>& islandOf) {
       islandAwake.assign(n, 0);
       for (std::size_t k = 0; k < n; ++k) {
         const Body& body = m_bodies[k];
-        if (!body.m_sleeping || body.m_load.active || !sleeping)
+        if (!body.isSleeping() || body.load().active || !sleeping)
           islandAwake[static_cast<std::size_t>(islandOf[k])] = 1;
       }
     }
     Body& body = m_bodies[i];
-    if (islandAwake[static_cast<std::size_t>(islandOf[i])]) {
-      body.m_sleeping = false;
-      body.m_restTime = 0.0;
-    }
+    if (islandAwake[static_cast<std::size_t>(islandOf[i])]) body.wake();
   }
 }
 
@@ -104,27 +102,25 @@ void World::updateSleep(const std::vector<int>& islandOf) {
   std::vector<double> islandRest(n, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
-    if (body.isStatic() || body.m_sleeping) continue;
-    const bool still = !body.m_load.active &&
-                       body.m_linearVelocity.squaredNorm() <
+    if (body.isStatic() || body.isSleeping()) continue;
+    const bool still = !body.load().active &&
+                       body.linearVelocity().squaredNorm() <
                            config.sleepLinearVelocity * config.sleepLinearVelocity &&
-                       body.m_angularVelocity.squaredNorm() <
+                       body.angularVelocity().squaredNorm() <
                            config.sleepAngularVelocity * config.sleepAngularVelocity;
-    body.m_restTime = still ? body.m_restTime + dt : 0.0;
+    body.setRestTime(still ? body.restTime() + dt : 0.0);
     double& rest = islandRest[static_cast<std::size_t>(islandOf[i])];
-    rest = std::min(rest, body.m_restTime);
+    rest = std::min(rest, body.restTime());
   }
   bool anyAsleep = false;
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
-    anyAsleep = anyAsleep || body.m_sleeping;
-    if (body.isStatic() || body.m_sleeping) continue;
+    anyAsleep = anyAsleep || body.isSleeping();
+    if (body.isStatic() || body.isSleeping()) continue;
     if (islandRest[static_cast<std::size_t>(islandOf[i])] >= config.sleepTime) {
       anyAsleep = true;
-      body.m_sleeping = true;
-      body.m_state.linearMomentum.setZero();
-      body.m_state.angularMomentum.setZero();
-      body.updateDerived();
+      body.setSleeping(true);
+      body.setMomenta(Vec3::Zero(), Vec3::Zero());
     }
   }
   m_maybeAsleep = anyAsleep;

@@ -9,10 +9,12 @@
 #include <utility>
 #include <vector>
 
+#include "physics/body/body.h"
 #include "physics/body/integrator.h"
+#include "physics/solver/contact_solver.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/world/penalty_contact.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 
@@ -74,7 +76,7 @@ class PenaltySystem {
   // mass). `pushing` fixes which points push; null lets the law decide at
   // this state. The points' forces times `weight` are added to `impulses`
   // when it is given.
-  std::vector<Wrench> contactWrenches(const States& states, const Rotations& rotations,
+  std::vector<NetWrench> contactWrenches(const States& states, const Rotations& rotations,
                                       const std::vector<char>* pushing, double weight,
                                       PointImpulses* impulses) const;
   std::vector<StateRate> rates(const States& states, const Rotations& rotations,
@@ -128,11 +130,11 @@ PenaltySystem::Switches PenaltySystem::switchesAt(const States& states,
   return switches;
 }
 
-std::vector<Wrench> PenaltySystem::contactWrenches(const States& states, const Rotations& rotations,
+std::vector<NetWrench> PenaltySystem::contactWrenches(const States& states, const Rotations& rotations,
                                                    const std::vector<char>* pushing, double weight,
                                                    PointImpulses* impulses) const {
   const std::vector<BodyMotion> moving = motions(states, rotations);
-  std::vector<Wrench> wrenches(states.size());
+  std::vector<NetWrench> wrenches(states.size());
   for (std::size_t p = 0; p < m_points.size(); ++p) {
     const PenaltyPoint& point = m_points[p];
     const BodyMotion& a = motionOf(point.bodyA, moving);
@@ -160,7 +162,7 @@ std::vector<Wrench> PenaltySystem::contactWrenches(const States& states, const R
 std::vector<StateRate> PenaltySystem::rates(const States& states, const Rotations& rotations,
                                             const std::vector<char>* pushing, double weight,
                                             PointImpulses* impulses) const {
-  const std::vector<Wrench> contact = contactWrenches(states, rotations, pushing, weight, impulses);
+  const std::vector<NetWrench> contact = contactWrenches(states, rotations, pushing, weight, impulses);
   std::vector<StateRate> out(states.size());
   for (std::size_t j = 0; j < states.size(); ++j) {
     out[j] = stateRate(states[j], rotations[j], m_bodies[j].dynamics, m_bodies[j].inputs);
@@ -321,7 +323,7 @@ std::vector<RigidState> PenaltySystem::step(IntegratorKind kind, double h) {
       // of the momenta by h F before the body's own semi-implicit step: the
       // same P' = (P + h (F_body + F_contact)) / (1 + c h), then x and q with
       // the new velocities.
-      const std::vector<Wrench> contact =
+      const std::vector<NetWrench> contact =
           contactWrenches(start, rotations, nullptr, h, &m_impulses);
       States end(n);
       for (std::size_t j = 0; j < n; ++j) {
@@ -358,7 +360,7 @@ void World::stepPenalty() {
   findContacts();
   const std::vector<BodyContact>& detected = m_detector->contacts();
   const std::size_t n = m_bodies.size();
-  for (Body& body : m_bodies) body.m_sleeping = false;  // the penalty model does not sleep bodies
+  for (Body& body : m_bodies) body.setSleeping(false);  // the penalty model does not sleep bodies
 
   // The system: every dynamic body that a contact touches.
   std::vector<int> systemIndex(n, -1);
@@ -374,7 +376,7 @@ void World::stepPenalty() {
       denseOf.push_back(i);
       const Body& body = m_bodies[k];
       const ForceInputs inputs = forcesOn(body);
-      system.push_back({body.m_state, body.m_rotation, body.m_dynamics, inputs});
+      system.push_back({body.state(), body.rotation(), body.dynamics(), inputs});
     }
   }
 
@@ -392,7 +394,7 @@ void World::stepPenalty() {
         combineMaterials(a.description().material, b.description().material);
     const ContactManifold& m = c.manifold;
     const double share = 1.0 / std::max(1, m.pointCount);
-    SolvedManifold record = SolvedManifold::identityOf(c, a.m_serial, b.m_serial);
+    SolvedManifold record = manifoldIdentity(c, a.serial(), b.serial());
     for (int p = 0; p < m.pointCount; ++p) {
       const ContactPoint& detectedPoint = m.points[static_cast<std::size_t>(p)];
       PenaltyPoint point =
@@ -422,8 +424,7 @@ void World::stepPenalty() {
     const std::vector<RigidState> next = penalty.step(m_settings.integrator, dt);
     for (std::size_t j = 0; j < next.size(); ++j) {
       Body& body = m_bodies[static_cast<std::size_t>(denseOf[j])];
-      body.m_state = next[j];
-      body.updateDerived();
+      body.moveTo(next[j]);
     }
     std::size_t index = 0;
     for (SolvedManifold& record : records) {

@@ -1,4 +1,4 @@
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 

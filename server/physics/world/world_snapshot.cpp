@@ -1,4 +1,26 @@
-#include "physics/world/world_snapshot.h"
+// The complete state of a World as bytes, for checkpoints (World::
+// encodeSnapshot / decodeSnapshot): a world restored from its snapshot steps
+// on bit-identically to the world it was taken from.
+//
+// What it holds: the step count and serial counter; every body with the 13
+// state numbers as bit patterns, its description (shape with mesh vertices,
+// mass properties and whether they were given, placement of the shape in
+// body space, material, flags), its dynamics, the load given for the coming
+// step, its sleep state (asleep, time at rest) and whether the numerical
+// guard froze it; the slot table behind BodyIds; and the contact solver's
+// warm-start cache (last step's solved manifolds), because the next step's
+// impulses start from it. Colliders, body-space meshes and the broad phase
+// are rebuilt from the above: they are functions of it.
+//
+// World settings are not restored: they come from the config. The snapshot
+// records the ones a resumed run must share (dt, gravity, integrator,
+// contact model and switches) and decoding refuses a mismatch.
+//
+// Format (little-endian, see byte_stream.h): "RBWS", version, then the
+// fields in the order below. Bumping World::kSnapshotVersion is how the
+// format changes; old versions are rejected with a message, not misread.
+
+#include "rbsim/physics/world.h"
 
 #include <array>
 #include <bit>
@@ -6,7 +28,9 @@
 #include <cstdio>
 #include <variant>
 
+#include "physics/body/body.h"
 #include "physics/collision/collider.h"
+#include "rbsim/physics/byte_stream.h"
 #include "physics/common/exact_text.h"
 
 namespace rbsim {
@@ -62,7 +86,7 @@ Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWrite
   } else {
     return Error{"body '" + body + "': a " + shapeTypeName(shape) +
                  " shape cannot be saved in a checkpoint (format version " +
-                 std::to_string(WorldSnapshot::kVersion) + ")"};
+                 std::to_string(World::kSnapshotVersion) + ")"};
   }
   return true;
 }
@@ -211,9 +235,7 @@ bool allFinite(std::initializer_list<double> values) {
   return true;
 }
 
-}  // namespace
-
-void WorldSnapshot::writeWarmStart(const std::vector<SolvedManifold>& manifolds, ByteWriter& out) {
+void writeWarmStart(const std::vector<SolvedManifold>& manifolds, ByteWriter& out) {
   out.u32(static_cast<uint32_t>(manifolds.size()));
   for (const SolvedManifold& m : manifolds) {
     out.i32(m.serialA);
@@ -240,7 +262,7 @@ void WorldSnapshot::writeWarmStart(const std::vector<SolvedManifold>& manifolds,
   }
 }
 
-std::vector<SolvedManifold> WorldSnapshot::readWarmStart(ByteReader& in, int bodyCount) {
+std::vector<SolvedManifold> readWarmStart(ByteReader& in, int bodyCount) {
   std::vector<SolvedManifold> manifolds;
   const uint32_t count = in.count("warm-start manifold count", 101);
   manifolds.reserve(count);
@@ -278,9 +300,12 @@ std::vector<SolvedManifold> WorldSnapshot::readWarmStart(ByteReader& in, int bod
   return manifolds;
 }
 
-Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
-  out.u32(kMagic);
-  out.u32(kVersion);
+}  // namespace
+
+Expected<bool> World::writeSnapshot(ByteWriter& out) const {
+  const World& world = *this;
+  out.u32(kSnapshotMagic);
+  out.u32(kSnapshotVersion);
   writeSettings(world.m_settings, out);
   out.i64(world.m_stepCount);
   out.i32(world.m_lastSerial);
@@ -297,7 +322,7 @@ Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
     const Body& body = world.m_bodies[i];
     const BodyDescription& d = body.description();
     out.i32(world.m_denseIds[i].index);
-    out.i32(body.m_serial);
+    out.i32(body.serial());
     out.string(d.name);
     out.boolean(d.isStatic);
     out.boolean(d.continuousCollision);
@@ -312,42 +337,42 @@ Expected<bool> WorldSnapshot::write(const World& world, ByteWriter& out) {
     out.f64(d.material.restitution);
     out.f64(d.material.friction);
     out.f64(d.material.staticFriction);
-    const BodyDynamics& dyn = body.m_dynamics;
+    const BodyDynamics& dyn = body.dynamics();
     out.f64(dyn.mass);
     out.f64(dyn.inverseMass);
     out.vec3(dyn.inertiaBody);
     out.vec3(dyn.inverseInertiaBody);
     out.f64(dyn.linearDamping);
     out.f64(dyn.angularDamping);
-    out.vec3(body.m_state.position);
-    out.quaternion(body.m_state.orientation);
-    out.vec3(body.m_state.linearMomentum);
-    out.vec3(body.m_state.angularMomentum);
-    writeLoad(body.m_load, out);
-    out.boolean(body.m_sleeping);
-    out.f64(body.m_restTime);
+    out.vec3(body.state().position);
+    out.quaternion(body.state().orientation);
+    out.vec3(body.state().linearMomentum);
+    out.vec3(body.state().angularMomentum);
+    writeLoad(body.load(), out);
+    out.boolean(body.isSleeping());
+    out.f64(body.restTime());
     // A frozen body's state is the pose it is held at (state_guard.h).
-    out.u8(static_cast<uint8_t>(body.m_freezeReason));
+    out.u8(static_cast<uint8_t>(body.freezeReason()));
   }
   writeWarmStart(world.contacts(), out);
   return true;
 }
 
-Expected<std::vector<uint8_t>> WorldSnapshot::encode(const World& world) {
+Expected<std::vector<uint8_t>> World::encodeSnapshot() const {
   ByteWriter out;
-  if (auto written = write(world, out); !written) return written.error();
+  if (auto written = writeSnapshot(out); !written) return written.error();
   return out.take();
 }
 
-Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& settings) {
+Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& settings) {
   const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
   const uint32_t magic = in.u32("snapshot magic");
   const uint32_t version = in.u32("snapshot version");
   if (in.failed()) return failure();
-  if (magic != kMagic) return Error{"world snapshot: not a world snapshot (bad magic number)"};
-  if (version != kVersion)
+  if (magic != kSnapshotMagic) return Error{"world snapshot: not a world snapshot (bad magic number)"};
+  if (version != kSnapshotVersion)
     return Error{"world snapshot: format version " + std::to_string(version) +
-                 " is not supported (this build reads version " + std::to_string(kVersion) + ")"};
+                 " is not supported (this build reads version " + std::to_string(kSnapshotVersion) + ")"};
   checkSettings(in, settings);
   if (in.failed()) return failure();
 
@@ -459,20 +484,18 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
     // The state exactly as saved: Body's constructor would normalise the
     // quaternion, which can move its last bit.
     Body body(description, dynamics, state);
-    body.m_state = state;
-    body.updateDerived();
-    body.m_serial = serial;
-    body.m_load = load;
-    body.m_sleeping = sleeping;
-    body.m_restTime = restTime;
+    body.moveTo(state);
+    body.setSerial(serial);
+    body.setLoad(load);
+    body.setSleeping(sleeping);
+    body.setRestTime(restTime);
     // The guard's last good pose is the state as saved: it was set from it
     // at the end of the step before the snapshot (and a frozen body is held
     // exactly there).
-    body.m_lastGoodPosition = state.position;
-    body.m_lastGoodOrientation = state.orientation;
-    body.m_freezeReason = static_cast<FreezeReason>(freezeReason);
+    body.keepPoseAsGood();
+    body.setFreezeReason(static_cast<FreezeReason>(freezeReason));
     if (body.isFrozen()) ++world.m_frozenBodies;
-    const BodyId id{slotIndex, world.m_slots[static_cast<std::size_t>(slotIndex - 1)].generation};
+    const BodyId id{slotIndex, world.m_slots[static_cast<std::size_t>(slotIndex - 1)].generation, world.m_tag};
     world.m_idByName.emplace(description->name, id);
     if (description->collider) ++world.m_collidingBodies;
     if (description->continuousCollision && !description->isStatic) ++world.m_continuousBodies;
@@ -491,9 +514,9 @@ Expected<World> WorldSnapshot::read(ByteReader& in, const WorldSettings& setting
   return world;
 }
 
-Expected<World> WorldSnapshot::decode(std::span<const uint8_t> bytes, const WorldSettings& settings) {
+Expected<World> World::decodeSnapshot(std::span<const uint8_t> bytes, const WorldSettings& settings) {
   ByteReader in(bytes);
-  auto world = read(in, settings);
+  auto world = readSnapshot(in, settings);
   if (world && in.remaining() != 0)
     return Error{"world snapshot: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
   return world;

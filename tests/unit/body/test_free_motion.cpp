@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "physics/math/rotation_matrix.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -39,7 +39,7 @@ TEST(FreeMotion, Rk4FreeFallIsExact) {
   for (int i = 0; i < 3000; ++i) world.step();
   const double t = world.time();
   EXPECT_DOUBLE_EQ(t, 3.0);
-  const Body& body = world.body(ball);
+  const BodyView body = world.body(ball);
   EXPECT_NEAR(body.position().z(), 100.0 - 0.5 * 9.81 * t * t, 1e-10);
   EXPECT_NEAR(body.position().x(), 2.0 * t, 1e-12);
   EXPECT_NEAR(body.linearVelocity().z(), -9.81 * t, 1e-11);
@@ -48,7 +48,7 @@ TEST(FreeMotion, Rk4FreeFallIsExact) {
 TEST(FreeMotion, WrenchLastsOneStepThenIsCleared) {
   World world = makeWorld(IntegratorKind::SemiImplicitEuler, Vec3::Zero());
   const BodyId box = addBox(world, "box", 2.0);
-  world.body(box).applyWorldWrench(Vec3(4.0, 0, 0), Vec3(0, 0, 1.0), world.body(box).position());
+  world.applyWrench(box, {Vec3(4.0, 0, 0), Vec3(0, 0, 1.0), world.body(box).position(), Wrench::Frame::World});
   world.step();
   const Vec3 momentumAfterOne = world.body(box).linearMomentum();
   const Vec3 spinAfterOne = world.body(box).angularMomentum();
@@ -67,7 +67,7 @@ TEST(FreeMotion, StaticBodiesNeverMove) {
   def.isStatic = true;
   def.position = Vec3(1, 2, 3);
   const BodyId anchor = *world.createBody(def);
-  world.body(anchor).applyWorldWrench(Vec3(100, 0, 0), Vec3(0, 0, 100), Vec3::Zero());
+  world.applyWrench(anchor, {Vec3(100, 0, 0), Vec3(0, 0, 100), Vec3::Zero(), Wrench::Frame::World});
   for (int i = 0; i < 100; ++i) world.step();
   EXPECT_EQ(world.body(anchor).position(), Vec3(1, 2, 3));
   EXPECT_EQ(world.body(anchor).linearVelocity(), Vec3::Zero());
@@ -100,7 +100,7 @@ TEST(FreeMotion, InertiaTensorFollowsTheRotation) {
   def.mass = 12.0;
   def.orientation = Quaternion::fromRollPitchYaw(0.5, -0.2, 1.1);
   def.angularVelocity = Vec3(1.0, 2.0, -0.5);
-  const Body& body = world.body(*world.createBody(def));
+  const BodyView body = world.body(*world.createBody(def));
   // I(t) = R Ibody Rᵀ with Ibody the box's closed form; L = I ω.
   const Vec3 ibody(12.0 / 3 * (0.04 + 0.09), 12.0 / 3 * (0.01 + 0.09), 12.0 / 3 * (0.01 + 0.04));
   const Mat3 r = def.orientation.toRotationMatrix();

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -91,7 +91,7 @@ struct PlateRun {
 
 PlateRun simulate(IntegratorKind kind, double dt, const Vec3& omega, double duration) {
   World world = makePlate(kind, dt, omega);
-  const Body& body = world.bodies()[0];
+  const BodyView body = world.bodies()[0];
   const double momentum0 = body.angularMomentum().norm();
   const double energy0 = body.kineticEnergy();
   PlateRun run;

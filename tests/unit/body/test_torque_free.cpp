@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -31,7 +31,7 @@ World makeTumbler(IntegratorKind kind, const Vec3& angularVelocity) {
 
 // World-frame direction of the body axis whose principal moment is the
 // k-th smallest.
-Vec3 principalAxisInWorld(const Body& body, int rank) {
+Vec3 principalAxisInWorld(BodyView body, int rank) {
   std::array<int, 3> order{0, 1, 2};
   const Vec3& moments = body.dynamics().inertiaBody;
   std::sort(order.begin(), order.end(), [&](int a, int b) { return moments[a] < moments[b]; });

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "physics/body/integrator.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -243,8 +243,7 @@ TEST(WrenchFrames, SymmetricTopHeldUpAtItsTipPrecessesAtTheSlowRoot) {
     const int steps = static_cast<int>(std::lround(seconds / dt));
     double azimuth = axisAzimuth(), turned = 0.0, maxTilt = 0.0;
     for (int i = 0; i < steps; ++i) {
-      world.body(top).applyWorldWrenchAtBodyPoint(Vec3(0.0, 0.0, m * g), Vec3::Zero(),
-                                                  Vec3(0.0, 0.0, -l));
+      world.applyWrench(top, {Vec3(0.0, 0.0, m * g), Vec3::Zero(), Vec3(0.0, 0.0, -l), Wrench::Frame::WorldAtBodyPoint});
       world.step();
       const double next = axisAzimuth();
       turned += std::remainder(next - azimuth, 2 * M_PI);

@@ -43,7 +43,7 @@ TEST(CommandHandler, AcceptedWrenchIsScheduledForTheNextStep) {
   EXPECT_EQ(outcome.ack.effective_step, 2);
   EXPECT_EQ(f.session.wrenches().pendingCount(), 1);
   f.session.step();
-  const Body& a = f.session.world().body(f.session.world().findBody("a"));
+  const BodyView a = f.session.world().body(f.session.world().findBody("a"));
   EXPECT_GT(a.linearMomentum().x(), 0.0);
 }
 
@@ -99,7 +99,7 @@ TEST(CommandHandler, SpawnWithGivenInertia) {
       " mass: 2, center_of_mass: [0.1, 0, 0], inertia: [0.01, 0.02, 0.03]}";
   const CommandOutcome spawned = send(f.handler, spawn);
   ASSERT_TRUE(spawned.ack.accepted) << spawned.ack.reason;
-  const Body& plate = f.session.world().body(f.session.world().findBody("plate"));
+  const BodyView plate = f.session.world().body(f.session.world().findBody("plate"));
   EXPECT_TRUE(plate.description().massPropertiesGiven);
   EXPECT_EQ(plate.mass(), 2.0);
   EXPECT_EQ(plate.dynamics().inertiaBody, Vec3(0.01, 0.02, 0.03));

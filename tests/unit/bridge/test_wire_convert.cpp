@@ -189,7 +189,7 @@ TEST(WireConvert, SpawnedCompoundRoundTripsInTheWorldDescription) {
   ASSERT_TRUE(def.ok()) << def.error().message;
   World world;
   const BodyId id = *world.createBody(*def);
-  const Body& body = world.body(id);
+  const BodyView body = world.body(id);
 
   const auto pages = worldDescriptionPages(world, 0, 1);
   ASSERT_EQ(pages.size(), 1u);

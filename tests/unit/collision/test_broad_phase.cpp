@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "physics/collision/broad_phase.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"
 
@@ -224,7 +224,7 @@ TEST(BroadPhase, FindsThePairsOfAWorld) {
   auto world = World::fromDef(scenes::makePileScene(300, scenes::PileVariant::Settled));
   ASSERT_TRUE(world.ok()) << world.error().message;
   BroadPhase broadPhase(0.05, kContactMargin);
-  broadPhase.update(world->bodies());
+  broadPhase.update(world->internalBodies());
   // Three layers of 100 columns: the ground with the bottom cube of each
   // column, and each cube with the one on it; columns are 5 cm apart.
   std::vector<BodyPair> expected;
@@ -237,7 +237,7 @@ TEST(BroadPhase, FindsThePairsOfAWorld) {
 
   // Remove a cube in the middle: its pairs go, the others are renumbered.
   ASSERT_TRUE(world->removeBody(world->findBody("box150")));
-  broadPhase.update(world->bodies());
+  broadPhase.update(world->internalBodies());
   for (const BodyPair& pair : broadPhase.pairs()) {
     EXPECT_NE(world->bodies()[static_cast<std::size_t>(pair.a)].name(), "box150");
     EXPECT_NE(world->bodies()[static_cast<std::size_t>(pair.b)].name(), "box150");

@@ -8,7 +8,7 @@
 
 #include "geometry_test_helpers.h"
 #include "physics/collision/collider.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {

@@ -5,7 +5,7 @@
 #include <tuple>
 
 #include "physics/world/contact_detection.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
 
 namespace rbsim {

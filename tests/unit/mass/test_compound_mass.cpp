@@ -11,7 +11,7 @@
 
 #include "meshio/mesh_io.h"
 #include "physics/mass/mass_properties.h"
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -79,8 +79,8 @@ TEST(CompoundMass, TwoBoxesSideBySideAreTheBoxTheyForm) {
   single.shape = BoxShape{Vec3(1.0, 0.5, 0.5)};
   single.density = density;
   single.position = Vec3(1, 2, 3);
-  const Body& a = world.body(*world.createBody(pair));
-  const Body& b = world.body(*world.createBody(single));
+  const BodyView a = world.body(*world.createBody(pair));
+  const BodyView b = world.body(*world.createBody(single));
   expectRelNear(a.mass(), b.mass());
   for (int k = 0; k < 3; ++k)
     expectRelNear(a.dynamics().inertiaBody[k], b.dynamics().inertiaBody[k]);
@@ -123,8 +123,8 @@ TEST(CompoundMass, LShapeOfTwoBoxesIsTheLBlockMesh) {
     def->position = Vec3(-1.0, 0.5, 2.0);
     def->orientation = Quaternion::fromRollPitchYaw(0.3, -0.2, 1.1);
   }
-  const Body& a = world.body(*world.createBody(compound));
-  const Body& b = world.body(*world.createBody(meshBody));
+  const BodyView a = world.body(*world.createBody(compound));
+  const BodyView b = world.body(*world.createBody(meshBody));
   for (int k = 0; k < 3; ++k)
     expectRelNear(a.dynamics().inertiaBody[k], b.dynamics().inertiaBody[k], 1e-10);
   expectVecNear(a.position(), b.position(), 1e-12);
@@ -189,7 +189,7 @@ TEST(CompoundMass, RotatedBoxOffCentreHasTheInertiaWorkedOutByHand) {
       density);
   def.position = Vec3(2.0, -1.0, 0.5);
   def.orientation = Quaternion::fromRollPitchYaw(0.4, 0.0, -0.7);
-  const Body& body = world.body(*world.createBody(def));
+  const BodyView body = world.body(*world.createBody(def));
   const Eigen::SelfAdjointEigenSolver<Mat3> eigen(expected);
   for (int k = 0; k < 3; ++k)
     expectRelNear(body.dynamics().inertiaBody[k], eigen.eigenvalues()[k], 1e-11);
@@ -213,14 +213,14 @@ TEST(CompoundMass, PartDensitiesWeighThePartsAndABodyMassScalesTheWhole) {
   World world;
   BodyDef byDensity = compoundBody("by_density", parts, 1000.0);
   byDensity.position = Vec3(0, 0, 0);
-  const Body& a = world.body(*world.createBody(byDensity));
+  const BodyView a = world.body(*world.createBody(byDensity));
   expectRelNear(a.mass(), 4000.0 * volume);
   expectVecNear(a.position(), Vec3(0.5, 0, 0), 1e-15);
 
   BodyDef byMass = compoundBody("by_mass", parts, 1000.0);
   byMass.density.reset();
   byMass.mass = 8.0;  // kg: 2 kg and 6 kg
-  const Body& b = world.body(*world.createBody(byMass));
+  const BodyView b = world.body(*world.createBody(byMass));
   EXPECT_EQ(b.mass(), 8.0);
   expectVecNear(b.position(), Vec3(0.5, 0, 0), 1e-15);
   // About the y axis through the centre of mass: (2/5) m r² each plus

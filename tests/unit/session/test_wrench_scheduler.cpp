@@ -131,7 +131,7 @@ TEST(WrenchScheduler, AWorldPointIsFixedInTheBodyWhenTheWrenchFirstActs) {
   EXPECT_EQ(scheduler.active()[0].pointFrame, WrenchFrame::Body);
   EXPECT_LT((scheduler.active()[0].point - Vec3(0.0, 0.0, 0.2)).norm(), 1e-12);
   run(world, scheduler, 99);
-  const Body& body = world.body(world.findBody("slider"));
+  const BodyView body = world.body(world.findBody("slider"));
   EXPECT_LT((body.linearMomentum() - Vec3(2.0, 0.5 * 100 * kDt, 0.0)).norm(), 1e-14);
   EXPECT_LT(body.angularMomentum().x(), -0.9 * 0.2 * 0.5 * 100 * kDt);  // about −0.2 F T
   // Zero but for the rounding of the captured point (the old world-fixed
@@ -178,7 +178,7 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
 
   // A world-frame force at the first sphere's centre, the shape origin: its
   // lever arm is −0.25 along the shape's x.
-  const Body& body = world.body(id);
+  const BodyView body = world.body(id);
   const Vec3 lever = body.rotation() * body.description().shapeToBodyPoint(Vec3::Zero());
   EXPECT_LT((lever - shapeToWorld.rotate(Vec3(-0.25, 0, 0))).norm(), 1e-12);  // not turned
   const Vec3 l0 = body.angularMomentum();

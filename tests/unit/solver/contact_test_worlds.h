@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim::testing {
 

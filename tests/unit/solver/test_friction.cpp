@@ -78,7 +78,7 @@ TEST(Friction, SphereLaunchedWithoutSpinEndsRollingAtFiveSeventhsOfItsSpeed) {
   const double v0 = 2.0, radius = 0.1;
   const BodyId ball = addSphere(world, "ball", radius, Vec3(0, 0, radius), Vec3(v0, 0, 0));
   for (int i = 0; i < 2000; ++i) world.step();
-  const Body& b = world.body(ball);
+  const BodyView b = world.body(ball);
   EXPECT_NEAR(b.linearVelocity().x(), 5.0 / 7.0 * v0, 0.002 * v0);
   // Rolling: the contact point is at rest, ω = v / r about +y.
   EXPECT_NEAR(b.angularVelocity().y() * radius, b.linearVelocity().x(), 1e-4);

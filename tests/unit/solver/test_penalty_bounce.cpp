@@ -291,8 +291,7 @@ TEST(PenaltyBounce, StaticDepthIsMgOverKWithEveryIntegrator) {
           for (int i = 0; i < static_cast<int>(std::lround(1.0 / dt)); ++i) {
             // A client's steady downward push: its own load, beside the contact's force.
             if (push != 0.0)
-              world.body(ball).applyWorldWrench(Vec3(0, 0, -push), Vec3::Zero(),
-                                                world.body(ball).position());
+              world.applyWrench(ball, {Vec3(0, 0, -push), Vec3::Zero(), world.body(ball).position(), Wrench::Frame::World});
             world.step();
           }
           const double depth = kRadius - world.body(ball).position().z();
@@ -342,7 +341,7 @@ TEST(PenaltyBounce, EulerMethodsTakeTheContactForceOfTheStepStart) {
     EXPECT_NEAR(world.body(ball).linearVelocity().z(), v1, 1e-12) << integratorName(integrator);
     EXPECT_NEAR(world.body(ball).position().z(), z1, 1e-12) << integratorName(integrator);
     EXPECT_NEAR(stepImpulse(world), force * h, 1e-12);
-    EXPECT_FALSE(world.body(ball).load().active) << "contact forces are not a client load";
+    EXPECT_FALSE(world.body(ball).isPushed()) << "contact forces are not a client load";
   }
 }
 

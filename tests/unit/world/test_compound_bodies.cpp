@@ -32,7 +32,7 @@ BodyDef dumbbell(const Vec3& position) {
 }
 
 // The dumbbell's pieces in the last step's contacts.
-std::set<int> touchingPieces(const World& world, const Body& body) {
+std::set<int> touchingPieces(const World& world, BodyView body) {
   std::set<int> pieces;
   for (const SolvedManifold& m : world.contacts()) {
     if (m.serialA == body.serial()) pieces.insert(m.pieceA);
@@ -46,7 +46,7 @@ TEST(CompoundBodies, ADumbbellRestsOnTheGroundOnBothSpheres) {
   testing::addGround(world);
   // Dropped from 5 cm above the ground.
   const BodyId id = *world.createBody(dumbbell(Vec3(0.0, 0.0, kSphereRadius + 0.05)));
-  const Body& body = world.body(id);
+  const BodyView body = world.body(id);
   for (int i = 0; i < 2000; ++i) world.step();  // 2 s
 
   EXPECT_EQ(touchingPieces(world, body), (std::set<int>{0, 1})) << "both spheres, not the rod";
@@ -71,7 +71,7 @@ TEST(CompoundBodies, AFallingCompoundHitsABoxWithThePieceAboveIt) {
   block.isStatic = true;
   ASSERT_TRUE(world.createBody(block).ok());
   const BodyId id = *world.createBody(dumbbell(Vec3(0.0, 0.0, 0.4 + kSphereRadius + 0.02)));
-  const Body& body = world.body(id);
+  const BodyView body = world.body(id);
 
   int firstContactStep = -1;
   for (int i = 0; i < 200 && firstContactStep < 0; ++i) {

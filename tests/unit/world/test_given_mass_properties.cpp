@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "meshio/mesh_io.h"
-#include "physics/world/world_snapshot.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -46,7 +46,7 @@ TEST(GivenMassProperties, PrincipalMomentsAxesAndCentreOfMassInTheWorld) {
   const BodyDef def = givenBody("part");
   const auto id = world.createBody(def);
   ASSERT_TRUE(id.ok()) << id.error().message;
-  const Body& body = world.body(*id);
+  const BodyView body = world.body(*id);
   EXPECT_TRUE(body.description().massPropertiesGiven);
   EXPECT_EQ(body.mass(), 7.0);
   EXPECT_EQ(body.description().massProperties.centerOfMass, kCenter);
@@ -153,9 +153,9 @@ TEST(GivenMassProperties, CheckpointRoundTripIsBitIdentical) {
   for (int i = 0; i < 500; ++i) original.step();
   ASSERT_GT(original.contactPointCount(), 0) << "something landed";
 
-  const auto bytes = WorldSnapshot::encode(original);
+  const auto bytes = original.encodeSnapshot();
   ASSERT_TRUE(bytes.ok()) << bytes.error().message;
-  auto restored = WorldSnapshot::decode(*bytes, settings);
+  auto restored = World::decodeSnapshot(*bytes, settings);
   ASSERT_TRUE(restored.ok()) << restored.error().message;
   for (const char* name : {"part", "mesh", "compound"}) {
     const BodyDescription& a = original.body(original.findBody(name)).description();
@@ -166,7 +166,7 @@ TEST(GivenMassProperties, CheckpointRoundTripIsBitIdentical) {
     EXPECT_EQ(b.shapeRotation, a.shapeRotation) << name;
   }
   EXPECT_FALSE(restored->body(restored->findBody("ground")).description().massPropertiesGiven);
-  EXPECT_EQ(*WorldSnapshot::encode(*restored), *bytes);
+  EXPECT_EQ(*restored->encodeSnapshot(), *bytes);
   for (int i = 0; i < 500; ++i) {
     original.step();
     restored->step();

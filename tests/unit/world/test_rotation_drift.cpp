@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "physics/world/rotation_drift.h"
+#include "rbsim/physics/rotation_drift.h"
 
 namespace rbsim {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -64,8 +64,7 @@ double pushedVelocity(bool onGround, int64_t first, int64_t steps, double force)
   while (scene.world.stepCount() < first + steps - 1) {
     const bool pushing = scene.world.stepCount() + 1 >= first;
     if (pushing)
-      scene.world.body(scene.box).applyWorldWrench(Vec3(force, 0, 0), Vec3::Zero(),
-                                                   scene.world.body(scene.box).position());
+      scene.world.applyWrench(scene.box, {Vec3(force, 0, 0), Vec3::Zero(), scene.world.body(scene.box).position(), Wrench::Frame::World});
     scene.world.step();
     const double v = scene.world.body(scene.box).linearVelocity().x();
     if (pushing) {
@@ -100,9 +99,9 @@ TEST(SleepAndWrenches, APushAtAnyMomentAroundTheSleepTimeGivesFTOverM) {
 TEST(SleepAndWrenches, APersistentlyPushedBodyNeverFallsAsleep) {
   // A force too small to move it past the sleep velocity in 2 s (1 mm/s).
   Scene scene = makeScene(false);
-  Body& box = scene.world.body(scene.box);
   for (int i = 0; i < 2000; ++i) {
-    box.applyWorldWrench(Vec3(1e-3, 0, 0), Vec3::Zero(), box.position());
+    scene.world.applyWrench(scene.box, {Vec3(1e-3, 0, 0), Vec3::Zero(), scene.world.body(scene.box).position(),
+                                        Wrench::Frame::World});
     scene.world.step();
     ASSERT_FALSE(scene.world.body(scene.box).isSleeping()) << "step " << scene.world.stepCount();
   }

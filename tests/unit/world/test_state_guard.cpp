@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "physics/world/world.h"
-#include "physics/world/world_snapshot.h"
+#include "rbsim/physics/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -80,7 +80,7 @@ void expectOthersUnaffected(World& guarded, World& reference, int steps) {
   for (int s = 0; s < steps; ++s) {
     guarded.step();
     reference.step();
-    for (const Body& body : reference.bodies()) {
+    for (const BodyView body : reference.bodies()) {
       const BodyId id = guarded.findBody(body.name());
       ASSERT_FALSE(id.isNull());
       ASSERT_TRUE(bitEqual(guarded.body(id).state(), body.state()))
@@ -89,7 +89,7 @@ void expectOthersUnaffected(World& guarded, World& reference, int steps) {
   }
 }
 
-void expectHeldStill(const Body& body, const Vec3& position, const Quaternion& orientation) {
+void expectHeldStill(BodyView body, const Vec3& position, const Quaternion& orientation) {
   EXPECT_TRUE(body.isFrozen());
   EXPECT_EQ(body.position(), position);
   EXPECT_EQ(body.orientation().w, orientation.w);
@@ -108,7 +108,7 @@ TEST(StateGuard, NanForceFreezesTheBodyAndLeavesTheOthersBitIdentical) {
 
   // The physics API takes any value (the server's wrench validation is the
   // first line of defence; this is the second).
-  guarded.body(victim).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), poseBefore);
+  guarded.applyWrench(victim, {Vec3(kNaN, 0, 0), Vec3::Zero(), poseBefore, Wrench::Frame::World});
   guarded.step();
   reference.step();
 
@@ -125,7 +125,7 @@ TEST(StateGuard, NanForceFreezesTheBodyAndLeavesTheOthersBitIdentical) {
   expectHeldStill(guarded.body(victim), poseBefore, turnBefore);
 
   // Gravity and pushes no longer move it, and it is reported only once.
-  guarded.body(victim).applyWorldWrench(Vec3(1, 2, 3), Vec3::Zero(), poseBefore);
+  guarded.applyWrench(victim, {Vec3(1, 2, 3), Vec3::Zero(), poseBefore, Wrench::Frame::World});
   expectOthersUnaffected(guarded, reference, 50);
   EXPECT_TRUE(guarded.freezeEvents().empty());
   expectHeldStill(guarded.body(victim), poseBefore, turnBefore);
@@ -137,8 +137,8 @@ TEST(StateGuard, FiniteForcesThatOverflowFreezeTheBody) {
   World world = flyingWorld(true);
   const BodyId victim = world.findBody("victim");
   const Vec3 at = world.body(victim).position();
-  world.body(victim).applyWorldWrench(Vec3(kHuge, 0, 0), Vec3::Zero(), at);
-  world.body(victim).applyWorldWrench(Vec3(kHuge, 0, 0), Vec3::Zero(), at);
+  world.applyWrench(victim, {Vec3(kHuge, 0, 0), Vec3::Zero(), at, Wrench::Frame::World});
+  world.applyWrench(victim, {Vec3(kHuge, 0, 0), Vec3::Zero(), at, Wrench::Frame::World});
   world.step();
   ASSERT_EQ(world.freezeEvents().size(), 1u);
   EXPECT_EQ(world.freezeEvents()[0].verdict.reason, FreezeReason::NonFiniteState);
@@ -147,8 +147,7 @@ TEST(StateGuard, FiniteForcesThatOverflowFreezeTheBody) {
   // A finite force at a long lever arm: its moment overflows.
   World lever = flyingWorld(true);
   const BodyId other = lever.findBody("victim");
-  lever.body(other).applyWorldWrench(Vec3(0, kHuge, 0), Vec3::Zero(),
-                                     lever.body(other).position() + Vec3(10, 0, 0));
+  lever.applyWrench(other, {Vec3(0, kHuge, 0), Vec3::Zero(), lever.body(other).position() + Vec3(10, 0, 0), Wrench::Frame::World});
   lever.step();
   ASSERT_EQ(lever.freezeEvents().size(), 1u);
   EXPECT_EQ(lever.freezeEvents()[0].verdict.reason, FreezeReason::NonFiniteState);
@@ -169,7 +168,7 @@ TEST(StateGuard, EveryIntegratorAndContactModelFreezesAndHolds) {
       const BodyId victim = world.findBody("victim");
       const Vec3 at = world.body(victim).position();
       const Quaternion turn = world.body(victim).orientation();
-      world.body(victim).applyBodyWrench(Vec3(0, 0, kNaN), Vec3::Zero(), Vec3::Zero());
+      world.applyWrench(victim, {Vec3(0, 0, kNaN), Vec3::Zero(), Vec3::Zero(), Wrench::Frame::Body});
       expectOthersUnaffected(world, reference, 200);
       expectHeldStill(world.body(victim), at, turn);
       EXPECT_FALSE(world.body(victim).isSleeping());
@@ -193,8 +192,8 @@ TEST(StateGuard, OverSpeedFreezesWithTheSpeedInTheReport) {
 
   // 1 N for 1 ms on a 4.19 kg ball is far too little; 1e5 N is 24 m/s.
   const Vec3 before = world.body(fast).position();
-  world.body(fast).applyWorldWrench(Vec3(1e5, 0, 0), Vec3::Zero(), before);
-  world.body(spinner).applyBodyWrench(Vec3::Zero(), Vec3(0, 0, 1e3), Vec3::Zero());
+  world.applyWrench(fast, {Vec3(1e5, 0, 0), Vec3::Zero(), before, Wrench::Frame::World});
+  world.applyWrench(spinner, {Vec3::Zero(), Vec3(0, 0, 1e3), Vec3::Zero(), Wrench::Frame::Body});
   world.step();
   ASSERT_EQ(world.freezeEvents().size(), 2u);
   const FreezeEvent& linear = world.freezeEvents()[0];
@@ -231,7 +230,7 @@ TEST(StateGuard, ALongThinBodySpinningBelowTheLimitStaysFree) {
   for (int s = 0; s < 100; ++s) world.step();
   EXPECT_FALSE(world.body(id).isFrozen());
   EXPECT_NEAR(world.body(id).angularVelocity().norm(), 90.0, 1e-6);
-  world.body(id).applyBodyWrench(Vec3::Zero(), Vec3(0, 0, 1e3), Vec3::Zero());
+  world.applyWrench(id, {Vec3::Zero(), Vec3(0, 0, 1e3), Vec3::Zero(), Wrench::Frame::Body});
   world.step();
   EXPECT_TRUE(world.body(id).isFrozen());
 }
@@ -243,7 +242,7 @@ TEST(StateGuard, AContinuousCollisionBodyIsJudgedAfterItsSweep) {
   const BodyId id = world.createBody(bullet).value();
   for (int s = 0; s < 3; ++s) world.step();
   const Vec3 before = world.body(id).position();
-  world.body(id).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), before);
+  world.applyWrench(id, {Vec3(kNaN, 0, 0), Vec3::Zero(), before, Wrench::Frame::World});
   world.step();
   ASSERT_EQ(world.freezeEvents().size(), 1u);
   EXPECT_EQ(world.body(id).position(), before);
@@ -312,7 +311,7 @@ TEST(StateGuard, AFrozenWallDoesNotStopAContinuousCollisionBody) {
 TEST(StateGuard, RemovingOrResettingClearsTheFrozenState) {
   World initial = flyingWorld(true);
   World world = initial;
-  world.body(world.findBody("victim")).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), Vec3::Zero());
+  world.applyWrench(world.findBody("victim"), {Vec3(kNaN, 0, 0), Vec3::Zero(), Vec3::Zero(), Wrench::Frame::World});
   world.step();
   ASSERT_EQ(world.frozenBodyCount(), 1);
 
@@ -333,13 +332,13 @@ TEST(StateGuard, RemovingOrResettingClearsTheFrozenState) {
 TEST(StateGuard, ACheckpointKeepsABodyFrozenAndTheRunBitIdentical) {
   World world = stackWorld(true);
   for (int s = 0; s < 5; ++s) world.step();
-  world.body(world.findBody("victim")).applyWorldWrench(Vec3(kNaN, 0, 0), Vec3::Zero(), Vec3::Zero());
+  world.applyWrench(world.findBody("victim"), {Vec3(kNaN, 0, 0), Vec3::Zero(), Vec3::Zero(), Wrench::Frame::World});
   world.step();
   ASSERT_EQ(world.frozenBodyCount(), 1);
 
-  const auto bytes = WorldSnapshot::encode(world);
+  const auto bytes = world.encodeSnapshot();
   ASSERT_TRUE(bytes.ok()) << bytes.error().message;
-  auto restored = WorldSnapshot::decode(*bytes, world.settings());
+  auto restored = World::decodeSnapshot(*bytes, world.settings());
   ASSERT_TRUE(restored.ok()) << restored.error().message;
   EXPECT_EQ(restored->frozenBodyCount(), 1);
   EXPECT_EQ(restored->body(restored->findBody("victim")).freezeReason(), FreezeReason::NonFiniteState);

@@ -1,7 +1,7 @@
 // Creating, finding and removing bodies; placement of the body frame.
 #include <gtest/gtest.h>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 namespace {
@@ -91,7 +91,7 @@ TEST(World, BodyFrameSitsAtTheShapePoseForPrimitives) {
   def.position = Vec3(1, 2, 3);
   def.orientation = Quaternion::fromRollPitchYaw(0.1, 0.2, 0.3);
   def.linearVelocity = Vec3(0.5, 0, 0);
-  const Body& body = world.body(*world.createBody(def));
+  const BodyView body = world.body(*world.createBody(def));
   EXPECT_EQ(body.position(), def.position);
   EXPECT_LT((body.rotation() - def.orientation.toRotationMatrix()).cwiseAbs().maxCoeff(), 1e-15);
   EXPECT_LT((body.linearVelocity() - def.linearVelocity).norm(), 1e-15);

@@ -5,9 +5,10 @@
 #include <string>
 
 #include "physics/body/material.h"
-#include "physics/geometry/shape.h"
+#include "physics/mass/mass_properties.h"  // inertiaTensorProblem: checks a tensor given as data
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
+#include "rbsim/physics/shapes.h"
 
 namespace rbsim {
 

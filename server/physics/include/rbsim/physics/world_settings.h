@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "physics/body/body_def.h"
+#include "rbsim/physics/body_definition.h"
 #include "physics/body/integrator_kind.h"
 #include "physics/collision/contact_generation.h"
 #include "physics/math/types.h"

@@ -1,5 +1,8 @@
 #pragma once
-// The world: owns the bodies and steps them by a fixed dt.
+// The world: owns the bodies and steps them by a fixed dt. With the headers
+// beside it (ids, body_definition, body_view, shapes, world_settings,
+// contacts, types) this is the physics library's public API; what lives in
+// the library's layer directories is internal to it.
 //
 // Determinism: the same sequence of calls gives bit-identical states. Bodies
 // are stepped in creation order (kept across removals), no unordered
@@ -7,24 +10,46 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
-#include "physics/body/body.h"
-#include "physics/body/body_def.h"
-#include "physics/body/integrator.h"
 #include "physics/common/deep_copy_ptr.h"
-#include "physics/common/expected.h"
-#include "physics/solver/contact_solver.h"
-#include "physics/world/body_id.h"
-#include "physics/world/state_guard.h"
-#include "physics/world/world_settings.h"
+#include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/body_view.h"
+#include "rbsim/physics/contacts.h"
+#include "rbsim/physics/ids.h"
+#include "rbsim/physics/types.h"
+#include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
 
+// Internal to the library: only named here.
+class Body;
+class ByteReader;
+class ByteWriter;
 class CollisionDetector;
+class ContactSolver;
+struct BodyContact;
+struct ForceInputs;
+struct SolverBody;
+
+// A force and a couple on a body for the coming step. The force acts at a
+// point fixed in the body: during the step (and at each RK4 stage) the point
+// moves and turns with the body.
+struct Wrench {
+  enum class Frame {
+    World,             // force, couple and point in the world frame (the point where it is now)
+    WorldAtBodyPoint,  // force and couple in the world frame, the point in the body frame
+    Body,              // force, couple and point in the body frame: the force turns with the body
+  };
+  Vec3 force = Vec3::Zero();   // N
+  Vec3 torque = Vec3::Zero();  // N·m
+  Vec3 point = Vec3::Zero();   // m; body points are relative to the centre of mass
+  Frame frame = Frame::World;
+};
 
 class World {
  public:
@@ -46,18 +71,44 @@ class World {
   // plane on a dynamic body, a mesh that is missing, a compound without
   // parts or with a bad part (named by its index).
   Expected<BodyId> createBody(const BodyDef& def);
-  bool removeBody(BodyId id);  // false for a null or stale id
+  Expected<bool> removeBody(BodyId id);  // an error for an invalid id
 
   BodyId findBody(std::string_view name) const;  // null id when absent
+  // True for an id this world (or a copy of it) handed out whose body still
+  // exists; false for a null, stale (removed) or foreign id.
   bool isValid(BodyId id) const;
-  const Body& body(BodyId id) const;  // asserts isValid
-  Body& body(BodyId id);
+  // A read-only view of the body. An invalid id is an error in every build:
+  // it throws std::invalid_argument naming the id and why (null, removed, of
+  // another world), rather than reading whatever body took over the slot.
+  BodyView body(BodyId id) const;
   BodyId idOf(int denseIndex) const { return m_denseIds[static_cast<size_t>(denseIndex)]; }
 
-  // Bodies in creation order; the vector's index is a body's dense index,
-  // which changes when an earlier body is removed (the BodyId does not).
-  const std::vector<Body>& bodies() const { return m_bodies; }
-  int bodyCount() const { return static_cast<int>(m_bodies.size()); }
+  // Bodies in creation order; the index is a body's dense index, which
+  // changes when an earlier body is removed (the BodyId does not).
+  int bodyCount() const { return static_cast<int>(m_denseIds.size()); }
+  BodyView bodyAt(int denseIndex) const;
+  class BodyRange;
+  BodyRange bodies() const;
+  // The bodies themselves (an internal type, body/body.h), for the library's
+  // own layers and its tests: collision detection runs on them.
+  std::span<const Body> internalBodies() const;
+
+  // Changes to one body. Each returns an error naming the body (or the id)
+  // for an invalid id, and leaves the world as it was.
+  //  - applyWrench: adds to the body's load for the coming step (cleared
+  //    after it) and wakes its island before that step; a static body takes
+  //    no load (nothing moves it). The values are not checked: a non-finite
+  //    or overflowing wrench ends with the numerical guard freezing the body
+  //    (world/state_guard.h); the server's limits refuse such wrenches first.
+  //  - setBodyState: the whole state (quaternion normalised); it must be
+  //    finite. The body wakes. A frozen body stays held where it froze.
+  //  - setBodyVelocities: of the centre of mass (m/s) and about it (rad/s),
+  //    world frame; finite. The body wakes.
+  //  - setBodyDamping: decay rates of P and L (1/s, finite, not negative).
+  Expected<bool> applyWrench(BodyId id, const Wrench& wrench);
+  Expected<bool> setBodyState(BodyId id, const RigidState& state);
+  Expected<bool> setBodyVelocities(BodyId id, const Vec3& linearVelocity, const Vec3& angularVelocity);
+  Expected<bool> setBodyDamping(BodyId id, double linear, double angular);
 
   // Advances the world by dt: gravity, damping and the external loads given
   // since the last step (then cleared), and contact as settings().contact
@@ -76,7 +127,7 @@ class World {
   // Freezes a dynamic body at its last good pose now (for tests and for
   // restoring a saved world); false for a null, stale, static or already
   // frozen body. Not reported in freezeEvents().
-  bool freezeBody(BodyId id, FreezeReason reason = FreezeReason::Requested);
+  Expected<bool> freezeBody(BodyId id, FreezeReason reason = FreezeReason::Requested);
   void setStateLimits(const StateLimits& limits) { m_settings.limits = limits; }
 
   // The contacts of the last step (solved impulses included), sorted by
@@ -85,7 +136,7 @@ class World {
   int contactPointCount() const;
   // Bodies asleep (at rest in an island that stopped being integrated).
   int sleepingBodyCount() const;
-  void wakeUp(BodyId id);
+  Expected<bool> wakeUp(BodyId id);  // wakes the body's island for the coming step
 
   // Body serials are never reused within a world's life. A world reset to a
   // copy of its initial state continues after the serials it handed out.
@@ -108,9 +159,22 @@ class World {
   // count: equal hashes mean bit-identical states.
   uint64_t stateHash() const;
 
+  // The complete state as bytes, for checkpoints: a world decoded from its
+  // snapshot steps on bit-identically to the world it was taken from
+  // (world_snapshot.cpp says what it holds and the format). Encoding fails
+  // only for a shape the format cannot hold. Decoding takes the config's
+  // settings, which must match those the snapshot recorded; errors name the
+  // field and byte offset of truncated, corrupt or inconsistent data.
+  static constexpr uint32_t kSnapshotMagic = 0x53574252u;  // "RBWS" in file order
+  // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
+  // the body, and whether a body's mass properties were given as data.
+  static constexpr uint32_t kSnapshotVersion = 3;
+  Expected<bool> writeSnapshot(ByteWriter& out) const;
+  Expected<std::vector<uint8_t>> encodeSnapshot() const;
+  static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
+  static Expected<World> decodeSnapshot(std::span<const uint8_t> bytes, const WorldSettings& settings);
+
  private:
-  // Checkpoints (world_snapshot.h) save and rebuild the private state exactly.
-  friend class WorldSnapshot;
 
   struct Slot {
     uint32_t generation = 0;
@@ -123,9 +187,10 @@ class World {
   void integrateFree(double h, const std::vector<char>& skip);
   // The numerical guard, once per step after everything else has moved.
   void guardStates();
-  // Puts a frozen body back at its last good pose with zero momenta, whatever
-  // a contact path did to it during the step.
-  static void holdFrozen(Body& body);
+  // The body behind a valid id.
+  Body& bodyRef(BodyId id);
+  // Why `id` names no body of this world ("" when it does).
+  std::string invalidIdReason(BodyId id) const;
   // Gravity and the body's external load, for the integrator; notes that a
   // load was seen, so that clearLoads() has something to do.
   ForceInputs forcesOn(const Body& body);
@@ -183,7 +248,8 @@ class World {
 
   WorldSettings m_settings;
   DeepCopyPtr<CollisionDetector> m_detector;
-  ContactSolver m_solver;
+  uint32_t m_tag;  // stamped on the ids it hands out (ids.h); copies keep it
+  DeepCopyPtr<ContactSolver> m_solver;
   std::vector<SolvedManifold> m_contacts;
   std::vector<SolverBody> m_solverBodies;  // scratch, one per body
   std::vector<Body> m_bodies;      // dense, in creation order
@@ -206,5 +272,34 @@ class World {
   // for the body (judged and passed in integrateFree, static, asleep).
   std::vector<char> m_judged;
 };
+
+// The bodies in creation order, as views: for (BodyView b : world.bodies()).
+class World::BodyRange {
+ public:
+  class Iterator {
+   public:
+    Iterator(const World* world, int index) : m_world(world), m_index(index) {}
+    BodyView operator*() const { return m_world->bodyAt(m_index); }
+    Iterator& operator++() {
+      ++m_index;
+      return *this;
+    }
+    bool operator!=(const Iterator& other) const { return m_index != other.m_index; }
+
+   private:
+    const World* m_world;
+    int m_index;
+  };
+  explicit BodyRange(const World* world) : m_world(world) {}
+  Iterator begin() const { return {m_world, 0}; }
+  Iterator end() const { return {m_world, m_world->bodyCount()}; }
+  int size() const { return m_world->bodyCount(); }
+  BodyView operator[](std::size_t denseIndex) const { return m_world->bodyAt(static_cast<int>(denseIndex)); }
+
+ private:
+  const World* m_world;
+};
+
+inline World::BodyRange World::bodies() const { return BodyRange(this); }
 
 }  // namespace rbsim

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/world/world.h"
+#include "rbsim/physics/world.h"
 
 namespace rbsim {
 

@@ -1,0 +1,39 @@
+#pragma once
+// The contacts of a step as the world reports them (World::contacts): per
+// touching pair of pieces, the normal, the points and the impulses the
+// solver found. Also the solver's warm-start cache for the next step.
+
+#include <cstdint>
+
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+// One solved contact point, kept for warm starting the next step and for
+// reporting (RBSIM_CONTACTS).
+struct SolvedContactPoint {
+  Vec3 point = Vec3::Zero();         // m, world, midway between the surfaces
+  double depth = 0.0;                // m
+  double normalImpulse = 0.0;        // N·s, accumulated this step
+  Vec3 tangentImpulse = Vec3::Zero();  // N·s, world: the patch's friction shared by normal load
+  double relativeNormalVelocity = 0.0;  // m/s at the step's start state (negative: approaching)
+  bool sticking = false;
+  uint32_t featureId = 0;
+};
+
+struct SolvedManifold {
+  int32_t serialA = 0;
+  int32_t serialB = 0;
+  int pieceA = 0;
+  int pieceB = 0;
+  int bodyA = 0;  // dense indices at the time of the step
+  int bodyB = 0;
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 frictionImpulse = Vec3::Zero();  // N·s, world, tangential, at the patch centroid
+  double twistImpulse = 0.0;            // N·m·s about the normal
+  bool sticking = false;                // the patch did not slip
+  int pointCount = 0;
+  SolvedContactPoint points[4];
+};
+
+}  // namespace rbsim
