@@ -54,7 +54,6 @@ void Body::holdAtLastGoodPose() {
   m_state.orientation = m_lastGoodOrientation;
   m_state.linearMomentum.setZero();
   m_state.angularMomentum.setZero();
-  m_load.clear();
   wake();
   updateDerived();
 }

@@ -8,7 +8,6 @@
 #include <memory>
 #include <string>
 
-#include "physics/body/external_load.h"
 #include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
 #include "rbsim/physics/body_view.h"
@@ -65,27 +64,6 @@ class Body {
   void setVelocities(const Vec3& linearVelocity, const Vec3& angularVelocity);
   void setDamping(double linear, double angular);
 
-  // External wrenches for the coming step (cleared by the world after it).
-  // Every force acts at a point fixed in the body: during the step (and at
-  // each RK4 stage) the point moves and turns with the body.
-  //  - applyWorldWrench: world-frame force and couple; the point is given by
-  //    its world position now, at the start of the step.
-  //  - applyWorldWrenchAtBodyPoint: world-frame force and couple at a body
-  //    point (body frame, relative to the centre of mass).
-  //  - applyBodyWrench: force, couple and point in the body frame; the force
-  //    turns with the body.
-  // A static body takes no load: nothing moves it.
-  void applyWorldWrench(const Vec3& force, const Vec3& torque, const Vec3& worldPoint) {
-    if (!isStatic()) m_load.addWorldWrench(force, torque, worldToBody(worldPoint));
-  }
-  void applyWorldWrenchAtBodyPoint(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
-    if (!isStatic()) m_load.addWorldWrench(force, torque, bodyPoint);
-  }
-  void applyBodyWrench(const Vec3& force, const Vec3& torque, const Vec3& bodyPoint) {
-    if (!isStatic()) m_load.addBodyWrench(force, torque, bodyPoint);
-  }
-  const ExternalLoad& load() const { return m_load; }
-  void clearLoad() { m_load.clear(); }
 
   // Sleeping: a body at rest long enough (with its whole island) is not
   // integrated until something touches or pushes it.
@@ -109,7 +87,6 @@ class Body {
     m_state.angularMomentum = angularMomentum;
     updateDerived();
   }
-  void setLoad(const ExternalLoad& load) { m_load = load; }
   void setSleeping(bool sleeping) { m_sleeping = sleeping; }
   double restTime() const { return m_restTime; }  // s below the sleep velocities
   void setRestTime(double restTime) { m_restTime = restTime; }
@@ -125,7 +102,7 @@ class Body {
     m_lastGoodOrientation = m_state.orientation;
   }
   void setFreezeReason(FreezeReason reason) { m_freezeReason = reason; }
-  // Back at the last good pose with zero momenta, no load, awake (a frozen
+  // Back at the last good pose with zero momenta, awake (a frozen
   // body is not at rest in an island, and waking it must not be what brings
   // it back).
   void holdAtLastGoodPose();
@@ -143,9 +120,6 @@ class Body {
   int32_t m_serial = 0;
   bool m_sleeping = false;
   double m_restTime = 0.0;  // s spent below the sleep velocities
-  // After the hot values that every step reads: most bodies are pushed by
-  // nothing, and only `active` is read of theirs.
-  ExternalLoad m_load;
   // The pose that last passed the guard's check: where a body that goes bad
   // is put back. Kept by the world after every step and by setState.
   Vec3 m_lastGoodPosition = Vec3::Zero();

@@ -28,6 +28,6 @@ double BodyView::kineticEnergy() const { return m_body->kineticEnergy(); }
 bool BodyView::isSleeping() const { return m_body->isSleeping(); }
 bool BodyView::isFrozen() const { return m_body->isFrozen(); }
 FreezeReason BodyView::freezeReason() const { return m_body->freezeReason(); }
-bool BodyView::isPushed() const { return m_body->load().active; }
+bool BodyView::isPushed() const { return m_pushed; }
 
 }  // namespace rbsim

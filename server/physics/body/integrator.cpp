@@ -88,11 +88,16 @@ namespace {
   return next;
 }
 
-[[gnu::always_inline]] inline void advancePose(Vec3& position, Quaternion& orientation,
-                                               const Vec3& linearVelocity, const Vec3& angularVelocity,
-                                               double dt) {
-  position += dt * linearVelocity;
-  orientation = addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized();
+struct Pose {
+  Vec3 position;
+  Quaternion orientation;
+};
+
+[[gnu::always_inline]] inline Pose advancedPose(const Vec3& position, const Quaternion& orientation,
+                                                const Vec3& linearVelocity, const Vec3& angularVelocity,
+                                                double dt) {
+  return {position + dt * linearVelocity,
+          addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized()};
 }
 
 }  // namespace
@@ -104,18 +109,19 @@ Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const Bo
 
 void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
                    const Vec3& angularVelocity, double dt) {
-  advancePose(position, orientation, linearVelocity, angularVelocity, dt);
+  const Pose next = advancedPose(position, orientation, linearVelocity, angularVelocity, dt);
+  position = next.position;
+  orientation = next.orientation;
 }
 
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
                                  const BodyDynamics& dynamics, const ForceInputs& inputs,
                                  double dt) {
   const Momenta momenta = momentaAfterForces(state, rotation, dynamics, inputs, dt);
-  RigidState next{state.position, state.orientation, momenta.linear, momenta.angular};
-  const Vec3 velocity = next.linearMomentum * dynamics.inverseMass;
-  const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, next.angularMomentum);
-  advancePose(next.position, next.orientation, velocity, omega, dt);
-  return next;
+  const Vec3 velocity = momenta.linear * dynamics.inverseMass;
+  const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, momenta.angular);
+  const Pose pose = advancedPose(state.position, state.orientation, velocity, omega, dt);
+  return {pose.position, pose.orientation, momenta.linear, momenta.angular};
 }
 
 RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,

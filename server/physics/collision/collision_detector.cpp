@@ -42,6 +42,11 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
   // alive, so the address cannot be reused) is immutable.
   const bool speculative = step.speculative;
   const double dt = step.dt;
+  const double slow = kSlowReach * m_settings.margin / dt;  // m/s
+  const bool speedsKnown = step.maxSquaredSpeed >= 0.0 && step.maxSquaredSpin >= 0.0;
+  const bool anyFast =
+      !speedsKnown ||
+      2.0 * (step.maxSquaredSpeed + step.maxSquaredSpin * m_maxRadius * m_maxRadius) >= slow * slow;
   m_geometry.resize(bodies.size());
   m_broadPhaseInputs.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -50,14 +55,16 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
     const Transform pose = poseOf(body);
     const bool sameBody =
         geometry.description.get() == &body.description() && geometry.serial == body.serial();
-    if (geometry.description.get() != &body.description()) {
+    const bool newGeometry = geometry.description.get() != &body.description();
+    if (newGeometry) {
       geometry.description = body.sharedDescription();
       geometry.collider = geometry.description->collider.get();
       geometry.shape = BroadPhaseShape::of(body);
       geometry.radius = geometry.collider ? colliderRadius(*geometry.collider) : 0.0;
+      m_maxRadius = std::max(m_maxRadius, geometry.radius);
     }
     double reach = 0.0;
-    if (speculative && !geometry.shape.isStatic && !body.isSleeping()) {
+    if (speculative && (anyFast || newGeometry) && !geometry.shape.isStatic && !body.isSleeping()) {
       // A body that moves less than half the margin in a step needs none: two
       // of them close by less than the margin per step, so the margin sees
       // their contact coming before they touch. Leaving it at zero keeps
@@ -66,7 +73,6 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
       // bodies pay no square root.
       const double speed2 = body.linearVelocity().squaredNorm();
       const double spin2 = body.angularVelocity().squaredNorm() * geometry.radius * geometry.radius;
-      const double slow = kSlowReach * m_settings.margin / dt;  // m/s
       if (2.0 * (speed2 + spin2) >= slow * slow)
         reach = dt * (std::sqrt(speed2) + std::sqrt(spin2));
     }

@@ -23,6 +23,13 @@ struct DetectionStep {
   // far as it may move within dt, so its impact is seen in the step it
   // happens. Off, only the contact margin counts.
   bool speculative = false;
+  // Bounds on every awake body's speeds, when the caller knows them (the
+  // world does, from the step before): squared |v| (m²/s²) and squared |ω|
+  // (1/s², a bound). When even the largest radius turns at the largest spin
+  // and moves at the largest speed below what needs a reach, no body's reach
+  // is computed. Negative: unknown, each body is checked.
+  double maxSquaredSpeed = -1.0;
+  double maxSquaredSpin = -1.0;
 };
 
 class CollisionDetector {
@@ -86,6 +93,7 @@ class CollisionDetector {
   std::size_t m_previousPairCursor = 0;
   std::vector<BroadPhaseBody> m_broadPhaseInputs;
   std::vector<BodyGeometry> m_geometry;  // by dense body index, for the current detect()
+  double m_maxRadius = 0.0;  // m: of every collider seen (never shrinks: a bound)
   std::vector<PlacedPiece> m_placedB;    // scratch
 };
 

@@ -92,12 +92,13 @@ SignedDistance colliderDistance(const Collider& a, const Transform& poseA, const
 // ---------------------------------------------------------------- bisection
 
 PoseAtFraction integratedMotion(const Body& body, IntegratorKind integrator, const Vec3& gravity,
-                                double dt) {
+                                double dt, const ExternalLoad* externalLoad) {
   if (body.isStatic()) {
     return [pose = Transform{body.rotation(), body.position()}](double) { return pose; };
   }
   return [state = body.state(), rotation = body.rotation(), dynamics = body.dynamics(),
-          load = body.load(), gravity, integrator, dt](double fraction) {
+          load = externalLoad != nullptr ? *externalLoad : ExternalLoad{}, gravity, integrator,
+          dt](double fraction) {
     ForceInputs inputs;
     inputs.gravity = gravity;
     inputs.load = load.active ? &load : nullptr;

@@ -31,6 +31,7 @@
 
 #include <functional>
 
+#include "physics/body/external_load.h"
 #include "physics/body/body.h"
 #include "physics/body/integrator_kind.h"
 #include "physics/body/rigid_state.h"
@@ -70,12 +71,12 @@ SignedDistance colliderDistance(const Collider& a, const Transform& poseA, const
 using PoseAtFraction = std::function<Transform(double fraction)>;
 
 // Integrates a copy of the body from its current state by s·dt with the
-// world's integrator, gravity and the body's pending external load (exact
+// world's integrator, gravity and the external load given (exact
 // for whatever the integrator does within one step, so the time found is
 // that of the motion the step really takes).
 // A static body stays where it is.
 PoseAtFraction integratedMotion(const Body& body, IntegratorKind integrator, const Vec3& gravity,
-                                double dt);
+                                double dt, const ExternalLoad* load = nullptr);
 // Interpolates between two states of a body: the centre linearly, the
 // orientation at a constant rate about a fixed axis (slerp). Cheap, and
 // needs only the states before and after a step.

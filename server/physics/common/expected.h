@@ -1,6 +1,8 @@
 #pragma once
 // A value or an error message, for the expected failures of load-time code
-// (bad mesh file, bad config). No exception crosses the physics API.
+// (bad mesh file, bad config) and of changes asked of a world. The one
+// exception that crosses the physics API is misuse: World::body with an id
+// that names no body of the world throws std::invalid_argument.
 // (std::expected is C++23; this is the part of it we need.)
 
 #include <cassert>

@@ -18,4 +18,13 @@ inline void detectContacts(CollisionDetector& detector, const World& world) {
   detector.detect(world.internalBodies(), detectionStep(world.settings()));
 }
 
+// With the world's bounds on its bodies' speeds (negative: unknown).
+inline void detectContacts(CollisionDetector& detector, const World& world, double maxSquaredSpeed,
+                           double maxSquaredSpin) {
+  DetectionStep step = detectionStep(world.settings());
+  step.maxSquaredSpeed = maxSquaredSpeed;
+  step.maxSquaredSpin = maxSquaredSpin;
+  detector.detect(world.internalBodies(), step);
+}
+
 }  // namespace rbsim

@@ -25,18 +25,19 @@ double gapOf(const ContactManifold& manifold) {
 
 }  // namespace
 
-RigidState freeFlight(const Body& body, IntegratorKind integrator, const Vec3& gravity, double t) {
+RigidState freeFlight(const FlyingBody& flying, IntegratorKind integrator, const Vec3& gravity, double t) {
+  const Body& body = flying.body;
   if (body.isStatic() || t == 0.0) return body.state();
   ForceInputs inputs;
   inputs.gravity = gravity;
-  inputs.load = body.load().active ? &body.load() : nullptr;
+  inputs.load = flying.load != nullptr && flying.load->active ? flying.load : nullptr;
   return integrateStep(integrator, body.state(), body.rotation(), body.dynamics(), inputs, t);
 }
 
-std::optional<Impact> findImpact(const Body& a, const Body& b, const BodyContact& contact,
+std::optional<Impact> findImpact(const FlyingBody& a, const FlyingBody& b, const BodyContact& contact,
                                  const ImpactSearch& search, double dt, double predictedTime) {
-  const Collider& colliderA = *a.description().collider;
-  const Collider& colliderB = *b.description().collider;
+  const Collider& colliderA = *a.body.description().collider;
+  const Collider& colliderB = *b.body.description().collider;
   Impact trial;
   const auto gapAt = [&](double t) {
     const RigidState stateA = freeFlight(a, search.integrator, search.gravity, t);

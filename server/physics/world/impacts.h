@@ -19,6 +19,7 @@
 
 #include <optional>
 
+#include "physics/body/external_load.h"
 #include "physics/body/body.h"
 #include "physics/body/rigid_state.h"
 #include "physics/collision/body_contact.h"
@@ -50,16 +51,23 @@ struct Impact {
   ContactManifold manifold;
 };
 
+// A body as it flies free: the body and the external load on it this step
+// (null for none; the world keeps loads, not bodies).
+struct FlyingBody {
+  const Body& body;
+  const ExternalLoad* load = nullptr;
+};
+
 // The state of a body after t (s) of free flight from its current state with
 // the world's integrator, gravity and its external load; a static body stays.
-RigidState freeFlight(const Body& body, IntegratorKind integrator, const Vec3& gravity, double t);
+RigidState freeFlight(const FlyingBody& flying, IntegratorKind integrator, const Vec3& gravity, double t);
 
 // The first time in [0, dt] at which the pieces of `contact` (detected at the
 // bodies' current poses) touch while both bodies fly free; nullopt when they
 // are apart at dt and at `predictedTime` (s, where the gap would close at its
 // current rate: a body fast enough to pass a thin piece within the step is
 // apart at both ends of it). Both bodies must have colliders.
-std::optional<Impact> findImpact(const Body& a, const Body& b, const BodyContact& contact,
+std::optional<Impact> findImpact(const FlyingBody& a, const FlyingBody& b, const BodyContact& contact,
                                  const ImpactSearch& search, double dt, double predictedTime);
 
 }  // namespace rbsim

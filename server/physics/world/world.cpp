@@ -9,9 +9,11 @@
 #include <utility>
 
 #include "physics/body/body.h"
+#include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/solver/contact_solver.h"
+#include "physics/world/impacts.h"
 
 namespace rbsim {
 
@@ -249,6 +251,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   if (body.description().collider) ++m_collidingBodies;
   if (def.continuousCollision && !def.isStatic) ++m_continuousBodies;
   m_bodies.push_back(std::move(body));
+  m_loads.emplace_back();
+  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;  // its velocities are the caller's
   m_denseIds.push_back(id);
   return id;
 }
@@ -263,6 +267,7 @@ Expected<bool> World::removeBody(BodyId id) {
     --m_continuousBodies;
   if (m_bodies[dense].isFrozen()) --m_frozenBodies;
   m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
+  m_loads.erase(m_loads.begin() + static_cast<std::ptrdiff_t>(dense));
   m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (size_t i = dense; i < m_denseIds.size(); ++i)
     m_slots[static_cast<size_t>(m_denseIds[i].index - 1)].denseIndex = static_cast<int32_t>(i);
@@ -294,32 +299,41 @@ std::string World::invalidIdReason(BodyId id) const {
 
 BodyView World::body(BodyId id) const {
   if (const std::string why = invalidIdReason(id); !why.empty()) throw std::invalid_argument(why);
-  return BodyView(m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)]);
+  return bodyAt(m_slots[static_cast<size_t>(id.index - 1)].denseIndex);
 }
 
 BodyView World::bodyAt(int denseIndex) const {
-  return BodyView(m_bodies[static_cast<size_t>(denseIndex)]);
+  const auto i = static_cast<size_t>(denseIndex);
+  return BodyView(m_bodies[i], m_loads[i].active);
+}
+
+FlyingBody World::flying(std::size_t denseIndex) const {
+  const ExternalLoad& load = m_loads[denseIndex];
+  return {m_bodies[denseIndex], load.active ? &load : nullptr};
 }
 
 std::span<const Body> World::internalBodies() const { return m_bodies; }
 
-Body& World::bodyRef(BodyId id) {
-  return m_bodies[static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex)];
+std::size_t World::denseIndexOf(BodyId id) const {
+  return static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex);
 }
+
+Body& World::bodyRef(BodyId id) { return m_bodies[denseIndexOf(id)]; }
 
 Expected<bool> World::applyWrench(BodyId id, const Wrench& wrench) {
   if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot push: " + why};
-  Body& target = bodyRef(id);
+  const Body& target = bodyRef(id);
   if (target.isStatic()) return true;  // nothing moves it
+  ExternalLoad& load = m_loads[denseIndexOf(id)];
   switch (wrench.frame) {
     case Wrench::Frame::World:
-      target.applyWorldWrench(wrench.force, wrench.torque, wrench.point);
+      load.addWorldWrench(wrench.force, wrench.torque, target.worldToBody(wrench.point));
       break;
     case Wrench::Frame::WorldAtBodyPoint:
-      target.applyWorldWrenchAtBodyPoint(wrench.force, wrench.torque, wrench.point);
+      load.addWorldWrench(wrench.force, wrench.torque, wrench.point);
       break;
     case Wrench::Frame::Body:
-      target.applyBodyWrench(wrench.force, wrench.torque, wrench.point);
+      load.addBodyWrench(wrench.force, wrench.torque, wrench.point);
       break;
   }
   return true;
@@ -333,6 +347,7 @@ Expected<bool> World::setBodyState(BodyId id, const RigidState& state) {
     return Error{"body '" + target.name() + "': a state must be finite, its quaternion non-zero"};
   target.setState(state);
   target.wake();
+  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;
   return true;
 }
 
@@ -345,6 +360,7 @@ Expected<bool> World::setBodyVelocities(BodyId id, const Vec3& linearVelocity, c
   if (target.isStatic() || target.isFrozen()) return true;  // held still either way
   target.setVelocities(linearVelocity, angularVelocity);
   target.wake();
+  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;
   return true;
 }
 
@@ -371,7 +387,12 @@ void World::step() {
   } else if (m_settings.contact.model == ContactModel::Penalty) {
     stepPenalty();
   } else {
+    m_stepSquaredSpeed = m_stepSquaredSpin = 0.0;
     stepImpulse();
+    // Every awake body was integrated by one of the step's paths, which
+    // noted its speeds; sleeping, static and frozen bodies stand still.
+    m_maxSquaredSpeed = m_stepSquaredSpeed;
+    m_maxSquaredSpin = m_stepSquaredSpin;
   }
   if (!starts.empty()) applyContinuousCollision(starts);
   clearLoads();
@@ -379,11 +400,11 @@ void World::step() {
   guardStates();
 }
 
-ForceInputs World::forcesOn(const Body& body) {
+ForceInputs World::forcesOn(std::size_t denseIndex) {
   ForceInputs inputs;
   inputs.gravity = m_settings.gravity;
-  if (body.load().active) {
-    inputs.load = &body.load();
+  if (const ExternalLoad& load = m_loads[denseIndex]; load.active) {
+    inputs.load = &load;
     m_loadsSeen = true;
   }
   return inputs;
@@ -393,8 +414,8 @@ void World::clearLoads() {
   // Every pushed body was integrated (a push wakes a sleeping one; static
   // bodies take none; frozen ones drop theirs), and the integration noted it.
   if (!m_loadsSeen) return;
-  for (Body& body : m_bodies)
-    if (body.load().active) body.clearLoad();
+  for (ExternalLoad& load : m_loads)
+    if (load.active) load.clear();
   m_loadsSeen = false;
 }
 
@@ -412,6 +433,7 @@ void World::guardStates() {
     if (body.isFrozen()) {
       // Back where it froze, whatever a contact path did to it in the step.
       body.holdAtLastGoodPose();
+      m_loads[i].clear();
       continue;
     }
     if (body.isSleeping()) continue;  // it has not moved since it last passed
@@ -425,6 +447,7 @@ void World::guardStates() {
     body.setFreezeReason(verdict.reason);
     ++m_frozenBodies;
     body.holdAtLastGoodPose();
+    m_loads[i].clear();
     m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict});
   }
 }
@@ -438,6 +461,7 @@ Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
   frozen.setFreezeReason(reason);
   ++m_frozenBodies;
   frozen.holdAtLastGoodPose();
+  m_loads[denseIndexOf(id)].clear();
   return true;
 }
 
@@ -461,16 +485,17 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
       body.keepPoseAsGood();
       continue;
     }
-    const ForceInputs inputs = forcesOn(body);
+    const ForceInputs inputs = forcesOn(i);
     const RigidState next =
         integrateStep(integrator, body.state(), body.rotation(), body.dynamics(), inputs, h);
     // The guard's check, on the new state while it is at hand. A body it
     // cannot clear (or that continuous collision may still move) is judged
     // again in guardStates, and frozen there at the pose it has now.
-    const bool judgedHere =
-        surelyHealthy(next, body.dynamics().inverseMass, body.dynamics().inverseInertiaBody,
-                      maxLinear2, maxAngular2) &&
-        !(laterMoves && body.description().continuousCollision);
+    // For the guard and for the next step's collision detection.
+    const SpeedBounds speeds = speedBounds(next, body.dynamics().inverseMass, body.dynamics().inverseInertiaBody);
+    noteSpeeds(speeds.squaredSpeed, speeds.squaredSpin);
+    const bool judgedHere = speeds.squaredSpeed <= maxLinear2 && speeds.squaredSpin <= maxAngular2 &&
+                            !(laterMoves && body.description().continuousCollision);
     if (!judgedHere) body.keepPoseAsGood();
     m_judged[i] = judgedHere ? 1 : 0;
     body.moveTo(next);

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "physics/body/body.h"
+#include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collider.h"
 #include "physics/world/contact_detection.h"
@@ -33,7 +34,7 @@ int World::contactPointCount() const {
 }
 
 void World::findContacts() {
-  detectContacts(*m_detector, *this);
+  detectContacts(*m_detector, *this, m_maxSquaredSpeed, m_maxSquaredSpin);
 }
 
 void World::stepImpulse() {
@@ -94,7 +95,7 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     SolverBody& sb = m_solverBodies[i];
     sb.position = body.state().position;
     if (!solving[i]) continue;
-    const ForceInputs inputs = forcesOn(body);
+    const ForceInputs inputs = forcesOn(i);
     const Momenta momenta =
         integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
     sb.inverseMass = body.dynamics().inverseMass;
@@ -160,8 +161,8 @@ void World::findImpacts(ContactStep& step) {
     }
     if (!colliding) continue;
     const std::optional<Impact> impact =
-        findImpact(m_bodies[static_cast<std::size_t>(c.bodyA)],
-                   m_bodies[static_cast<std::size_t>(c.bodyB)], c, search, dt, predictedTime);
+        findImpact(flying(static_cast<std::size_t>(c.bodyA)), flying(static_cast<std::size_t>(c.bodyB)), c,
+                   search, dt, predictedTime);
     if (!impact) continue;  // the flight curves away: a speculative contact after all
     if (step.contacts != &step.own) {
       step.own = contacts;
@@ -183,7 +184,7 @@ void World::findImpacts(ContactStep& step) {
     const double time = step.impactTime[i];
     if (time < 0.0) continue;
     const Body& body = m_bodies[i];
-    const RigidState flight = freeFlight(body, m_settings.integrator, m_settings.gravity, time);
+    const RigidState flight = freeFlight(flying(i), m_settings.integrator, m_settings.gravity, time);
     const Mat3 rotation = flight.orientation.toRotationMatrix();
     SolverBody& sb = m_solverBodies[i];
     sb.position = flight.position;
@@ -268,14 +269,14 @@ void World::integrateSolvedBodies(const ContactStep& step,
     if (!step.solving[i]) continue;
     Body& body = m_bodies[i];
     const SolverBody& sb = m_solverBodies[i];
-    const ForceInputs inputs = forcesOn(body);
+    const ForceInputs inputs = forcesOn(i);
     const bool pseudo = !isZero(sb.pseudoLinear) || !isZero(sb.pseudoAngular);
     const double impactTime = step.impactTime.empty() ? -1.0 : step.impactTime[i];
     if (impactTime >= 0.0) {
       // Free flight to the time of impact, the impulses there (momenta from
       // the solved velocities with the inertia of that moment), free flight
       // over the rest of the step.
-      RigidState state = freeFlight(body, integrator, m_settings.gravity, impactTime);
+      RigidState state = freeFlight(flying(i), integrator, m_settings.gravity, impactTime);
       const Mat3 rotation = state.orientation.toRotationMatrix();
       state.linearMomentum = body.dynamics().mass * sb.linearVelocity;
       state.angularMomentum = rotation * body.dynamics().inertiaBody.asDiagonal() *
@@ -297,6 +298,7 @@ void World::integrateSolvedBodies(const ContactStep& step,
                     sb.angularVelocity + sb.pseudoAngular, h);
       body.moveTo(state);
     }
+    noteSpeeds(body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
   }
 }
 

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "physics/body/body.h"
+#include "physics/body/external_load.h"
 #include "physics/collision/body_contact.h"
 #include "rbsim/physics/world.h"
 
@@ -82,7 +83,7 @@ void World::wakeIslands(const std::vector<int>& islandOf) {
       islandAwake.assign(n, 0);
       for (std::size_t k = 0; k < n; ++k) {
         const Body& body = m_bodies[k];
-        if (!body.isSleeping() || body.load().active || !sleeping)
+        if (!body.isSleeping() || m_loads[k].active || !sleeping)
           islandAwake[static_cast<std::size_t>(islandOf[k])] = 1;
       }
     }
@@ -103,7 +104,7 @@ void World::updateSleep(const std::vector<int>& islandOf) {
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
     if (body.isStatic() || body.isSleeping()) continue;
-    const bool still = !body.load().active &&
+    const bool still = !m_loads[i].active &&
                        body.linearVelocity().squaredNorm() <
                            config.sleepLinearVelocity * config.sleepLinearVelocity &&
                        body.angularVelocity().squaredNorm() <

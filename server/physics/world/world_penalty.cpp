@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "physics/body/body.h"
+#include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/collision/collision_detector.h"
@@ -375,7 +376,7 @@ void World::stepPenalty() {
       systemIndex[k] = static_cast<int>(system.size());
       denseOf.push_back(i);
       const Body& body = m_bodies[k];
-      const ForceInputs inputs = forcesOn(body);
+      const ForceInputs inputs = forcesOn(k);
       system.push_back({body.state(), body.rotation(), body.dynamics(), inputs});
     }
   }

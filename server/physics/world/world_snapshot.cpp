@@ -29,6 +29,7 @@
 #include <variant>
 
 #include "physics/body/body.h"
+#include "physics/body/external_load.h"
 #include "physics/collision/collider.h"
 #include "rbsim/physics/byte_stream.h"
 #include "physics/common/exact_text.h"
@@ -348,7 +349,7 @@ Expected<bool> World::writeSnapshot(ByteWriter& out) const {
     out.quaternion(body.state().orientation);
     out.vec3(body.state().linearMomentum);
     out.vec3(body.state().angularMomentum);
-    writeLoad(body.load(), out);
+    writeLoad(world.m_loads[i], out);
     out.boolean(body.isSleeping());
     out.f64(body.restTime());
     // A frozen body's state is the pose it is held at (state_guard.h).
@@ -486,7 +487,6 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     Body body(description, dynamics, state);
     body.moveTo(state);
     body.setSerial(serial);
-    body.setLoad(load);
     body.setSleeping(sleeping);
     body.setRestTime(restTime);
     // The guard's last good pose is the state as saved: it was set from it
@@ -500,6 +500,7 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     if (description->collider) ++world.m_collidingBodies;
     if (description->continuousCollision && !description->isStatic) ++world.m_continuousBodies;
     world.m_bodies.push_back(std::move(body));
+    world.m_loads.push_back(load);
     world.m_denseIds.push_back(id);
   }
   if (in.failed()) return failure();

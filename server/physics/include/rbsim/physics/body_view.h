@@ -61,7 +61,7 @@ class Body;
 
 class BodyView {
  public:
-  explicit BodyView(const Body& body) : m_body(&body) {}
+  BodyView(const Body& body, bool pushed) : m_body(&body), m_pushed(pushed) {}
 
   const BodyDescription& description() const;
   const std::string& name() const;
@@ -102,6 +102,7 @@ class BodyView {
 
  private:
   const Body* m_body;
+  bool m_pushed;
 };
 
 }  // namespace rbsim

@@ -33,6 +33,8 @@ class ByteWriter;
 class CollisionDetector;
 class ContactSolver;
 struct BodyContact;
+struct ExternalLoad;
+struct FlyingBody;
 struct ForceInputs;
 struct SolverBody;
 
@@ -187,13 +189,16 @@ class World {
   void integrateFree(double h, const std::vector<char>& skip);
   // The numerical guard, once per step after everything else has moved.
   void guardStates();
-  // The body behind a valid id.
+  // The body behind a valid id, and its dense index.
   Body& bodyRef(BodyId id);
+  std::size_t denseIndexOf(BodyId id) const;
+  // A body with its load, for free flight to a time of impact.
+  FlyingBody flying(std::size_t denseIndex) const;
   // Why `id` names no body of this world ("" when it does).
   std::string invalidIdReason(BodyId id) const;
   // Gravity and the body's external load, for the integrator; notes that a
   // load was seen, so that clearLoads() has something to do.
-  ForceInputs forcesOn(const Body& body);
+  ForceInputs forcesOn(std::size_t denseIndex);
   // External loads act for one step: cleared here, once, at its end.
   void clearLoads();
   void findContacts();
@@ -253,6 +258,10 @@ class World {
   std::vector<SolvedManifold> m_contacts;
   std::vector<SolverBody> m_solverBodies;  // scratch, one per body
   std::vector<Body> m_bodies;      // dense, in creation order
+  // Parallel to m_bodies: the external loads for the coming step, kept here
+  // rather than in the bodies (most bodies are pushed by nothing, and the
+  // stepping loops read every body).
+  std::vector<ExternalLoad> m_loads;
   std::vector<BodyId> m_denseIds;  // parallel to m_bodies
   std::vector<Slot> m_slots;
   std::vector<int32_t> m_freeSlots;  // reused lowest-first, for determinism
@@ -265,6 +274,18 @@ class World {
   int m_frozenBodies = 0;
   std::vector<FreezeEvent> m_freezeEvents;  // of the last step
   bool m_loadsSeen = false;  // some body integrated this step had an external load
+  // Bounds on every awake body's squared speeds after the last step, for
+  // the detector (collision/collision_detector.h: DetectionStep); negative
+  // when a change from outside (a new body, new velocities) made them
+  // unknown. The step's integrations gather the next ones.
+  double m_maxSquaredSpeed = -1.0;  // m²/s²
+  double m_maxSquaredSpin = -1.0;   // 1/s²
+  double m_stepSquaredSpeed = 0.0;
+  double m_stepSquaredSpin = 0.0;
+  void noteSpeeds(double squaredSpeed, double squaredSpin) {
+    m_stepSquaredSpeed = std::max(m_stepSquaredSpeed, squaredSpeed);
+    m_stepSquaredSpin = std::max(m_stepSquaredSpin, squaredSpin);
+  }
   // False only when the last sleep update found every body awake (and
   // nothing since could have put one to sleep): the wake pass is skipped.
   bool m_maybeAsleep = true;
