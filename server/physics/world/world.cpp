@@ -21,6 +21,13 @@ namespace {
 
 bool isPositiveFinite(double value) { return std::isfinite(value) && value > 0.0; }
 bool isFiniteVec(const Vec3& v) { return v.allFinite(); }
+// A quaternion that normalises to a rotation: finite entries whose norm is
+// neither (nearly) zero nor beyond double range (entries of 1e200 are finite,
+// their squares are not).
+bool isRotationQuaternion(const Quaternion& q) {
+  const double norm = q.norm();
+  return q.isFinite() && std::isfinite(norm) && norm >= 1e-9;
+}
 
 MassProperties scaled(const MassProperties& unit, double density);
 
@@ -71,8 +78,7 @@ Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
       for (std::size_t i = 0; i < s.parts.size(); ++i) {
         const CompoundPart& part = s.parts[i];
         const std::string partWhere = where + "compound part " + std::to_string(i) + ": ";
-        if (!isFiniteVec(part.position) || !part.orientation.isFinite() ||
-            part.orientation.norm() < 1e-9)
+        if (!isFiniteVec(part.position) || !isRotationQuaternion(part.orientation))
           return Error{partWhere +
                        "position and orientation must be finite, the quaternion non-zero"};
         if (part.density && !isPositiveFinite(*part.density))
@@ -134,7 +140,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   if (!isFiniteVec(def.position) || !isFiniteVec(def.linearVelocity) ||
       !isFiniteVec(def.angularVelocity) || !def.orientation.isFinite())
     return Error{where + "position, orientation and velocities must be finite"};
-  if (def.orientation.norm() < 1e-9) return Error{where + "orientation quaternion is zero"};
+  if (!isRotationQuaternion(def.orientation))
+    return Error{where + "the orientation quaternion must be non-zero and of finite norm"};
   const bool isPlane = std::holds_alternative<PlaneShape>(def.shape);
   if (isPlane && !def.isStatic) return Error{where + "a plane can only be a static body"};
   if (def.mass && def.density) return Error{where + "give mass or density, not both"};

@@ -157,6 +157,12 @@ Shape readShape(ByteReader& in, const std::string& body) {
         part.shape = std::move(*partShape);
         part.position = in.vec3("compound part position");
         part.orientation = in.quaternion("compound part orientation");
+        const double norm = part.orientation.norm();
+        if (!part.position.allFinite() || !(std::isfinite(norm) && norm >= 1e-9)) {
+          in.fail("body '" + body + "': compound part " + std::to_string(i) + " at byte " +
+                  std::to_string(partAt) + " has a non-finite position or no rotation for its quaternion");
+          break;
+        }
         const bool hasDensity = in.boolean("compound part density flag");
         const double density = in.f64("compound part density");
         if (hasDensity) part.density = density;

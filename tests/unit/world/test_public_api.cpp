@@ -156,3 +156,36 @@ TEST(PublicApi, StaticBodiesTakeNoWrenchAndBadStatesAreRefused) {
 
 }  // namespace
 }  // namespace rbsim
+
+namespace rbsim {
+namespace {
+
+// A quaternion with finite entries whose norm overflows (1e200² = inf) is no
+// rotation: refused for a body and for a compound's part, never normalised
+// into NaNs (a fuzzed checkpoint reached libccd that way).
+TEST(PublicApi, QuaternionsWithoutARotationAreRefused) {
+  World world;
+  BodyDef body = boxDef("box");
+  body.orientation = Quaternion{1e200, 0.0, 0.0, 0.0};
+  const auto refused = world.createBody(body);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("finite norm"), std::string::npos) << refused.error().message;
+
+  BodyDef compound;
+  compound.name = "compound";
+  CompoundPart part;
+  part.shape = SphereShape{0.1};
+  part.orientation = Quaternion{0.0, 1e200, 1e200, 0.0};
+  compound.shape = CompoundShape{{part}};
+  const auto refusedPart = world.createBody(compound);
+  ASSERT_FALSE(refusedPart.ok());
+  EXPECT_NE(refusedPart.error().message.find("compound part 0"), std::string::npos)
+      << refusedPart.error().message;
+
+  body.orientation = Quaternion{2.0, 0.0, 0.0, 0.0};  // not unit, but a rotation: normalised
+  ASSERT_TRUE(world.createBody(body).ok());
+  EXPECT_EQ(world.body(world.findBody("box")).orientation().w, 1.0);
+}
+
+}  // namespace
+}  // namespace rbsim
