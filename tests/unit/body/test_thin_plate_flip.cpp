@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "rbsim/physics/world.h"
+#include "support/torque_free_world.h"
 
 namespace rbsim {
 namespace {
@@ -67,11 +68,6 @@ ClosedForm closedForm(const Vec3& omega) {
 }
 
 World makePlate(IntegratorKind kind, double dt, const Vec3& omega) {
-  WorldSettings settings;
-  settings.dt = dt;
-  settings.gravity = Vec3::Zero();
-  settings.integrator = kind;
-  World world(settings);
   BodyDef def;
   def.name = "plate";
   // A cube collides; the given mass properties are a plate's.
@@ -79,8 +75,7 @@ World makePlate(IntegratorKind kind, double dt, const Vec3& omega) {
   def.mass = 10.0;
   def.inertia = Mat3(kMoments.asDiagonal());
   def.angularVelocity = omega;  // the body frame starts aligned with the world
-  EXPECT_TRUE(world.createBody(def).ok());
-  return world;
+  return testing::torqueFreeWorld(def, kind, dt);
 }
 
 struct PlateRun {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rbsim/physics/world.h"
+#include "support/torque_free_world.h"
 
 namespace rbsim {
 namespace {
@@ -15,18 +16,12 @@ constexpr double kDt = 1e-3;
 // Box with half extents (0.1, 0.2, 0.3) m: principal moments ∝ (b²+c², a²+c², a²+b²)
 // = (0.13, 0.10, 0.05): x is the major axis, y the intermediate, z the minor.
 World makeTumbler(IntegratorKind kind, const Vec3& angularVelocity) {
-  WorldSettings settings;
-  settings.dt = kDt;
-  settings.gravity = Vec3::Zero();
-  settings.integrator = kind;
-  World world(settings);
   BodyDef def;
   def.name = "tumbler";
   def.shape = BoxShape{Vec3(0.1, 0.2, 0.3)};
   def.mass = 6.0;
   def.angularVelocity = angularVelocity;
-  EXPECT_TRUE(world.createBody(def).ok());
-  return world;
+  return testing::torqueFreeWorld(def, kind, kDt);
 }
 
 // World-frame direction of the body axis whose principal moment is the

@@ -7,15 +7,12 @@
 #include <string>
 
 #include "rbsim/physics/world.h"
+#include "support/torque_free_world.h"
 
 namespace rbsim {
 namespace {
 
-WorldSettings weightless() {
-  WorldSettings settings;
-  settings.gravity = Vec3::Zero();
-  return settings;
-}
+WorldSettings weightless() { return testing::torqueFreeSettings(IntegratorKind::SemiImplicitEuler, 0.001); }
 
 BodyDef boxDef(const std::string& name, const Vec3& position = Vec3::Zero()) {
   BodyDef def;

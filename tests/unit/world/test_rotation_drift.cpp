@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rbsim/physics/rotation_drift.h"
+#include "support/torque_free_world.h"
 
 namespace rbsim {
 namespace {
@@ -14,18 +15,12 @@ namespace {
 // spinning at `speed` about an axis tilted by `tilt` from its symmetry axis:
 // it nutates, torque-free.
 World spinningDisc(IntegratorKind integrator, double dt, double speed, double tilt) {
-  WorldSettings settings;
-  settings.dt = dt;
-  settings.gravity = Vec3::Zero();
-  settings.integrator = integrator;
-  World world(settings);
   BodyDef def;
   def.name = "top";
   def.shape = CylinderShape{0.05, 0.02};
   def.mass = 1.0;
   def.angularVelocity = speed * Vec3(std::sin(tilt), 0.0, std::cos(tilt));
-  EXPECT_TRUE(world.createBody(def).ok());
-  return world;
+  return testing::torqueFreeWorld(def, integrator, dt);
 }
 
 // The symmetric top under explicit Euler (rotation_drift.h): x = |L⊥|² grows
