@@ -174,6 +174,7 @@ def world_to_dict(pages):
             body = _shape_fields(b)
             body.update({
                 "id": b.id, "name": b.name, "is_static": bool(b.is_static), "mass": float(b.mass),
+                "inertia": _finite_list(b.inertia),
                 "shape_position": _finite_list(b.shape_position),
                 "shape_orientation": _finite_list(b.shape_orientation),
                 "plane_normal": _finite_list(b.plane_normal), "plane_offset": float(b.plane_offset),

@@ -1,0 +1,220 @@
+"""The rbview bridge alone, with Python WebSocket clients in place of browsers.
+
+Runs INSIDE a private network namespace (tests/tools/in_private_network.sh,
+as ctest does): starts rbserver on worlds/viewer.yaml and rbview, then
+
+  slow_client    a client that takes one frame a second still gets the newest
+                 state each time (no queue of old frames), while a client that
+                 never reads at all holds nothing up
+  ten_clients    10 clients at once all get the world, status and states
+  garbage        clients sending garbage (not JSON, binary, unknown types,
+                 wrong fields, oversized) are closed; the bridge and a
+                 well-behaved client go on, and its command still gets an ack
+  origin         a WebSocket from another web origin is refused (403)
+  read_only      with --read-only every request is refused with a reason
+
+Usage: bridge_scenarios.py NAME WORKDIR (needs RBSIM_BUILD_DIR or ./build).
+"""
+
+import asyncio
+import json
+import os
+import struct
+import sys
+import time
+
+import websockets
+
+from harness import Processes, REPO, run_scenario
+
+sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+from rbsim.client import Client  # noqa: E402
+
+HEADER = struct.Struct("<IIddddIIIId")
+
+
+def frame_step(data):
+    magic, kind, step, *_ = HEADER.unpack_from(data)
+    assert magic == 0x31564252 and kind == 1, "not a state frame"
+    return int(step)
+
+
+async def recv_state(ws, timeout=5.0):
+    """Next binary frame (skipping text messages), as (step, bytes)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        message = await asyncio.wait_for(ws.recv(), deadline - time.monotonic())
+        if isinstance(message, bytes):
+            return frame_step(message), message
+
+
+async def recv_json(ws, kind, timeout=5.0):
+    deadline = time.monotonic() + timeout
+    while True:
+        message = await asyncio.wait_for(ws.recv(), deadline - time.monotonic())
+        if isinstance(message, bytes):
+            await ws.send('{"type":"ready"}')
+            continue
+        decoded = json.loads(message)
+        if decoded["type"] == kind:
+            return decoded
+
+
+def slow_client(workdir):
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview()
+        sim = Client(timeout=10.0)
+        try:
+            sim.wait_state()
+
+            async def run():
+                stalled = await websockets.connect(url, close_timeout=0.5)  # never reads, never says ready
+                fast = await websockets.connect(url)
+                slow = await websockets.connect(url)
+                lags = []
+                previous = None
+                for _ in range(5):
+                    step, _ = await recv_state(slow)
+                    newest = sim.state.step
+                    # The frame it gets is the newest the bridge had: at most a couple of
+                    # state periods (60 Hz at 1 ms steps: 17 steps) behind the bus.
+                    lags.append(newest - step)
+                    if previous is not None:
+                        assert step - previous > 500, "slow client got an old frame: steps %d then %d" % (
+                            previous, step)
+                    previous = step
+                    # The fast client meanwhile gets a stream at the state rate.
+                    count = 0
+                    started = time.monotonic()
+                    while time.monotonic() - started < 1.0:
+                        await recv_state(fast)
+                        await fast.send('{"type":"ready"}')
+                        count += 1
+                    assert count >= 20, "fast client got only %d frames in 1 s" % count
+                    await slow.send('{"type":"ready"}')
+                print("slow client lag behind the bus (steps):", lags)
+                assert max(lags) <= 60, "slow client's frames lag the bus by %s steps" % lags
+                for ws in (stalled, fast, slow):
+                    await ws.close()
+
+            asyncio.run(run())
+        finally:
+            sim.close()
+
+
+def ten_clients(workdir):
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview()
+
+        async def one(index):
+            async with websockets.connect(url) as ws:
+                hello = json.loads(await ws.recv())
+                assert hello["type"] == "hello" and hello["mode"] == "live", hello
+                world = await recv_json(ws, "world")
+                assert len(world["bodies"]) == 8, world
+                await recv_json(ws, "status")
+                steps = []
+                started = time.monotonic()
+                while time.monotonic() - started < 2.0:
+                    step, data = await recv_state(ws)
+                    assert len(data) >= 64 + 8 * 13 * 4
+                    steps.append(step)
+                    await ws.send('{"type":"ready"}')
+                assert steps == sorted(steps), "client %d: steps out of order" % index
+                assert len(steps) >= 40, "client %d got %d frames in 2 s" % (index, len(steps))
+                return len(steps)
+
+        async def run():
+            counts = await asyncio.gather(*(one(i) for i in range(10)))
+            print("frames per client in 2 s:", counts)
+
+        asyncio.run(run())
+
+
+GARBAGE = [
+    "not json at all",
+    b"\x00\x01binary",
+    "[1, 2, 3]",
+    '{"type": "launch_missiles"}',
+    '{"type": "command", "id": 1, "command": "explode"}',
+    '{"type": "command", "id": "one", "command": "pause"}',
+    '{"type": "wrench", "id": 1, "body": "slider", "force": [1, 2], "point": [0, 0, 0], "duration": 1}',
+    '{"type": "wrench", "id": 1, "body": "slider", "force": [NaN, 0, 0], "point": [0, 0, 0], "duration": 1}',
+    '{"type": "step", "x": ' + "[" * 100000 + "]" * 100000 + "}",
+    "x" * 100000,
+]
+
+
+def garbage(workdir):
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview()
+
+        async def run():
+            good = await websockets.connect(url)
+            await recv_json(good, "world")
+            for junk in GARBAGE:
+                async with websockets.connect(url) as bad:
+                    await bad.send(junk)
+                    try:
+                        while True:
+                            await asyncio.wait_for(bad.recv(), 5.0)
+                    except websockets.ConnectionClosed as closed:
+                        assert closed.code in (1008, 1009), "closed with %s for %r" % (closed.code, junk[:40])
+                # The good client still gets fresh frames.
+                before, _ = await recv_state(good)
+                await good.send('{"type":"ready"}')
+                after, _ = await recv_state(good)
+                await good.send('{"type":"ready"}')
+                assert after > before
+            await good.send(json.dumps({"type": "command", "id": 42, "command": "pause"}))
+            ack = await recv_json(good, "ack")
+            assert ack["id"] == 42 and ack["accepted"], ack
+            await good.close()
+
+        asyncio.run(run())
+        assert procs.rbview_alive(), "rbview died"
+        assert "closing browser connection" in procs.rbview_output()
+
+
+def origin(workdir):
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview()
+
+        async def run():
+            try:
+                await websockets.connect(url, origin="http://evil.example")
+            except websockets.InvalidStatusCode as refused:
+                assert refused.status_code == 403
+            else:
+                raise AssertionError("a WebSocket from another origin was accepted")
+            host = url.split("/")[2]
+            async with websockets.connect(url, origin="http://" + host) as ws:
+                assert json.loads(await ws.recv())["type"] == "hello"
+
+        asyncio.run(run())
+
+
+def read_only(workdir):
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview("--read-only")
+
+        async def run():
+            async with websockets.connect(url) as ws:
+                hello = json.loads(await ws.recv())
+                assert hello["read_only"] is True
+                await ws.send(json.dumps({"type": "command", "id": 3, "command": "pause"}))
+                ack = await recv_json(ws, "ack")
+                assert not ack["accepted"] and "read-only" in ack["reason"], ack
+                status = await recv_json(ws, "status")
+                assert not status["paused"], "a read-only viewer paused the server"
+
+        asyncio.run(run())
+
+
+if __name__ == "__main__":
+    run_scenario({f.__name__: f for f in (slow_client, ten_clients, garbage, origin, read_only)})
