@@ -8,8 +8,8 @@ const AXES = [{ stroke: "#ccc", grid: { stroke: "#333" } }, { stroke: "#ccc", gr
 
 function chart(container, title, labels, colors) {
   const series = [{ label: "t (s)" }, ...labels.map((label, i) => ({ label, stroke: colors[i], width: 1.5 }))];
-  return new uPlot({ title, width: 380, height: 150, series, axes: AXES, scales: { x: { time: false } },
-    legend: { show: true } }, [[], ...labels.map(() => [])], container);
+  return new uPlot({ title, width: 340, height: 100, series, axes: AXES, scales: { x: { time: false } },
+    legend: { show: false } }, [[], ...labels.map(() => [])], container);
 }
 
 export class Plots {
