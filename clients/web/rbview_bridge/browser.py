@@ -8,7 +8,7 @@ Every message is one JSON object in a text frame with a "type":
   {"type": "wrench", "id": N, "body": name, "force": [fx, fy, fz] (N, world),
       "point": [x, y, z] (m, world), "duration": s}
   {"type": "replay", "id": N, "action": "play" | "pause" | "seek" | "speed",
-      "step": int, "speed": number}
+      "index": int (seek: the row of the log's timeline), "speed": number}
 
 A message that is not that (binary, not JSON, not an object, an unknown type or
 field of the wrong type) raises BrowserMessageError: the bridge closes that
@@ -93,7 +93,7 @@ def parse(data):
             raise BrowserMessageError("unknown replay action %r" % (action,))
         out = {"type": "replay", "id": _integer(message, "id", 0), "action": action}
         if action == "seek":
-            out["step"] = _integer(message, "step")
+            out["index"] = _integer(message, "index")
         if action == "speed":
             out["speed"] = _number(message, "speed")
         return out

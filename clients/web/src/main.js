@@ -70,11 +70,11 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
     state.replay = replay;
     hud.replay(replay);
     const timeline = $("timeline");
-    timeline.min = replay.first_step;
-    timeline.max = replay.last_step;
-    if (!timeline.matches(":active")) timeline.value = replay.step;
+    timeline.min = replay.first;
+    timeline.max = replay.last;
+    if (!timeline.matches(":active")) timeline.value = replay.index;
     $("btn-play").textContent = replay.playing ? "Pause" : "Play";
-    $("replay-position").textContent = `step ${replay.step} of ${replay.first_step}…${replay.last_step}, ${replay.sim_time.toFixed(3)} s`;
+    $("replay-position").textContent = `step ${replay.step} (steps ${replay.first_step}…${replay.last_step}), ${replay.sim_time.toFixed(3)} s`;
   },
   closed() {
     hud.connection("disconnected (retrying)");
@@ -106,7 +106,7 @@ $("btn-play").onclick = () => {
   act(playing ? "pause replay" : "play replay", { type: "replay", action: playing ? "pause" : "play" });
 };
 $("replay-speed").onchange = (e) => act(`speed ${e.target.value}×`, { type: "replay", action: "speed", speed: Number(e.target.value) });
-$("timeline").oninput = (e) => connection.request({ type: "replay", action: "seek", step: Number(e.target.value) });
+$("timeline").oninput = (e) => connection.request({ type: "replay", action: "seek", index: Number(e.target.value) });
 
 function selectBody(index) {
   viewer.setSelected(index);
@@ -199,8 +199,8 @@ function animate() {
   const fresh = viewer.updatePoses();
   viewer.render();
   state.rendersThisSecond++;
-  if (fresh) {
-    state.statesThisSecond++;
+  if (fresh) state.statesThisSecond++;
+  if (fresh && state.hello && state.hello.mode === "live") {
     // From rbserver publishing the step to it being drawn (same host clock).
     const latency = performance.timeOrigin + performance.now() - viewer.frameDrawn.utime / 1000;
     state.latencies.push(latency);
