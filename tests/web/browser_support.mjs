@@ -24,6 +24,10 @@ if (process.env.RBSIM_PRIVATE_NETWORK !== "1") {
 }
 
 const children = [];
+// A test or benchmark that dies must not leave servers running.
+process.on("exit", () => stopAll());
+for (const signal of ["SIGINT", "SIGTERM"]) process.on(signal, () => process.exit(1));
+process.on("uncaughtException", (error) => { console.error(error); process.exit(1); });
 export function startProcess(name, command, args) {
   const logPath = path.join(work, `${name}-${children.length}.log`);
   const log = openSync(logPath, "w");
@@ -32,8 +36,13 @@ export function startProcess(name, command, args) {
   return child;
 }
 
+// The pid of the newest child started under `name` (rbview's launcher execs python: same pid).
+export function childPid(name) {
+  return children.filter((c) => c.name === name).at(-1).child.pid;
+}
+
 export function stopAll() {
-  for (const { child } of children.reverse()) if (child.exitCode === null) child.kill("SIGTERM");
+  for (const { child } of [...children].reverse()) if (child.exitCode === null && child.signalCode === null) child.kill("SIGTERM");
 }
 
 export function logs() {

@@ -199,6 +199,7 @@ function animate() {
   const fresh = viewer.updatePoses();
   viewer.render();
   state.rendersThisSecond++;
+  state.renders = (state.renders || 0) + 1;
   if (fresh) state.statesThisSecond++;
   if (fresh && state.hello && state.hello.mode === "live") {
     // From rbserver publishing the step to it being drawn (same host clock).

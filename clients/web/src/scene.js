@@ -92,7 +92,7 @@ export class Viewer {
         this.addPlane(index, plane);
         return;
       }
-      for (const piece of bodyPieces(body)) {
+      for (const piece of bodyPieces(body, world.bodies.length)) {
         if (!byKey.has(piece.key)) byKey.set(piece.key, { geometry: piece.geometry(), pieces: [] });
         byKey.get(piece.key).pieces.push({ body: index, local: piece.local });
       }

@@ -40,13 +40,22 @@ function meshGeometry(vertices, triangles) {
   return flat;
 }
 
+// Segments of the round primitives: fewer when the world is large, so that
+// thousands of bodies stay within what a software renderer draws at 60 Hz.
+function roundSegments(bodyCount) {
+  if (bodyCount > 500) return { around: 8, along: 6 };
+  if (bodyCount > 100) return { around: 16, along: 10 };
+  return { around: 24, along: 16 };
+}
+
 // Pieces of one solid (a body's shape or a compound's part) in its own frame.
-function solidPieces(solid, meshKey) {
+function solidPieces(solid, meshKey, segments) {
+  const { around, along } = segments;
   const scale = new THREE.Matrix4();
   switch (solid.shape_type) {
     case "sphere": {
       const r = solid.radius;
-      return [{ key: "sphere", geometry: () => unitGeometry("sphere", () => new THREE.SphereGeometry(1, 24, 16)),
+      return [{ key: "sphere", geometry: () => unitGeometry(`sphere:${around}`, () => new THREE.SphereGeometry(1, around, along)),
         local: scale.makeScale(r, r, r) }];
     }
     case "box": {
@@ -56,14 +65,14 @@ function solidPieces(solid, meshKey) {
     }
     case "cylinder": {
       const r = solid.radius;
-      const geometry = () => unitGeometry("cylinder", () => new THREE.CylinderGeometry(1, 1, 2, 24).applyMatrix4(Z_FROM_Y));
+      const geometry = () => unitGeometry(`cylinder:${around}`, () => new THREE.CylinderGeometry(1, 1, 2, around).applyMatrix4(Z_FROM_Y));
       return [{ key: "cylinder", geometry, local: scale.makeScale(r, r, solid.half_length) }];
     }
     case "capsule": {
       // Caps must stay round: one geometry per (radius, half length).
-      const key = `capsule:${solid.radius}:${solid.half_length}`;
+      const key = `capsule:${solid.radius}:${solid.half_length}:${around}`;
       const geometry = () => unitGeometry(key, () =>
-        new THREE.CapsuleGeometry(solid.radius, 2 * solid.half_length, 8, 16).applyMatrix4(Z_FROM_Y));
+        new THREE.CapsuleGeometry(solid.radius, 2 * solid.half_length, along / 2, around).applyMatrix4(Z_FROM_Y));
       return [{ key, geometry, local: scale.identity() }];
     }
     case "mesh": {
@@ -78,18 +87,19 @@ function solidPieces(solid, meshKey) {
 
 // All pieces of a body: [{key, geometry(), local: Matrix4 in the body frame}].
 // Planes are not pieces (see planeOf).
-export function bodyPieces(body) {
+export function bodyPieces(body, bodyCount) {
+  const segments = roundSegments(bodyCount);
   const shapeInBody = placement(body.shape_position, body.shape_orientation);
   const solids = [];
   if (body.shape_type === "compound") {
     body.parts.forEach((part, index) => {
       const partInShape = placement(part.position, part.orientation);
-      for (const piece of solidPieces(part, `mesh:${body.id}:${index}`)) {
+      for (const piece of solidPieces(part, `mesh:${body.id}:${index}`, segments)) {
         solids.push({ ...piece, local: new THREE.Matrix4().multiplyMatrices(partInShape, piece.local) });
       }
     });
   } else {
-    solids.push(...solidPieces(body, `mesh:${body.id}`));
+    solids.push(...solidPieces(body, `mesh:${body.id}`, segments));
   }
   return solids.map((piece) => ({
     ...piece,
