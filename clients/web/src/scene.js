@@ -3,6 +3,10 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { bodyPieces, planeOf, bodySize } from "./shapes.js";
+import { SphereImpostors } from "./sphere_impostors.js";
+
+// Above this many spheres they are drawn as impostors (sphere_impostors.js).
+const IMPOSTOR_SPHERES = 200;
 
 const MAX_CONTACTS = 4096;
 const NORMAL_LENGTH = 0.15; // m, drawn length of a contact normal
@@ -97,10 +101,11 @@ export class Viewer {
         byKey.get(piece.key).pieces.push({ body: index, local: piece.local });
       }
     });
-    for (const { geometry, pieces } of byKey.values()) {
-      const material = new THREE.MeshLambertMaterial();
-      const mesh = new THREE.InstancedMesh(geometry, material, pieces.length);
-      mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+    for (const [key, { geometry, pieces }] of byKey) {
+      const mesh = key === "sphere" && pieces.length > IMPOSTOR_SPHERES
+        ? new SphereImpostors(pieces.length)
+        : new THREE.InstancedMesh(geometry, new THREE.MeshLambertMaterial(), pieces.length);
+      if (mesh.isInstancedMesh) mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
       mesh.frustumCulled = false;
       pieces.forEach((piece, i) => {
         mesh.setColorAt(i, bodyColor(this.bodies[piece.body], piece.body));
@@ -162,7 +167,8 @@ export class Viewer {
         this.poseMatrix(pieces[i].body, pose);
         mesh.setMatrixAt(i, this.tmpMatrix.multiplyMatrices(pose, pieces[i].local));
       }
-      mesh.instanceMatrix.needsUpdate = true;
+      if (mesh.isInstancedMesh) mesh.instanceMatrix.needsUpdate = true;
+      else mesh.posesChanged();
     }
     for (const plane of this.planes) {
       plane.object.matrix.multiplyMatrices(this.poseMatrix(plane.body, pose), plane.local);
@@ -200,6 +206,7 @@ export class Viewer {
         else if (piece.body === previous) group.mesh.setColorAt(i, bodyColor(this.bodies[piece.body], piece.body));
       });
       if (group.mesh.instanceColor) group.mesh.instanceColor.needsUpdate = true;
+      if (group.mesh.colorsChanged) group.mesh.colorsChanged();
     }
   }
 
@@ -211,7 +218,7 @@ export class Viewer {
     const hits = this.raycaster.intersectObjects(this.worldObjects.children, true);
     for (const hit of hits) {
       let body = -1;
-      if (hit.object.isInstancedMesh) {
+      if (hit.instanceId !== undefined) {
         const group = this.groups.find((g) => g.mesh === hit.object);
         if (group && hit.instanceId !== undefined) body = group.pieces[hit.instanceId].body;
       } else if (hit.object.userData.body !== undefined) {
