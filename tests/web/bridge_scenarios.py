@@ -12,6 +12,9 @@ as ctest does): starts rbserver on worlds/viewer.yaml and rbview, then
                  well-behaved client go on, and its command still gets an ack
   origin         a WebSocket from another web origin is refused (403)
   read_only      with --read-only every request is refused with a reason
+  bad_lcm        malformed messages on every channel the bridge reads (garbage,
+                 truncated and forged-header state pages) are ignored with a
+                 warning; pages keep getting fresh states
 
 Usage: bridge_scenarios.py NAME WORKDIR (needs RBSIM_BUILD_DIR or ./build).
 """
@@ -217,5 +220,48 @@ def read_only(workdir):
         asyncio.run(run())
 
 
+def bad_lcm(workdir):
+    from rbsim import world_state_t
+    from rbsim.lcm_ctypes import Lcm
+
+    with Processes(workdir) as procs:
+        procs.rbserver()
+        url = procs.rbview()
+        sim = Client(timeout=10.0)
+        bus = Lcm()
+        try:
+            real = None
+            while real is None:
+                sim.wait_state()
+                real = sim.state
+
+            page = world_state_t()
+            page.utime, page.step, page.sim_time, page.world_revision = 1, 10 ** 12, 0.0, 1
+            page.page, page.num_pages, page.total_bodies, page.first_body_index = 0, 1, 2 ** 30, 0
+            page.num_bodies, page.bodies = 0, []
+            forged = page.encode()  # claims 2^30 bodies, holds none
+            junk = [b"", b"\x00" * 7, b"garbage" * 100, forged, forged[:-3], forged + b"\x01\x02"]
+            for suffix in ("STATE", "CONTACTS", "WORLD", "STATUS", "ACK"):
+                for data in junk:
+                    bus.publish("RBSIM_" + suffix, data)
+
+            async def run():
+                async with websockets.connect(url) as ws:
+                    await recv_json(ws, "world")
+                    steps = []
+                    for _ in range(10):
+                        step, _ = await recv_state(ws)
+                        steps.append(step)
+                        await ws.send('{"type":"ready"}')
+                    assert steps == sorted(steps) and steps[-1] < 10 ** 12, steps
+
+            asyncio.run(run())
+            assert procs.rbview_alive(), "rbview died on malformed LCM messages"
+            assert "does not decode" in procs.rbview_output(), procs.rbview_output()
+        finally:
+            bus.close()
+            sim.close()
+
+
 if __name__ == "__main__":
-    run_scenario({f.__name__: f for f in (slow_client, ten_clients, garbage, origin, read_only)})
+    run_scenario({f.__name__: f for f in (slow_client, ten_clients, garbage, origin, read_only, bad_lcm)})

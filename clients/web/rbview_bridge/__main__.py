@@ -54,6 +54,10 @@ def main(argv=None):
     logging.basicConfig(level=logging.INFO, format="rbview: %(levelname)s: %(message)s")
     from . import server  # after argument checks: imports the lcm-gen types
 
+    if not ipaddress.ip_address(args.bind).is_loopback:
+        logging.getLogger("rbview").warning(
+            "listening on %s: anyone who can reach this port can watch%s (no authentication)",
+            args.bind, "" if args.read_only else " and drive the simulation; consider --read-only")
     page = args.page or default_page_dir()
     try:
         static = server.StaticFiles(page)
