@@ -10,7 +10,8 @@ as ctest does): starts rbserver on worlds/viewer.yaml and rbview, then
   garbage        clients sending garbage (not JSON, binary, unknown types,
                  wrong fields, oversized) are closed; the bridge and a
                  well-behaved client go on, and its command still gets an ack
-  origin         a WebSocket from another web origin is refused (403)
+  origin         a WebSocket from another web origin, or under a host name
+                 (DNS rebinding), is refused (403)
   read_only      with --read-only every request is refused with a reason
   bad_lcm        malformed messages on every channel the bridge reads (garbage,
                  truncated and forged-header state pages) are ignored with a
@@ -20,6 +21,7 @@ Usage: bridge_scenarios.py NAME WORKDIR (needs RBSIM_BUILD_DIR or ./build).
 """
 
 import asyncio
+import http.client
 import json
 import os
 import struct
@@ -198,6 +200,16 @@ def origin(workdir):
             host = url.split("/")[2]
             async with websockets.connect(url, origin="http://" + host) as ws:
                 assert json.loads(await ws.recv())["type"] == "hello"
+            # DNS rebinding: a page of evil.example, whose name now resolves to
+            # 127.0.0.1, is same-origin with itself; the Host header gives it away.
+            port = int(host.split(":")[1])
+            connection = http.client.HTTPConnection("127.0.0.1", port, timeout=5)
+            connection.request("GET", "/ws", headers={
+                "Host": "evil.example:%d" % port, "Origin": "http://evil.example:%d" % port,
+                "Upgrade": "websocket", "Connection": "Upgrade", "Sec-WebSocket-Version": "13",
+                "Sec-WebSocket-Key": "dGhlIHNhbXBsZSBub25jZQ=="})
+            status = connection.getresponse().status
+            assert status == 403, "a WebSocket under another host name was answered with %d" % status
 
         asyncio.run(run())
 

@@ -153,6 +153,25 @@ test("contacts, names on hover, selection, follow and plots", async () => {
   noConsoleErrors();
 });
 
+test("the real-time factor is set and reset returns to the initial world", async () => {
+  await page.fill("#rtf-value", "0.5");
+  assert.match(await act(page, "btn-rtf"), /real-time factor 0.5: accepted/);
+  await page.waitForFunction(() => rbview.state.status.target_rtf === 0.5, null, { timeout: 5000 });
+  await page.waitForFunction(() => document.getElementById("hud-rtf").textContent.includes("target 0.50"));
+  await page.fill("#rtf-value", "-1");
+  assert.match(await act(page, "btn-rtf"), /real-time factor -1: rejected: .+/);
+  const revision = await page.evaluate(() => rbview.state.world.revision);
+  assert.match(await act(page, "btn-pause"), /pause: accepted/);
+  assert.match(await act(page, "btn-reset"), /reset: accepted/);
+  await page.waitForFunction((r) => rbview.state.world.revision > r && rbview.viewer.frameDrawn
+    && rbview.viewer.frameDrawn.revision === rbview.state.world.revision, revision, { timeout: 5000 });
+  const z = (await page.evaluate(() => rbview.drawnPosition("drop_box")))[2];
+  assert.ok(Math.abs(z - 30) < 1e-3, `after reset drop_box is drawn at z=${z}, not 30`);
+  assert.equal(await hudStep(page), 0);
+  assert.equal(await page.locator("#hud-bodies").textContent(), "8");
+  noConsoleErrors();
+});
+
 test("with --read-only the controls are off", async () => {
   const readOnlyUrl = await rbview("--read-only");
   const other = await openPage(browser, readOnlyUrl);

@@ -13,6 +13,7 @@ the only queue, bounded by the requests it may have open.
 
 import asyncio
 import http
+import ipaddress
 import itertools
 import json
 import logging
@@ -170,6 +171,28 @@ class Hub:
         self.source.handle_request(session, message)
 
 
+def host_is_address(host):
+    """True for a Host header naming an IP address or localhost (with or without a port)."""
+    if not host:
+        return False
+    if host.startswith("["):  # [IPv6]:port
+        end = host.find("]")
+        if end < 0:
+            return False
+        name = host[1:end]
+    elif host.count(":") == 1:  # name:port or IPv4:port
+        name = host.split(":")[0]
+    else:  # no port, or a bare IPv6 address
+        name = host
+    if name == "localhost":
+        return True
+    try:
+        ipaddress.ip_address(name)
+        return True
+    except ValueError:
+        return False
+
+
 class StaticFiles:
     """The built page (vite's dist/): a fixed table of files read at start, so no
     request path ever reaches the file system."""
@@ -197,6 +220,11 @@ class StaticFiles:
         if path == WS_PATH:
             origin = headers.get("Origin")
             host = headers.get("Host")
+            # DNS rebinding (a site's own name made to resolve to this host) passes
+            # the same-origin check: accept the page only under an address or localhost.
+            if not host_is_address(host):
+                return (http.HTTPStatus.FORBIDDEN, [("Content-Type", "text/plain")],
+                        b"open rbview by its address (e.g. http://127.0.0.1:8765/) or localhost\n")
             # A page from another site must not drive the simulation through the
             # user's browser (cross-site WebSocket hijacking): same origin only.
             if origin is not None and origin not in ("http://%s" % host, "https://%s" % host):
