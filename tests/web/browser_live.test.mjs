@@ -50,15 +50,19 @@ test("the page loads with no console error and shows every body of the world", a
 test("a falling box is drawn lower a second later", async () => {
   // Look up at drop_box from below its path: only the sky behind it (the ground
   // plane's far edge stays under the bottom of the view).
-  assert.equal(await hudStep(page), 0, "the server should still be paused at step 0");
+  assert.equal(await hudStep(page), 0, "the server should be paused at step 0");
   await page.evaluate(() => rbview.lookAt([0, 0, 27], [0, -16, 20]));
   await sleep(300);
   const region = { x: 400, y: 0, width: 200, height: 700 };
   const z0 = (await page.evaluate(() => rbview.drawnPosition("drop_box")))[2];
   const a = await screenshot(page, "live-fall-before");
-  assert.match(await act(page, "btn-resume"), /resume: accepted/);
-  await sleep(1000);
-  assert.match(await act(page, "btn-pause"), /pause: accepted/);
+  // One simulated second, exactly: STEP 1000 (dt 1 ms) from the paused start,
+  // whatever the load on the machine.
+  await page.fill("#step-count", "1000");
+  assert.match(await act(page, "btn-step"), /step 1000: accepted/);
+  await page.waitForFunction(() => rbview.viewer.frameDrawn && rbview.viewer.frameDrawn.step === 1000,
+    null, { timeout: 30000 });
+  await page.fill("#step-count", "10");
   await sleep(300);
   const z1 = (await page.evaluate(() => rbview.drawnPosition("drop_box")))[2];
   const b = await screenshot(page, "live-fall-after");
@@ -66,7 +70,8 @@ test("a falling box is drawn lower a second later", async () => {
   const later = await foreground(page, b.png, region);
   assert.ok(before.count > 100 && later.count > 100, `box not seen: ${before.count} then ${later.count} pixels`);
   assert.ok(later.cy - before.cy > 60, `box centroid went from y=${before.cy} to ${later.cy} px only (z ${z0} -> ${z1} m)`);
-  assert.ok(z0 - z1 > 2, `drawn z went from ${z0} to ${z1} m`);
+  // Free fall for 1 s from rest (semi-implicit Euler, 1000 steps: g dt^2 n (n + 1) / 2).
+  assert.ok(Math.abs(z0 - z1 - 9.81e-6 * 1000 * 1001 / 2) < 1e-3, `drawn z went from ${z0} to ${z1} m`);
   noConsoleErrors();
 });
 
@@ -104,7 +109,18 @@ test("a rejected command shows the server's reason", async () => {
 });
 
 async function drag(name, dx, dy) {
+  // Look down at the body from its side, so that nothing stands in front of it.
+  await page.evaluate((n) => {
+    const p = rbview.drawnPosition(n);
+    rbview.lookAt(p, [p[0], p[1] - 3, p[2] + 2.5]);
+  }, name);
+  await sleep(300);
   const at = await page.evaluate((n) => rbview.screenOf(n), name);
+  const picked = await page.evaluate(({ x, y }) => {
+    const hit = rbview.viewer.pick(x, y, false);
+    return hit ? rbview.state.world.bodies[hit.body].name : null;
+  }, at);
+  assert.equal(picked, name, `the body under ${name}'s centre on screen is ${picked}`);
   await page.evaluate(() => { document.getElementById("message").textContent = ""; });
   await page.mouse.move(at.x, at.y);
   await page.mouse.down();
@@ -131,12 +147,13 @@ test("dragging a body pushes it: the ack arrives and its velocity changes in RBS
 });
 
 test("contacts, names on hover, selection, follow and plots", async () => {
+  await page.evaluate(() => rbview.lookAt([0, 0, 0.5], [6, -9, 5]));
   await page.check("#toggle-contacts");
   await page.waitForFunction(() => rbview.viewer.contactPoints.visible && rbview.state.frame.numContacts > 0);
   const at = await page.evaluate(() => rbview.screenOf("can"));
   await page.mouse.move(at.x, at.y);
   await page.waitForFunction(() => document.getElementById("tooltip").textContent === "can"
-    && !document.getElementById("tooltip").classList.contains("hidden"), null, { timeout: 5000 });
+    && !document.getElementById("tooltip").classList.contains("hidden"), null, { timeout: 30000 });
   await page.mouse.click(at.x, at.y);
   assert.match(await page.locator("#hud-selected").textContent(), /^can \(cylinder/);
   await page.check("#toggle-follow");
@@ -156,7 +173,7 @@ test("contacts, names on hover, selection, follow and plots", async () => {
 test("the real-time factor is set and reset returns to the initial world", async () => {
   await page.fill("#rtf-value", "0.5");
   assert.match(await act(page, "btn-rtf"), /real-time factor 0.5: accepted/);
-  await page.waitForFunction(() => rbview.state.status.target_rtf === 0.5, null, { timeout: 5000 });
+  await page.waitForFunction(() => rbview.state.status.target_rtf === 0.5, null, { timeout: 30000 });
   await page.waitForFunction(() => document.getElementById("hud-rtf").textContent.includes("target 0.50"));
   await page.fill("#rtf-value", "-1");
   assert.match(await act(page, "btn-rtf"), /real-time factor -1: rejected: .+/);
@@ -164,7 +181,7 @@ test("the real-time factor is set and reset returns to the initial world", async
   assert.match(await act(page, "btn-pause"), /pause: accepted/);
   assert.match(await act(page, "btn-reset"), /reset: accepted/);
   await page.waitForFunction((r) => rbview.state.world.revision > r && rbview.viewer.frameDrawn
-    && rbview.viewer.frameDrawn.revision === rbview.state.world.revision, revision, { timeout: 5000 });
+    && rbview.viewer.frameDrawn.revision === rbview.state.world.revision, revision, { timeout: 30000 });
   const z = (await page.evaluate(() => rbview.drawnPosition("drop_box")))[2];
   assert.ok(Math.abs(z - 30) < 1e-3, `after reset drop_box is drawn at z=${z}, not 30`);
   assert.equal(await hudStep(page), 0);

@@ -82,7 +82,7 @@ test("play advances, pause stops, and a seek while playing plays on", async () =
   await sleep(1000);
   const playing = await replay();
   // 1 s of wall clock at 0.5x is about 0.5 s of the log (at most: the page may be slow).
-  assert.ok(playing.sim_time > 0.2 && playing.sim_time < 0.8, `after 1 s at 0.5x the replay is at ${playing.sim_time} s`);
+  assert.ok(playing.sim_time > 0.05 && playing.sim_time < 0.8, `after 1 s at 0.5x the replay is at ${playing.sim_time} s`);
   await seek(10);
   await sleep(500);
   const still = await replay();

@@ -159,7 +159,7 @@ export async function waitForAck(page) {
   await page.waitForFunction(() => {
     const text = document.getElementById("message").textContent;
     return / (accepted|rejected)/.test(text);
-  }, null, { timeout: 10000 });
+  }, null, { timeout: 30000 });
   return page.locator("#message").textContent();
 }
 
