@@ -121,7 +121,8 @@ export class Viewer {
   addPlane(index, { point, normal }) {
     const group = new THREE.Group();
     // A finite patch of the half-space's surface, with a 1 m grid near the origin.
-    const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252 }));
+    const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252,
+      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })); // behind its grid lines
     const grid = new THREE.GridHelper(40, 40, 0x6b7385, 0x4c566a);
     grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; ours in x-y
     grid.position.z = 0.001;
