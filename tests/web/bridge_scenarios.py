@@ -13,6 +13,8 @@ as ctest does): starts rbserver on worlds/viewer.yaml and rbview, then
   origin         a WebSocket from another web origin, or under a host name
                  (DNS rebinding), is refused (403)
   read_only      with --read-only every request is refused with a reason
+  logger_log     rbview --log on an lcm-logger log of the bus: its states are on
+                 the timeline and a seek sends the state sought
   bad_lcm        malformed messages on every channel the bridge reads (garbage,
                  truncated and forged-header state pages) are ignored with a
                  warning; pages keep getting fresh states
@@ -275,5 +277,46 @@ def bad_lcm(workdir):
             sim.close()
 
 
+def logger_log(workdir):
+    path = os.path.join(workdir, "bus.lcmlog")
+    if os.path.exists(path):
+        os.remove(path)
+    with Processes(workdir) as procs:
+        logger = procs.start("lcm-logger", ["lcm-logger", "--quiet", path])
+        time.sleep(0.5)  # the logger must hear the server's first world description
+        server = procs.rbserver("--duration", "1")
+        assert server.wait(30) == 0, procs.output("rbserver")
+        logger.terminate()
+        logger.wait(5)
+        url = procs.rbview("--log", path)
+
+        async def run():
+            async with websockets.connect(url) as ws:
+                hello = json.loads(await ws.recv())
+                assert hello["mode"] == "replay", hello
+                world = await recv_json(ws, "world")
+                assert len(world["bodies"]) == 8
+                position = await recv_json(ws, "replay")
+                assert position["last"] >= 30 and not position["playing"], position
+                target = position["last"] // 2
+                await ws.send(json.dumps({"type": "replay", "id": 1, "action": "seek", "index": target}))
+                ack = await recv_json(ws, "ack")
+                assert ack["accepted"], ack
+                while True:
+                    step, _ = await recv_state(ws)
+                    await ws.send('{"type":"ready"}')
+                    if step == ack["effective_step"]:
+                        break
+                await ws.send(json.dumps({"type": "replay", "id": 2, "action": "speed", "speed": 0}))
+                ack = await recv_json(ws, "ack")
+                assert not ack["accepted"] and "speed must be" in ack["reason"], ack
+                await ws.send(json.dumps({"type": "command", "id": 3, "command": "pause"}))
+                ack = await recv_json(ws, "ack")
+                assert not ack["accepted"] and "replay" in ack["reason"], ack
+
+        asyncio.run(run())
+
+
 if __name__ == "__main__":
-    run_scenario({f.__name__: f for f in (slow_client, ten_clients, garbage, origin, read_only, bad_lcm)})
+    run_scenario({f.__name__: f for f in (slow_client, ten_clients, garbage, origin, read_only, logger_log,
+                                          bad_lcm)})
