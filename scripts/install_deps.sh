@@ -20,7 +20,15 @@ packages=(
   python3 python3-numpy python3-pytest python3-matplotlib
   # hermetic multi-process tests (network namespaces)
   iproute2 util-linux
+  # rbview, the browser viewer (clients/web): its bridge, and the browser its tests drive
+  python3-websockets chromium
 )
+# rbview's page is built with node and npm: Debian's, unless a node with npm is
+# already installed (e.g. from NodeSource, which bundles npm and conflicts with
+# Debian's npm package).
+if ! command -v npm >/dev/null 2>&1 || ! command -v node >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,220 @@
+"""The live source: rbserver's channels over LCM in, commands and wrenches out.
+
+Runs LCM's receive loop on its own thread (rbsim.lcm_ctypes); state frames are
+built there and handed to the hub, so the asyncio loop only sends bytes.
+Requests from browsers are published with this bridge's client id and a
+sequence number of its own; the ack that echoes it goes back to the browser
+that asked (or a timeout note after ACK_TIMEOUT s).
+"""
+
+import itertools
+import logging
+import os
+import socket
+import threading
+import time
+
+import numpy as np
+
+from rbsim import ack_t, command_t, status_t, world_t, wrench_t
+from rbsim.lcm_ctypes import Lcm
+
+from . import frames, wire
+from .server import ACK_TIMEOUT, dumps
+
+log = logging.getLogger("rbview")
+
+COMMAND_CODES = {
+    "pause": command_t.PAUSE, "resume": command_t.RESUME, "step": command_t.STEP,
+    "reset": command_t.RESET, "set_real_time_factor": command_t.SET_REAL_TIME_FACTOR,
+}
+
+
+class FrameBuilder:
+    """Turns merged states and contacts into frames for the hub (shared with the replay)."""
+
+    def __init__(self):
+        self.static_mask = None
+        self.world_revision = None
+        self.contacts = None  # (step, total, records)
+
+    def set_world(self, world):
+        self.world_revision = world["revision"]
+        self.static_mask = np.array([b["is_static"] for b in world["bodies"]], dtype=bool)
+
+    def set_contacts(self, header, records):
+        self.contacts = (header.step, header.total_contacts, records)
+
+    def frame(self, header, numbers):
+        mask = self.static_mask if header.world_revision == self.world_revision else None
+        if self.contacts is not None:
+            step, total, records = self.contacts
+            return frames.state_frame(header, numbers, mask, records, step, total)
+        return frames.state_frame(header, numbers, mask)
+
+
+class LiveSource:
+    def __init__(self, hub, url, prefix):
+        self.hub = hub
+        self.prefix = prefix
+        self.client_id = "rbview-%s-%d" % (socket.gethostname(), os.getpid())
+        self._seq = itertools.count(1)
+        self._pending = {}  # (kind, seq) -> (session, request id, timer)
+        self._lock = threading.Lock()
+        self.builder = FrameBuilder()
+        self.decoder = wire.StatePageDecoder()
+        self.state_pages = wire.Pages()
+        self.contact_pages = wire.Pages()
+        self.world_pages = wire.Pages()
+        self.decode_errors = 0
+        self.have_world = threading.Event()
+        self.lcm = Lcm(url)
+        for suffix, handler in (("STATE", self._on_state), ("CONTACTS", self._on_contacts),
+                                ("WORLD", self._on_world), ("STATUS", self._on_status),
+                                ("ACK", self._on_ack)):
+            self.lcm.subscribe(prefix + suffix, handler, queue_capacity=64)
+        self.lcm.start()
+        self._asker = threading.Thread(target=self._ask_for_world, daemon=True)
+        self._asker.start()
+
+    def close(self):
+        self.lcm.close()
+
+    def _bad(self, channel, error):
+        self.decode_errors += 1
+        if self.decode_errors <= 10 or self.decode_errors % 1000 == 0:
+            log.warning("%s: ignored a message that does not decode (%s); %d so far",
+                        channel, error, self.decode_errors)
+
+    def _ask_for_world(self):
+        """The server publishes world_t at start and on change; a bridge started later
+        asks for it (PUBLISH_WORLD) until it has one."""
+        while not self.have_world.is_set() and not self.lcm.closed:
+            self._publish_command(command_t.PUBLISH_WORLD)
+            self.have_world.wait(1.0)
+
+    # -- LCM thread ------------------------------------------------------------------------
+    def _on_state(self, channel, data, _recv_utime):
+        try:
+            page = self.decoder.decode(data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        pages = self.state_pages.add(page.key(), page, page.num_pages)
+        if pages is None:
+            return
+        merged = wire.merge_state(pages)
+        if merged is None:
+            return self._bad(channel, "pages that do not tile the bodies")
+        header, _ids, _names, numbers = merged
+        self.hub.post("state", self.builder.frame(header, numbers))
+
+    def _on_contacts(self, channel, data, _recv_utime):
+        try:
+            page = wire.decode_contacts(data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        pages = self.contact_pages.add((page.utime, page.step), page, page.num_pages)
+        if pages is not None:
+            header, records = wire.merge_contacts(pages)
+            self.builder.set_contacts(header, records)
+
+    def _on_world(self, channel, data, _recv_utime):
+        try:
+            page = wire.decode_with(world_t, data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        if page.num_pages < 1 or not 0 <= page.page < page.num_pages:
+            return self._bad(channel, "bad paging fields")
+        pages = self.world_pages.add((page.utime, page.step, page.world_revision), page, page.num_pages)
+        if pages is None:
+            return
+        world = wire.world_to_dict(pages)
+        if len(world["bodies"]) != pages[0].total_bodies:
+            return self._bad(channel, "pages that do not add up to total_bodies")
+        self.builder.set_world(world)
+        self.have_world.set()
+        self.hub.post("world", dumps(world))
+
+    def _on_status(self, channel, data, _recv_utime):
+        try:
+            status = wire.decode_with(status_t, data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        self.hub.post("status", dumps(wire.status_to_dict(status)))
+
+    def _on_ack(self, channel, data, _recv_utime):
+        try:
+            ack = wire.decode_with(ack_t, data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        if ack.client != self.client_id:
+            return
+        with self._lock:
+            entry = self._pending.pop((ack.kind, ack.seq), None)
+        if entry is None:
+            return
+        session, request_id, _sent = entry
+        self.hub.loop.call_soon_threadsafe(self._answer, session, request_id, {
+            "accepted": bool(ack.accepted), "reason": ack.reason, "effective_step": ack.effective_step})
+
+    # -- requests (asyncio thread) ---------------------------------------------------------
+    def _answer(self, session, request_id, fields):
+        session.open_requests -= 1
+        message = {"type": "ack", "id": request_id}
+        message.update(fields)
+        self.hub._reply(session, message)
+
+    def _expire(self, key):
+        with self._lock:
+            entry = self._pending.pop(key, None)
+        if entry is not None:
+            session, request_id, _ = entry
+            self._answer(session, request_id, {
+                "accepted": False, "effective_step": -1,
+                "reason": "no answer from rbserver within %g s (is it running on this bus and prefix?)"
+                          % ACK_TIMEOUT})
+
+    def handle_request(self, session, message):
+        if message["type"] == "replay":
+            session.reply({"type": "ack", "id": message["id"], "accepted": False,
+                           "reason": "replay controls need rbview --log FILE"})
+            return
+        seq = next(self._seq)
+        kind = ack_t.KIND_COMMAND if message["type"] == "command" else ack_t.KIND_WRENCH
+        key = (kind, seq)
+        with self._lock:
+            self._pending[key] = (session, message["id"], time.monotonic())
+        session.open_requests += 1
+        self.hub.loop.call_later(ACK_TIMEOUT, self._expire, key)
+        if message["type"] == "command":
+            self._publish_command(COMMAND_CODES[message["command"]], seq=seq,
+                                  num_steps=message.get("num_steps", 0),
+                                  real_time_factor=message.get("real_time_factor", 0.0))
+        else:
+            w = wrench_t()
+            w.utime = int(time.time() * 1e6)
+            w.client = self.client_id
+            w.seq = seq
+            w.body = message["body"]
+            w.frame = wrench_t.FRAME_WORLD
+            w.point_frame = wrench_t.FRAME_WORLD
+            w.force = message["force"]
+            w.torque = [0.0, 0.0, 0.0]
+            w.point = message["point"]
+            w.mode = wrench_t.MODE_DURATION
+            w.duration = message["duration"]
+            w.apply_at_step = -1
+            self.lcm.publish(self.prefix + "WRENCH", w.encode())
+
+    def _publish_command(self, code, seq=None, num_steps=0, real_time_factor=0.0):
+        c = command_t()
+        c.utime = int(time.time() * 1e6)
+        c.client = self.client_id
+        c.seq = next(self._seq) if seq is None else seq
+        c.command = code
+        c.num_steps = num_steps
+        c.real_time_factor = real_time_factor
+        c.body = ""
+        c.spawn_yaml = ""
+        c.path = ""
+        self.lcm.publish(self.prefix + "COMMAND", c.encode())

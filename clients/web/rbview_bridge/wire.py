@@ -1,0 +1,271 @@
+"""Untrusted LCM bytes of the rbsim channels -> arrays and plain dicts.
+
+State pages arrive at the state rate (up to hundreds of Hz) with thousands of
+bodies, so they are not decoded body by body in Python (lcm-gen's decoder costs
+microseconds per body): the byte offsets of every body's 13 numbers depend only
+on the names, which are fixed within one world revision, so they are found once
+per page layout and then gathered with numpy. Contacts are fixed-size records
+and are read as one numpy structured array. The rarer messages (world, status,
+acks) go through the lcm-gen decoders.
+
+Wire layout (LCM type specification, big-endian): world_state_t is an 8-byte
+fingerprint, then utime q, step q, sim_time d, world_revision q, page i,
+num_pages i, total_bodies i, first_body_index i, num_bodies i; then each
+body_state_t: id i, name (int32 length including the NUL, bytes, NUL),
+position 3d, orientation 4d, linear_velocity 3d, angular_velocity 3d.
+"""
+
+import math
+import struct
+
+import numpy as np
+
+from rbsim import ack_t, contacts_t, status_t, world_state_t, world_t
+
+STATE_FINGERPRINT = world_state_t._get_packed_fingerprint()
+CONTACTS_FINGERPRINT = contacts_t._get_packed_fingerprint()
+_STATE_HEADER = struct.Struct(">qqdqiiiii")
+_CONTACTS_HEADER = struct.Struct(">qqdiiiii")
+_BODY_NUMBERS = 13 * 8
+# contact_t: body_a i, body_b i, position 3d, normal 3d, depth d, normal_velocity d,
+# classification b, normal_impulse d, friction_impulse 3d.
+CONTACT_DTYPE = np.dtype([
+    ("body_a", ">i4"), ("body_b", ">i4"), ("position", ">f8", 3), ("normal", ">f8", 3),
+    ("depth", ">f8"), ("normal_velocity", ">f8"), ("classification", "i1"),
+    ("normal_impulse", ">f8"), ("friction_impulse", ">f8", 3)])
+
+# Limits on what a page may claim, so that a forged header cannot make us allocate.
+MAX_BODIES = 1_000_000
+MAX_PAGES = 100_000
+
+
+class WireError(ValueError):
+    """A message that does not decode as its channel's type."""
+
+
+class StatePage:
+    """One world_state_t page: header fields and a (num_bodies, 13) float64 array
+    (position 3, orientation w x y z, linear velocity 3, angular velocity 3), and ids."""
+
+    __slots__ = ("utime", "step", "sim_time", "world_revision", "page", "num_pages",
+                 "total_bodies", "first_body_index", "num_bodies", "ids", "numbers", "names")
+
+    def key(self):
+        return (self.utime, self.step, self.world_revision)
+
+
+class StatePageDecoder:
+    """Decodes world_state_t pages, remembering each page layout's body offsets."""
+
+    def __init__(self, max_layouts=64):
+        self._layouts = {}  # (len, revision, page, first, n) -> (offsets, ids, names)
+        self._max_layouts = max_layouts
+
+    def decode(self, data):
+        if len(data) < 8 + _STATE_HEADER.size or data[:8] != STATE_FINGERPRINT:
+            raise WireError("not a world_state_t (size %d or fingerprint)" % len(data))
+        page = StatePage()
+        (page.utime, page.step, page.sim_time, page.world_revision, page.page, page.num_pages,
+         page.total_bodies, page.first_body_index, page.num_bodies) = _STATE_HEADER.unpack_from(data, 8)
+        if not (0 <= page.num_bodies <= MAX_BODIES and 0 <= page.total_bodies <= MAX_BODIES
+                and 1 <= page.num_pages <= MAX_PAGES and 0 <= page.page < page.num_pages
+                and 0 <= page.first_body_index <= page.total_bodies - page.num_bodies):
+            raise WireError("world_state_t page with inconsistent paging fields")
+        key = (len(data), page.world_revision, page.page, page.first_body_index, page.num_bodies)
+        layout = self._layouts.get(key)
+        if layout is None or not self._layout_fits(data, layout):
+            layout = self._find_layout(data, page.num_bodies)
+            if len(self._layouts) >= self._max_layouts:
+                self._layouts.pop(next(iter(self._layouts)))
+            self._layouts[key] = layout
+        offsets, page.ids, page.names = layout
+        raw = np.frombuffer(data, dtype=np.uint8)
+        gathered = raw[offsets[:, None] + np.arange(_BODY_NUMBERS)]
+        page.numbers = gathered.view(">f8").reshape(page.num_bodies, 13).astype(np.float64)
+        return page
+
+    @staticmethod
+    def _layout_fits(data, layout):
+        """Cheap check that a cached layout still applies: the ids at their offsets."""
+        offsets, ids, _ = layout
+        if len(offsets) == 0:
+            return True
+        for i in (0, len(offsets) // 2, len(offsets) - 1):
+            name_len = len(layout[2][i]) + 1
+            at = offsets[i] - 8 - name_len
+            if struct.unpack_from(">i", data, at)[0] != ids[i]:
+                return False
+        return True
+
+    @staticmethod
+    def _find_layout(data, count):
+        offsets = np.empty(count, dtype=np.int64)
+        ids = np.empty(count, dtype=np.int32)
+        names = []
+        at = 8 + _STATE_HEADER.size
+        end = len(data)
+        for i in range(count):
+            if at + 8 > end:
+                raise WireError("world_state_t truncated in body %d" % i)
+            ids[i], name_len = struct.unpack_from(">ii", data, at)
+            at += 8
+            if name_len < 1 or at + name_len + _BODY_NUMBERS > end or data[at + name_len - 1] != 0:
+                raise WireError("world_state_t body %d: bad name length %d" % (i, name_len))
+            names.append(bytes(data[at:at + name_len - 1]).decode("utf-8", "replace"))
+            at += name_len
+            offsets[i] = at
+            at += _BODY_NUMBERS
+        if at != end:
+            raise WireError("world_state_t has %d trailing bytes" % (end - at))
+        return offsets, ids, names
+
+
+class ContactsPage:
+    __slots__ = ("utime", "step", "sim_time", "page", "num_pages", "total_contacts",
+                 "first_contact_index", "num_contacts", "records")
+
+
+def decode_contacts(data):
+    """contacts_t page -> ContactsPage with a structured array of contacts."""
+    if len(data) < 8 + _CONTACTS_HEADER.size or data[:8] != CONTACTS_FINGERPRINT:
+        raise WireError("not a contacts_t (size %d or fingerprint)" % len(data))
+    page = ContactsPage()
+    (page.utime, page.step, page.sim_time, page.page, page.num_pages, page.total_contacts,
+     page.first_contact_index, page.num_contacts) = _CONTACTS_HEADER.unpack_from(data, 8)
+    body = len(data) - 8 - _CONTACTS_HEADER.size
+    if (page.num_contacts < 0 or body != page.num_contacts * CONTACT_DTYPE.itemsize
+            or not 1 <= page.num_pages <= MAX_PAGES or not 0 <= page.page < page.num_pages):
+        raise WireError("contacts_t page with inconsistent sizes")
+    page.records = np.frombuffer(data, dtype=CONTACT_DTYPE, offset=8 + _CONTACTS_HEADER.size)
+    return page
+
+
+def decode_with(message_type, data):
+    try:
+        return message_type.decode(data)
+    except Exception as error:  # lcm-gen raises ValueError, struct.error, UnicodeError...
+        raise WireError("not a %s: %s" % (message_type.__name__, error)) from None
+
+
+def _finite_list(values):
+    return [float(v) if math.isfinite(v) else 0.0 for v in values]
+
+
+def _shape_fields(thing):
+    """The shape fields shared by body_description_t and compound_part_t."""
+    vertices = [c for v in thing.vertices for c in v]
+    triangles = [c for t in thing.triangles for c in t]
+    return {
+        "shape_type": thing.shape_type,
+        "radius": float(thing.radius),
+        "half_extents": _finite_list(thing.half_extents),
+        "half_length": float(thing.half_length),
+        "vertices": _finite_list(vertices),
+        "triangles": [int(i) for i in triangles],
+    }
+
+
+def world_to_dict(pages):
+    """Complete world_t pages -> the page's 'world' message."""
+    first = pages[0]
+    bodies = []
+    for page in pages:
+        for b in page.bodies:
+            body = _shape_fields(b)
+            body.update({
+                "id": b.id, "name": b.name, "is_static": bool(b.is_static), "mass": float(b.mass),
+                "inertia": _finite_list(b.inertia),
+                "shape_position": _finite_list(b.shape_position),
+                "shape_orientation": _finite_list(b.shape_orientation),
+                "plane_normal": _finite_list(b.plane_normal), "plane_offset": float(b.plane_offset),
+                "parts": [],
+            })
+            for part in b.parts:
+                p = _shape_fields(part)
+                p["position"] = _finite_list(part.position)
+                p["orientation"] = _finite_list(part.orientation)
+                body["parts"].append(p)
+            bodies.append(body)
+    return {"type": "world", "revision": first.world_revision, "step": first.step,
+            "dt": float(first.dt), "gravity": _finite_list(first.gravity), "bodies": bodies}
+
+
+def status_to_dict(s):
+    return {
+        "type": "status", "utime": s.utime, "step": s.step, "sim_time": s.sim_time,
+        "revision": s.world_revision, "dt": s.dt, "paused": bool(s.paused),
+        "target_rtf": s.target_real_time_factor, "measured_rtf": s.measured_real_time_factor,
+        "overruns": s.overruns, "num_bodies": s.num_bodies, "num_frozen_bodies": s.num_frozen_bodies,
+        "num_active_wrenches": s.num_active_wrenches, "num_contacts": s.num_contacts,
+        "step_time_mean": s.step_time_mean, "step_time_worst": s.step_time_worst,
+    }
+
+
+class Pages:
+    """Groups the pages of paged messages (states, contacts) until a step is whole.
+
+    Pages of one publication share ``key``; a group is complete when pages
+    0 .. num_pages-1 are all there. Publications come in order, so a complete
+    group makes every group opened before it stale; at most ``max_open`` groups
+    are kept open (a lost page must not keep memory forever).
+    """
+
+    def __init__(self, max_open=8):
+        self._open = {}
+        self._max_open = max_open
+        self.dropped = 0
+
+    def add(self, key, page, num_pages):
+        if num_pages == 1:
+            return [page]
+        group = self._open.setdefault((key, num_pages), {})
+        group[page_index(page)] = page
+        if len(group) < num_pages:
+            while len(self._open) > self._max_open:
+                self._open.pop(next(iter(self._open)))
+                self.dropped += 1
+            return None
+        self._open.pop((key, num_pages))
+        for older in list(self._open):
+            if older[0] <= key:
+                del self._open[older]
+                self.dropped += 1
+        return [group[i] for i in range(num_pages)]
+
+
+def page_index(page):
+    return page.page
+
+
+def merge_state(pages):
+    """Complete state pages -> (header page, ids, names, numbers (n, 13)) or None if they do not tile."""
+    first = pages[0]
+    expected = 0
+    for p in pages:
+        if (p.total_bodies != first.total_bodies or p.first_body_index != expected
+                or p.world_revision != first.world_revision):
+            return None
+        expected += p.num_bodies
+    if expected != first.total_bodies:
+        return None
+    if len(pages) == 1:
+        return first, first.ids, first.names, first.numbers
+    return (first, np.concatenate([p.ids for p in pages]), [n for p in pages for n in p.names],
+            np.concatenate([p.numbers for p in pages]))
+
+
+def merge_contacts(pages):
+    first = pages[0]
+    records = np.concatenate([p.records for p in pages]) if len(pages) > 1 else first.records
+    return first, records
+
+
+def sanitize(value):
+    """A JSON-safe copy: non-finite floats (which JSON cannot carry) become None."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: sanitize(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [sanitize(v) for v in value]
+    return value

@@ -1,0 +1,54 @@
+// The heads-up display: the server's status and what the page draws.
+const $ = (id) => document.getElementById(id);
+
+function fixed(value, digits) {
+  return typeof value === "number" && Number.isFinite(value) ? value.toFixed(digits) : "–";
+}
+
+export class Hud {
+  constructor() {
+    this.fields = {};
+    for (const id of ["connection", "sim-time", "step", "rtf", "overruns", "bodies", "asleep", "contacts",
+      "paused", "fps", "latency", "selected"]) {
+      this.fields[id] = $(`hud-${id}`);
+    }
+  }
+
+  set(id, text) {
+    const element = this.fields[id];
+    if (element.textContent !== text) element.textContent = text;
+  }
+
+  connection(text) { this.set("connection", text); }
+
+  world(world) { this.set("bodies", String(world.bodies.length)); }
+
+  frame(frame) {
+    this.set("sim-time", `${fixed(frame.simTime, 3)} s`);
+    this.set("step", String(frame.step));
+    this.set("asleep", String(frame.atRest));
+  }
+
+  status(status) {
+    const target = status.target_rtf === 0 ? "max" : fixed(status.target_rtf, 2);
+    this.set("rtf", `${fixed(status.measured_rtf, 2)} (target ${target})`);
+    this.set("overruns", String(status.overruns));
+    this.set("contacts", String(status.num_contacts));
+    this.set("paused", status.paused ? "paused" : "running");
+  }
+
+  replay(replay) {
+    this.set("paused", replay.playing ? `replaying ${replay.speed}×` : "replay paused");
+    this.set("rtf", `replay ${replay.speed}×`);
+  }
+
+  drawn(fps, statesPerSecond) {
+    this.set("fps", `${fixed(fps, 0)} fps, ${fixed(statesPerSecond, 0)} states/s`);
+  }
+
+  latency(p50, p99) {
+    this.set("latency", `${fixed(p50, 1)} ms p50, ${fixed(p99, 1)} ms p99`);
+  }
+
+  selected(text) { this.set("selected", text); }
+}

@@ -1,0 +1,291 @@
+// The 3D view: bodies as instanced pieces, the ground, contacts, the push
+// arrow; orbit/pan/zoom, picking and following a body. World frame z up.
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { bodyPieces, planeOf, bodySize } from "./shapes.js";
+import { SphereImpostors } from "./sphere_impostors.js";
+
+// Above this many spheres they are drawn as impostors (sphere_impostors.js).
+const IMPOSTOR_SPHERES = 200;
+
+const MAX_CONTACTS = 4096;
+const NORMAL_LENGTH = 0.15; // m, drawn length of a contact normal
+const SELECTED = new THREE.Color(0xffd23f);
+
+function bodyColor(body, index) {
+  if (body.is_static) return new THREE.Color(0x8a8f98);
+  return new THREE.Color().setHSL(((index * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
+}
+
+export class Viewer {
+  constructor(container) {
+    this.container = container;
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x1d2230);
+    this.camera = new THREE.PerspectiveCamera(50, 1, 0.05, 2000);
+    this.camera.up.set(0, 0, 1);
+    this.camera.position.set(6, -9, 5);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.set(0, 0, 0.5);
+    this.controls.update();
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(5, -3, 10);
+    this.scene.add(sun);
+
+    this.bodies = [];
+    this.groups = []; // {mesh: InstancedMesh, pieces: [{body, local}]}
+    this.planes = []; // {body, object, local}
+    this.worldObjects = new THREE.Group();
+    this.scene.add(this.worldObjects);
+    this.frame = null;
+    this.frameDrawn = null;
+    this.selected = -1;
+    this.follow = false;
+    this.showContacts = false;
+    this.makeContacts();
+    this.arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xff5533, 0.12, 0.07);
+    this.arrow.visible = false;
+    this.scene.add(this.arrow);
+    this.raycaster = new THREE.Raycaster();
+    this.tmpMatrix = new THREE.Matrix4();
+    this.tmpPose = new THREE.Matrix4();
+    this.tmpPosition = new THREE.Vector3();
+    this.tmpQuaternion = new THREE.Quaternion();
+    this.unitScale = new THREE.Vector3(1, 1, 1);
+    this.resize();
+    window.addEventListener("resize", () => this.resize());
+  }
+
+  resize() {
+    const w = this.container.clientWidth || window.innerWidth;
+    const h = this.container.clientHeight || window.innerHeight;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+  }
+
+  makeContacts() {
+    const points = new THREE.BufferGeometry();
+    points.setAttribute("position", new THREE.BufferAttribute(new Float32Array(MAX_CONTACTS * 3), 3));
+    this.contactPoints = new THREE.Points(points, new THREE.PointsMaterial({ color: 0xff3355, size: 6, sizeAttenuation: false }));
+    const lines = new THREE.BufferGeometry();
+    lines.setAttribute("position", new THREE.BufferAttribute(new Float32Array(MAX_CONTACTS * 6), 3));
+    this.contactNormals = new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ color: 0xffee55 }));
+    for (const o of [this.contactPoints, this.contactNormals]) {
+      o.frustumCulled = false;
+      o.visible = false;
+      this.scene.add(o);
+    }
+  }
+
+  setWorld(world) {
+    for (const group of this.groups) group.mesh.dispose();
+    this.worldObjects.clear();
+    this.groups = [];
+    this.planes = [];
+    this.bodies = world.bodies;
+    this.revision = world.revision;
+    const byKey = new Map();
+    world.bodies.forEach((body, index) => {
+      const plane = planeOf(body);
+      if (plane) {
+        this.addPlane(index, plane);
+        return;
+      }
+      for (const piece of bodyPieces(body, world.bodies.length)) {
+        if (!byKey.has(piece.key)) byKey.set(piece.key, { geometry: piece.geometry(), pieces: [] });
+        byKey.get(piece.key).pieces.push({ body: index, local: piece.local });
+      }
+    });
+    for (const [key, { geometry, pieces }] of byKey) {
+      const mesh = key === "sphere" && pieces.length > IMPOSTOR_SPHERES
+        ? new SphereImpostors(pieces.length)
+        : new THREE.InstancedMesh(geometry, new THREE.MeshLambertMaterial(), pieces.length);
+      if (mesh.isInstancedMesh) mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+      mesh.frustumCulled = false;
+      pieces.forEach((piece, i) => {
+        mesh.setColorAt(i, bodyColor(this.bodies[piece.body], piece.body));
+        mesh.setMatrixAt(i, new THREE.Matrix4().makeScale(0, 0, 0)); // hidden until a pose arrives
+      });
+      this.worldObjects.add(mesh);
+      this.groups.push({ mesh, pieces });
+    }
+    this.selected = -1;
+    this.frameDrawn = null;
+  }
+
+  addPlane(index, { point, normal }) {
+    const group = new THREE.Group();
+    // A finite patch of the half-space's surface, with a 1 m grid near the origin.
+    const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252,
+      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })); // behind its grid lines
+    const grid = new THREE.GridHelper(40, 40, 0x6b7385, 0x4c566a);
+    grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; ours in x-y
+    grid.position.z = 0.001;
+    group.add(surface, grid);
+    const local = new THREE.Matrix4().compose(point,
+      new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 0, 1), normal), this.unitScale);
+    group.matrixAutoUpdate = false;
+    surface.userData.body = index;
+    this.worldObjects.add(group);
+    this.planes.push({ body: index, object: group, local });
+  }
+
+  setFrame(frame) {
+    this.frame = frame;
+  }
+
+  // The pose of body i in the newest frame as a Matrix4 (into `out`).
+  poseMatrix(i, out) {
+    const p = this.frame.poses;
+    const o = 7 * i;
+    this.tmpPosition.set(p[o], p[o + 1], p[o + 2]);
+    this.tmpQuaternion.set(p[o + 4], p[o + 5], p[o + 6], p[o + 3]).normalize();
+    return out.compose(this.tmpPosition, this.tmpQuaternion, this.unitScale);
+  }
+
+  bodyPosition(i) {
+    if (!this.frame || i < 0 || i >= this.frame.numBodies) return null;
+    const p = this.frame.poses;
+    return new THREE.Vector3(p[7 * i], p[7 * i + 1], p[7 * i + 2]);
+  }
+
+  frameMatchesWorld() {
+    return this.frame && this.frame.revision === this.revision && this.frame.numBodies === this.bodies.length;
+  }
+
+  updatePoses() {
+    const frame = this.frame;
+    if (!this.frameMatchesWorld() || frame === this.frameDrawn) return false;
+    const pose = this.tmpPose;
+    for (const group of this.groups) {
+      const { mesh, pieces } = group;
+      for (let i = 0; i < pieces.length; i++) {
+        this.poseMatrix(pieces[i].body, pose);
+        mesh.setMatrixAt(i, this.tmpMatrix.multiplyMatrices(pose, pieces[i].local));
+      }
+      if (mesh.isInstancedMesh) mesh.instanceMatrix.needsUpdate = true;
+      else mesh.posesChanged();
+    }
+    for (const plane of this.planes) {
+      plane.object.matrix.multiplyMatrices(this.poseMatrix(plane.body, pose), plane.local);
+    }
+    this.updateContacts();
+    this.frameDrawn = frame;
+    return true;
+  }
+
+  updateContacts() {
+    const visible = this.showContacts && this.frame;
+    this.contactPoints.visible = this.contactNormals.visible = !!visible;
+    if (!visible) return;
+    const c = this.frame.contacts;
+    const n = Math.min(this.frame.numContacts, MAX_CONTACTS);
+    const pts = this.contactPoints.geometry.attributes.position;
+    const lines = this.contactNormals.geometry.attributes.position;
+    for (let i = 0; i < n; i++) {
+      const o = 7 * i;
+      pts.array.set([c[o], c[o + 1], c[o + 2]], 3 * i);
+      lines.array.set([c[o], c[o + 1], c[o + 2],
+        c[o] + NORMAL_LENGTH * c[o + 3], c[o + 1] + NORMAL_LENGTH * c[o + 4], c[o + 2] + NORMAL_LENGTH * c[o + 5]], 6 * i);
+    }
+    pts.needsUpdate = lines.needsUpdate = true;
+    this.contactPoints.geometry.setDrawRange(0, n);
+    this.contactNormals.geometry.setDrawRange(0, 2 * n);
+  }
+
+  setSelected(index) {
+    const previous = this.selected;
+    this.selected = index;
+    for (const group of this.groups) {
+      group.pieces.forEach((piece, i) => {
+        if (piece.body === index) group.mesh.setColorAt(i, SELECTED);
+        else if (piece.body === previous) group.mesh.setColorAt(i, bodyColor(this.bodies[piece.body], piece.body));
+      });
+      if (group.mesh.instanceColor) group.mesh.instanceColor.needsUpdate = true;
+      if (group.mesh.colorsChanged) group.mesh.colorsChanged();
+    }
+  }
+
+  // The body under a point of the canvas (CSS pixels), with the world point hit.
+  pick(x, y, includeStatic = true) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((x - rect.left) / rect.width) * 2 - 1, -((y - rect.top) / rect.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const hits = this.raycaster.intersectObjects(this.worldObjects.children, true);
+    for (const hit of hits) {
+      let body = -1;
+      if (hit.instanceId !== undefined) {
+        const group = this.groups.find((g) => g.mesh === hit.object);
+        if (group && hit.instanceId !== undefined) body = group.pieces[hit.instanceId].body;
+      } else if (hit.object.userData.body !== undefined) {
+        body = hit.object.userData.body;
+      }
+      if (body < 0) continue;
+      if (!includeStatic && this.bodies[body].is_static) continue;
+      return { body, point: hit.point.clone() };
+    }
+    return null;
+  }
+
+  // Where a world point is on screen (CSS pixels), for tests and tooltips.
+  screenPoint(world) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const v = world.clone().project(this.camera);
+    return { x: rect.left + (v.x + 1) / 2 * rect.width, y: rect.top + (1 - v.y) / 2 * rect.height };
+  }
+
+  // A world point under the cursor on the plane through `through` facing the camera.
+  pointOnViewPlane(x, y, through) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((x - rect.left) / rect.width) * 2 - 1, -((y - rect.top) / rect.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, through);
+    return this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
+  }
+
+  showArrow(from, to, color) {
+    const d = to.clone().sub(from);
+    const length = d.length();
+    if (length < 1e-6) {
+      this.arrow.visible = false;
+      return;
+    }
+    this.arrow.position.copy(from);
+    this.arrow.setDirection(d.normalize());
+    this.arrow.setLength(length, Math.min(0.2, length * 0.3), Math.min(0.1, length * 0.15));
+    this.arrow.setColor(color);
+    this.arrow.visible = true;
+  }
+
+  hideArrow() {
+    this.arrow.visible = false;
+  }
+
+  render() {
+    if (this.follow && this.selected >= 0) {
+      const p = this.bodyPosition(this.selected);
+      if (p) {
+        const shift = p.clone().sub(this.controls.target);
+        this.controls.target.add(shift);
+        this.camera.position.add(shift);
+      }
+    }
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  focusOn(index) {
+    const p = this.bodyPosition(index);
+    if (!p) return;
+    const size = bodySize(this.bodies[index]);
+    const offset = this.camera.position.clone().sub(this.controls.target).setLength(Math.max(2, 8 * size));
+    this.controls.target.copy(p);
+    this.camera.position.copy(p).add(offset);
+  }
+}
