@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdlib>
 #include <rbsim/command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 #include <string_view>
@@ -15,6 +16,8 @@ static_assert(static_cast<int8_t>(WrenchMode::OneStep) == rbsim::wrench_t::MODE_
 static_assert(static_cast<int8_t>(WrenchMode::Duration) == rbsim::wrench_t::MODE_DURATION);
 static_assert(static_cast<int8_t>(WrenchMode::Persistent) == rbsim::wrench_t::MODE_PERSISTENT);
 static_assert(static_cast<int8_t>(WrenchMode::Clear) == rbsim::wrench_t::MODE_CLEAR);
+static_assert(static_cast<int8_t>(WrenchMode::ClearAllClients) ==
+              rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS);
 static_assert(static_cast<int8_t>(AckKind::Wrench) == rbsim::ack_t::KIND_WRENCH);
 static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAND);
 
@@ -67,8 +70,14 @@ void notify(const Callbacks& callbacks, const Message& message) {
 Client::Client(ClientOptions options)
     : m_url(resolveLcmUrl(options.url)),
       m_prefix(std::move(options.channelPrefix)),
-      m_clientId(options.clientId.empty() ? makeDefaultClientId() : std::move(options.clientId)),
+      m_clientId(resolveClientId(options.clientId)),
       m_lcm(std::make_unique<lcm::LCM>(m_url)) {
+  // A named client id may outlive this process: start its sequence numbers
+  // at the wall clock in microseconds, so that they keep increasing across
+  // runs (wrench_t.seq) and an ack of an earlier run never answers this one.
+  const char* named = std::getenv("RBSIM_CLIENT_ID");
+  if (!options.clientId.empty() || (named != nullptr && *named != '\0'))
+    m_nextSeq = wallMicroseconds();
   if (!m_lcm->good()) return;
   m_lcm->subscribe(regexEscaped(channel("STATE")), &Client::onStateMessage, this)
       ->setQueueCapacity(kQueueCapacity);
@@ -184,20 +193,24 @@ Request Client::applyWrench(const Wrench& wrench) {
   message.seq = m_nextSeq++;
   message.body = wrench.body;
   message.frame = static_cast<int8_t>(wrench.frame);
-  message.point_frame = static_cast<int8_t>(wrench.pointFrame.value_or(wrench.frame));
+  // No point: the server puts it at the centre of mass, exactly, when the
+  // wrench first acts.
+  message.point_frame =
+      wrench.point ? static_cast<int8_t>(wrench.pointFrame.value_or(wrench.frame))
+                   : rbsim::wrench_t::POINT_FRAME_CENTER_OF_MASS;
   copyVec3(message.force, wrench.force);
   copyVec3(message.torque, wrench.torque);
-  copyVec3(message.point, wrench.point);
+  copyVec3(message.point, wrench.point.value_or(Vec3{0.0, 0.0, 0.0}));
   message.mode = static_cast<int8_t>(wrench.mode);
   message.duration = wrench.duration;
   message.apply_at_step = wrench.applyAtStep;
   return {message.seq, AckKind::Wrench, publish("WRENCH", message)};
 }
 
-Request Client::clearWrenches(const std::string& body, int64_t applyAtStep) {
+Request Client::clearWrenches(const std::string& body, int64_t applyAtStep, bool allClients) {
   Wrench clear;
   clear.body = body;
-  clear.mode = WrenchMode::Clear;
+  clear.mode = allClients ? WrenchMode::ClearAllClients : WrenchMode::Clear;
   clear.applyAtStep = applyAtStep;
   return applyWrench(clear);
 }

@@ -43,6 +43,7 @@ from collections import deque
 import numpy as np
 
 from . import ack_t, command_t, status_t, world_state_t, world_t, wrench_t
+from .constants import AckKind, Command, Frame, PointFrame, WrenchMode, parse_enum
 from .lcm_ctypes import Lcm
 
 __all__ = [
@@ -57,35 +58,31 @@ __all__ = [
     "FRAMES",
     "MODES",
     "ACK_KINDS",
+    "Frame",
+    "PointFrame",
+    "WrenchMode",
+    "AckKind",
+    "Command",
 ]
 
 #: The server's default bus with a 2 MiB kernel receive buffer, so that bursts
 #: of states (e.g. after ``step(n)``) are not dropped by the kernel.
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
 
-#: wrench_t.frame by name.
-FRAMES = {"world": wrench_t.FRAME_WORLD, "body": wrench_t.FRAME_BODY}
-#: wrench_t.mode by name.
+#: wrench_t.frame by name (see rbsim.constants for the IntEnums).
+FRAMES = {"world": Frame.WORLD, "body": Frame.BODY}
+#: wrench_t.mode by name; "one-step" and "clear-all" are accepted too.
 MODES = {
-    "one_step": wrench_t.MODE_ONE_STEP,
-    "duration": wrench_t.MODE_DURATION,
-    "persistent": wrench_t.MODE_PERSISTENT,
-    "clear": wrench_t.MODE_CLEAR,
+    "one_step": WrenchMode.ONE_STEP,
+    "duration": WrenchMode.DURATION,
+    "persistent": WrenchMode.PERSISTENT,
+    "clear": WrenchMode.CLEAR,
+    "clear_all": WrenchMode.CLEAR_ALL,
 }
 #: ack_t.kind by name.
-ACK_KINDS = {"wrench": ack_t.KIND_WRENCH, "command": ack_t.KIND_COMMAND}
+ACK_KINDS = {"wrench": AckKind.WRENCH, "command": AckKind.COMMAND}
 #: command_t.command by name (for messages).
-COMMAND_NAMES = {
-    command_t.PAUSE: "pause",
-    command_t.RESUME: "resume",
-    command_t.STEP: "step",
-    command_t.RESET: "reset",
-    command_t.SET_REAL_TIME_FACTOR: "set_real_time_factor",
-    command_t.SPAWN: "spawn",
-    command_t.REMOVE: "remove",
-    command_t.PUBLISH_WORLD: "publish_world",
-    command_t.SAVE_CHECKPOINT: "save_checkpoint",
-}
+COMMAND_NAMES = {command: command.name.lower() for command in Command}
 
 _PREFIX_PATTERN = re.compile(r"^[A-Za-z0-9_]{0,40}$")
 
@@ -189,6 +186,36 @@ class WorldState:
 
     def names(self):
         return [b.name for b in self.bodies]
+
+    def __len__(self):
+        return len(self.bodies)
+
+    # The whole state as arrays, one row per body in the order of ``bodies``
+    # (ascending id), for vectorised code: ``state.positions[:, 2]`` is every z.
+    @property
+    def ids(self):
+        """Body ids, numpy (N,) int."""
+        return np.array([b.id for b in self.bodies], dtype=np.int64)
+
+    @property
+    def positions(self):
+        """m, world, centre of mass: numpy (N, 3)."""
+        return np.array([b.position for b in self.bodies], dtype=float).reshape(-1, 3)
+
+    @property
+    def orientations(self):
+        """Unit quaternions (w, x, y, z), body -> world: numpy (N, 4)."""
+        return np.array([b.orientation for b in self.bodies], dtype=float).reshape(-1, 4)
+
+    @property
+    def linear_velocities(self):
+        """m/s, world: numpy (N, 3)."""
+        return np.array([b.linear_velocity for b in self.bodies], dtype=float).reshape(-1, 3)
+
+    @property
+    def angular_velocities(self):
+        """rad/s, world: numpy (N, 3)."""
+        return np.array([b.angular_velocity for b in self.bodies], dtype=float).reshape(-1, 3)
 
     def __repr__(self):
         return "WorldState(step=%d, sim_time=%g, revision=%d, bodies=%r)" % (
@@ -321,8 +348,11 @@ class Client:
 
     ``url``: LCM URL; None -> ``$LCM_DEFAULT_URL`` or :data:`DEFAULT_URL`.
     ``prefix``: channel prefix (letters, digits, '_'), default ``RBSIM_``.
-    ``client_id``: echoed in acks, default ``py-<hostname>-<pid>``; wrench
-    replacement and CLEAR work per client id.
+    ``client_id``: echoed in acks, default ``$RBSIM_CLIENT_ID``, else
+    ``py-<hostname>-<pid>``; wrench replacement and CLEAR work per client id,
+    so a named id lets a later run clear an earlier run's wrenches (a named
+    id's sequence numbers start at the wall clock in us, to keep increasing
+    across runs).
     ``history``: how many complete states to keep (see :meth:`states`).
     ``timeout``: s, the default of every ``timeout`` argument (None there).
     """
@@ -332,10 +362,11 @@ class Client:
             raise ValueError("channel prefix %r: use at most 40 letters, digits and '_'" % prefix)
         self.url = url if url is not None else default_url()
         self.prefix = prefix
-        self.client_id = client_id or "py-%s-%d" % (socket.gethostname(), os.getpid())
+        named = client_id or os.environ.get("RBSIM_CLIENT_ID")
+        self.client_id = named or "py-%s-%d" % (socket.gethostname(), os.getpid())
         self.timeout = float(timeout)
         self._cond = threading.Condition()
-        self._seq = itertools.count(1)
+        self._seq = itertools.count(_wall_utime() if named else 1)
         self._seq_lock = threading.Lock()
 
         self._state = None
@@ -635,19 +666,19 @@ class Client:
     def apply_wrench(
         self,
         body,
-        force,
+        force=(0.0, 0.0, 0.0),
         torque=(0.0, 0.0, 0.0),
         point=None,
         frame="world",
         mode="one_step",
         duration=0.0,
         apply_at_step=-1,
-        wait=False,
+        wait=True,
         timeout=None,
-        check=False,
+        check=True,
         point_frame=None,
     ):
-        """Sends a ``wrench_t`` on ``prefix + WRENCH``.
+        """Sends a ``wrench_t`` on ``prefix + WRENCH`` and returns its ``ack_t``.
 
         ``force`` (N) and ``torque`` (N*m, a pure couple) are 3-vectors in
         ``frame``: "world" (keeping their world direction while the body
@@ -656,49 +687,40 @@ class Client:
         point of the body where the force acts: in "world", a world position
         at the moment the wrench first acts, carried with the body from then
         on; in "body", a point fixed in the body. None means the centre of
-        mass: for a world point, the body's position in the latest received
-        state (waited for if there is none yet), which is exact while the
-        server is paused and lags by the state latency otherwise; for a body
-        point, the body-frame origin (the centre of mass for spheres, boxes,
-        cylinders and capsules).
+        mass, exactly: the server places it there (``point_frame`` is then
+        ignored).
 
-        ``mode``: "one_step" (acts during one step), "duration" (during
-        ``duration`` s of simulated time, rounded to whole steps, >= 1),
-        "persistent" (until cleared; replaces this client's previous
-        persistent wrench on ``body``), "clear" (removes this client's
-        duration and persistent wrenches on ``body``, or on every body if
-        ``body`` is ""). ``apply_at_step``: the step during which it first acts,
-        -1 = the next one.
+        ``mode`` (a :class:`WrenchMode` or its name): "one_step" (acts during
+        one step), "duration" (during ``duration`` s of simulated time,
+        rounded to whole steps, >= 1), "persistent" (until cleared; replaces
+        this client's previous persistent wrench on ``body``), "clear"
+        (removes this client's duration and persistent wrenches on ``body``,
+        or on every body if ``body`` is ""), "clear_all" (the same for every
+        client's). A clear's ack says how many in ``wrenches_cleared``.
+        ``apply_at_step``: the step during which it first acts, -1 = the next.
 
-        Returns the sequence number; with ``wait=True`` waits for and returns
-        the ``ack_t`` instead (``check=True`` raises :class:`Rejected` if it was
-        rejected). Values are not range-checked here: the server judges them.
+        Waits for the ack and raises :class:`Rejected` if the server rejected
+        the wrench (``check=False``: returns the rejected ack instead);
+        ``wait=False`` returns the sequence number at once. Values are not
+        range-checked here: the server judges them.
         """
-        frame_code = FRAMES.get(frame, frame)
-        point_code = frame_code if point_frame is None else FRAMES.get(point_frame, point_frame)
-        mode_code = MODES.get(mode, mode)
-        if frame_code not in FRAMES.values():
-            raise ValueError("frame must be one of %s, not %r" % (sorted(FRAMES), frame))
-        if point_code not in FRAMES.values():
-            raise ValueError("point_frame must be one of %s, not %r" % (sorted(FRAMES), point_frame))
-        if mode_code not in MODES.values():
-            raise ValueError("mode must be one of %s, not %r" % (sorted(MODES), mode))
+        frame_code = parse_enum(Frame, frame, "frame")
+        point_code = frame_code if point_frame is None else parse_enum(Frame, point_frame, "point_frame")
+        mode_code = parse_enum(WrenchMode, mode, "mode")
         message = wrench_t()
         message.body = body
-        message.frame = frame_code
-        message.point_frame = point_code
-        message.mode = mode_code
-        if mode_code == wrench_t.MODE_CLEAR:
+        message.frame = int(frame_code)
+        message.mode = int(mode_code)
+        if mode_code.is_clear:
             force, torque, point = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         message.force = _vector(force, 3, "force")
         message.torque = _vector(torque, 3, "torque")
         if point is None:
-            point = (0.0, 0.0, 0.0)
-            if point_code == wrench_t.FRAME_WORLD:
-                state = self._state or self.wait_state(timeout)
-                if body in state:
-                    point = state[body].position
-        message.point = _vector(point, 3, "point")
+            message.point_frame = int(PointFrame.CENTER_OF_MASS)
+            message.point = (0.0, 0.0, 0.0)
+        else:
+            message.point_frame = int(point_code)
+            message.point = _vector(point, 3, "point")
         message.duration = float(duration)
         message.apply_at_step = int(apply_at_step)
         message.client = self.client_id
@@ -707,11 +729,13 @@ class Client:
         self.lcm.publish(self.channel("WRENCH"), message.encode())
         return self._finish(message.seq, "wrench", wait, timeout, check, "wrench on %r" % body)
 
-    def clear_wrenches(self, body="", wait=True, timeout=None, check=False):
+    def clear_wrenches(self, body="", all_clients=False, wait=True, timeout=None, check=True):
         """Removes this client's duration and persistent wrenches on ``body``
-        (every body if ""); returns the ack (or the seq with ``wait=False``)."""
+        (every body if ""), or every client's with ``all_clients``; returns the
+        ack, whose ``wrenches_cleared`` says how many (the seq with ``wait=False``)."""
         return self.apply_wrench(
-            body, (0, 0, 0), mode="clear", wait=wait, timeout=timeout, check=check
+            body, mode=WrenchMode.CLEAR_ALL if all_clients else WrenchMode.CLEAR, wait=wait,
+            timeout=timeout, check=check
         )
 
     # -- commands ---------------------------------------------------------------------

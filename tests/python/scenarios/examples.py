@@ -4,7 +4,7 @@ import os
 import re
 import subprocess
 
-from harness import PYTHON, REPO, run, session, subprocess_env, world_file
+from harness import PYTHON, REPO, Server, run, session, subprocess_env, world_file
 from rbsim import ack_t, wrench_t
 
 EXAMPLES = os.path.join(REPO, "clients", "python", "examples")
@@ -67,5 +67,41 @@ def record_and_plot(workdir):
     assert any(w.body == "ball" for w in log.wrenches)
 
 
+def pd_hold_height_default_world(workdir):
+    """With no options, pd_hold_height.py holds a body of config/default.yaml
+    (its default, bouncy_ball) at its default target."""
+    server = Server(workdir, os.path.join(REPO, "config", "default.yaml"), "--real-time-factor", "2")
+    try:
+        proc = subprocess.run([PYTHON, os.path.join(EXAMPLES, "pd_hold_height.py"), "--timeout", "10"],
+                              capture_output=True, text=True, timeout=60, env=subprocess_env())
+        assert proc.returncode == 0, "pd_hold_height exited %d\n%s%s" % (
+            proc.returncode, proc.stdout, proc.stderr)
+        assert "final z" in proc.stdout, proc.stdout
+    finally:
+        assert server.stop() == 0
+
+
+def record_and_plot_default_world(workdir):
+    """With no settings, record_and_plot.sh runs config/default.yaml, pushes
+    its default body (bouncy_ball, accepted) and leaves a plot."""
+    out = os.path.join(workdir, "out")
+    env = subprocess_env()
+    for name in ("WORLD", "BODY", "FORCE", "DURATION", "RTF"):
+        env.pop(name, None)
+    proc = subprocess.run([os.path.join(EXAMPLES, "record_and_plot.sh"), out], capture_output=True,
+                          text=True, timeout=60, env=env)
+    assert proc.returncode == 0, "record_and_plot.sh exited %d\n%s%s" % (
+        proc.returncode, proc.stdout, proc.stderr)
+    assert os.path.getsize(os.path.join(out, "session.png")) > 10000
+    from rbsim.log import load_log
+
+    log = load_log(os.path.join(out, "session.lcmlog"))
+    pushes = [a for a in log.acks if a.kind == ack_t.KIND_WRENCH]
+    assert pushes and all(a.accepted for a in pushes), [(a.accepted, a.reason) for a in pushes]
+    assert any(w.body == "bouncy_ball" for w in log.wrenches)
+
+
 if __name__ == "__main__":
-    run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot})
+    run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot,
+         "pd_hold_height_default_world": pd_hold_height_default_world,
+         "record_and_plot_default_world": record_and_plot_default_world})

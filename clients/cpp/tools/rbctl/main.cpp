@@ -30,8 +30,9 @@ void printUsage(std::FILE* out) {
       "  --url URL      LCM URL (default: $LCM_DEFAULT_URL, else %s)\n"
       "  --prefix P     channel prefix (default %s)\n"
       "  --timeout S    seconds to wait for the server's answer (default 2)\n"
-      "  --client-id ID the sender id (default cpp-<host>-<pid>); reuse one to CLEAR or\n"
-      "                 replace the persistent wrenches of an earlier rbctl run\n\n"
+      "  --client-id ID the sender id (default: $RBSIM_CLIENT_ID, else cpp-<host>-<pid>);\n"
+      "                 reuse one to clear or replace the persistent wrenches of an\n"
+      "                 earlier rbctl run\n\n"
       "verbs:\n",
       client::kDefaultUrl, client::kDefaultChannelPrefix);
   for (const Verb& verb : verbs()) std::fprintf(out, "  %-8s %s\n", verb.name, verb.summary);

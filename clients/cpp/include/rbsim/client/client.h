@@ -41,7 +41,7 @@ namespace rbsim::client {
 struct ClientOptions {
   std::string url;  // empty: $LCM_DEFAULT_URL, else kDefaultUrl
   std::string channelPrefix = kDefaultChannelPrefix;
-  std::string clientId;  // empty: makeDefaultClientId()
+  std::string clientId;  // empty: $RBSIM_CLIENT_ID, else makeDefaultClientId()
 };
 
 // Which channel a request went on, as ack_t::kind says.
@@ -114,8 +114,11 @@ class Client {
 
   Request applyWrench(const Wrench& wrench);
   // MODE_CLEAR: this client's duration and persistent wrenches on `body`
-  // (every body if empty), from `applyAtStep` (−1: the next step).
-  Request clearWrenches(const std::string& body = "", int64_t applyAtStep = -1);
+  // (every body if empty), from `applyAtStep` (−1: the next step); with
+  // `allClients`, MODE_CLEAR_ALL_CLIENTS: every client's. The ack's
+  // wrenches_cleared says how many.
+  Request clearWrenches(const std::string& body = "", int64_t applyAtStep = -1,
+                        bool allClients = false);
 
   Request pause();
   Request resume();
