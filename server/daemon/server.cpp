@@ -8,6 +8,8 @@
 #include <filesystem>
 
 #include <rbsim/ack_t.hpp>
+
+#include "rbsim/client/lcm_url.h"
 #include <rbsim/command_t.hpp>
 #include <rbsim/handled_t.hpp>
 #include <rbsim/status_t.hpp>
@@ -56,8 +58,7 @@ Expected<bool> Server::open() {
           : std::max<int64_t>(1, static_cast<int64_t>(std::llround(1.0 / (m_settings.contactsRate * dt))));
   m_lcm = std::make_unique<lcm::LCM>(m_settings.lcmUrl);
   if (!m_lcm->good())
-    return Error{"cannot open LCM with URL '" + m_settings.lcmUrl +
-                 "' (is there a route for multicast, e.g. `ip route add 224.0.0.0/4 dev lo`?)"};
+    return Error{client::explainLcmOpenFailure(m_settings.lcmUrl)};
   // Channel names are exact: the prefix was checked to hold no regex characters.
   m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);

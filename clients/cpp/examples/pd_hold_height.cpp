@@ -24,6 +24,7 @@
 #include <string>
 
 #include "rbsim/client/client.h"
+#include "rbsim/client/lcm_url.h"
 #include "rbsim/client/lookup.h"
 
 using namespace std::chrono_literals;
@@ -131,7 +132,8 @@ int main(int argc, char** argv) {
 
   Client client(options.client);
   if (!client.good()) {
-    std::fprintf(stderr, "pd_hold_height: cannot open LCM with URL '%s'\n", client.url().c_str());
+    std::fprintf(stderr, "pd_hold_height: %s\n",
+                 rbsim::client::explainLcmOpenFailure(client.url()).c_str());
     return 3;
   }
 

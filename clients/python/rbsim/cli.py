@@ -23,7 +23,6 @@ within --timeout, 4 LCM could not be opened (or another error).
 """
 
 import argparse
-import json
 import os
 import sys
 
@@ -36,10 +35,6 @@ class CliError(Exception):
     def __init__(self, message, status):
         super().__init__(message)
         self.status = status
-
-
-def _vec(values):
-    return "[" + ", ".join("%.6g" % v for v in values) + "]"
 
 
 def _client(args):
@@ -67,86 +62,37 @@ def _report(ack, what):
 # -- verbs -----------------------------------------------------------------------------
 
 
-def _state_dict(state, names):
-    return {
-        "step": state.step,
-        "sim_time": state.sim_time,
-        "world_revision": state.world_revision,
-        "bodies": [
-            {
-                "id": b.id,
-                "name": b.name,
-                "position": b.position.tolist(),
-                "orientation": b.orientation.tolist(),
-                "linear_velocity": b.linear_velocity.tolist(),
-                "angular_velocity": b.angular_velocity.tolist(),
-            }
-            for b in state.bodies
-            if not names or b.name in names
-        ],
-    }
-
-
 def cmd_state(args):
+    from . import printing
+
     with _client(args) as sim:
         state = sim.wait_state(args.timeout)
     unknown = [n for n in args.body or [] if n not in state]
     if unknown:
-        raise CliError("no body named %s in the state (bodies: %s)"
-                       % (", ".join(map(repr, unknown)), ", ".join(state.names())), EXIT_REJECTED)
+        raise CliError("no body named '%s' in the state of step %d" % (unknown[0], state.step),
+                       EXIT_REJECTED)
+    names = set(args.body or [])
     if args.json:
-        print(json.dumps(_state_dict(state, args.body)))
-        return
-    print("step %d  sim_time %.6f s  world_revision %d  bodies %d"
-          % (state.step, state.sim_time, state.world_revision, len(state.bodies)))
-    for b in state.bodies:
-        if args.body and b.name not in args.body:
-            continue
-        print("  %-16s id %-4d position %s m  orientation (w,x,y,z) %s  velocity %s m/s  "
-              "angular_velocity %s rad/s"
-              % (b.name, b.id, _vec(b.position), _vec(b.orientation), _vec(b.linear_velocity),
-                 _vec(b.angular_velocity)))
+        print(printing.state_json(state, names))
+    else:
+        print("\n".join(printing.state_lines(state, names)))
 
 
 def cmd_status(args):
+    from . import printing
+
     with _client(args) as sim:
         status = sim.wait_status(args.timeout)
-    fields = [
-        ("step", status.step), ("sim_time_s", status.sim_time),
-        ("paused", bool(status.paused)), ("world_revision", status.world_revision),
-        ("dt_s", status.dt), ("target_real_time_factor", status.target_real_time_factor),
-        ("measured_real_time_factor", status.measured_real_time_factor),
-        ("step_time_mean_s", status.step_time_mean), ("step_time_worst_s", status.step_time_worst),
-        ("overruns", status.overruns), ("commands_accepted", status.commands_accepted),
-        ("commands_rejected", status.commands_rejected), ("num_bodies", status.num_bodies),
-        ("num_frozen_bodies", status.num_frozen_bodies),
-        ("num_active_wrenches", status.num_active_wrenches), ("num_contacts", status.num_contacts),
-    ]
-    if args.json:
-        print(json.dumps(dict(fields)))
-        return
-    for name, value in fields:
-        print("%-26s %s" % (name, value))
+    print(printing.status_json(status) if args.json else "\n".join(printing.status_lines(status)))
 
 
 def cmd_bodies(args):
+    from . import printing
+
     with _client(args) as sim:
         sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
         world = sim.request_world(args.timeout)
-    if args.json:
-        print(json.dumps({
-            "world_revision": world.world_revision, "dt": world.dt,
-            "gravity": world.gravity.tolist(), "integrator": world.integrator,
-            "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
-                        "mass": b.mass, "inertia": list(b.inertia)} for b in world.bodies],
-        }))
-        return
-    print("world_revision %d  dt %g s  gravity %s m/s^2  integrator %s  bodies %d"
-          % (world.world_revision, world.dt, _vec(world.gravity), world.integrator, len(world.bodies)))
-    for b in world.bodies:
-        print("  %-16s id %-4d %-8s %s mass %.6g kg  inertia %s kg*m^2"
-              % (b.name, b.id, b.shape_type, "static" if b.is_static else "free  ", b.mass,
-                 _vec(b.inertia)))
+    print(printing.world_json(world) if args.json else "\n".join(printing.world_lines(world)))
 
 
 def cmd_wrench(args):
@@ -302,7 +248,8 @@ def build_parser():
         return sub
 
     sub = verb("state", cmd_state, "print the next complete world state")
-    sub.add_argument("--body", action="append", metavar="NAME", help="only this body (repeatable)")
+    sub.add_argument("--body", action="append", metavar="NAME",
+                     help="only this body (repeatable; exit 1 if there is none)")
     sub.add_argument("--json", action="store_true", help="print JSON")
 
     sub = verb("status", cmd_status, "print the next status heartbeat")

@@ -7,6 +7,7 @@
 
 #include "arguments.h"
 #include "rbsim/client/client.h"
+#include "rbsim/client/lcm_url.h"
 #include "verbs.h"
 
 using namespace rbsim;
@@ -102,10 +103,7 @@ int main(int argc, char** argv) {
   clientOptions.clientId = options.clientId;
   client::Client client(clientOptions);
   if (!client.good()) {
-    std::fprintf(stderr,
-                 "rbctl: cannot open LCM with URL '%s' (is there a route for multicast, e.g. "
-                 "`ip route add 224.0.0.0/4 dev lo`?)\n",
-                 client.url().c_str());
+    std::fprintf(stderr, "rbctl: %s\n", client::explainLcmOpenFailure(client.url()).c_str());
     return kExitNoConnection;
   }
   Context context{client, client::Client::Timeout(std::llround(options.timeout * 1000.0))};

@@ -1,8 +1,33 @@
 #include "printing.h"
 
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 namespace rbsim::rbctl {
 
 namespace {
+
+using nlohmann::json;
+
+// Below this a quaternion component is rounding noise of a unit quaternion,
+// beyond what 10 significant digits of the others can show: printed as 0.
+constexpr double kQuaternionNoise = 1e-12;
+
+std::array<double, 4> cleanOrientation(const double (&q)[4]) {
+  std::array<double, 4> out{};
+  for (int i = 0; i < 4; ++i) out[i] = std::abs(q[i]) < kQuaternionNoise ? 0.0 : q[i];
+  return out;
+}
+
+bool selected(const std::vector<std::string>& bodies, const std::string& name) {
+  return bodies.empty() || std::find(bodies.begin(), bodies.end(), name) != bodies.end();
+}
+
+template <std::size_t N>
+json array(const double (&values)[N]) {
+  return json(std::vector<double>(std::begin(values), std::end(values)));
+}
 
 // 10 significant digits: readable, and enough to tell one step's velocity
 // change from the next.
@@ -13,15 +38,16 @@ void printVector(std::FILE* out, const char* key, const double* values, int coun
 
 }  // namespace
 
-void printState(std::FILE* out, const rbsim::world_state_t& state, const std::string& body) {
+void printState(std::FILE* out, const rbsim::world_state_t& state,
+                const std::vector<std::string>& bodies) {
   std::fprintf(out, "step %lld sim_time %.10g world_revision %lld bodies %d\n",
                static_cast<long long>(state.step), state.sim_time,
                static_cast<long long>(state.world_revision), state.total_bodies);
   for (const auto& b : state.bodies) {
-    if (!body.empty() && b.name != body) continue;
+    if (!selected(bodies, b.name)) continue;
     std::fprintf(out, "body %s id %d", b.name.c_str(), b.id);
     printVector(out, "position", b.position, 3);
-    printVector(out, "orientation", b.orientation, 4);
+    printVector(out, "orientation", cleanOrientation(b.orientation).data(), 4);
     printVector(out, "linear_velocity", b.linear_velocity, 3);
     printVector(out, "angular_velocity", b.angular_velocity, 3);
     std::fputc('\n', out);
@@ -70,6 +96,64 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
     }
     std::fputc('\n', out);
   }
+}
+
+void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
+                    const std::vector<std::string>& bodies) {
+  json list = json::array();
+  for (const auto& b : state.bodies) {
+    if (!selected(bodies, b.name)) continue;
+    list.push_back({{"id", b.id},
+                    {"name", b.name},
+                    {"position", array(b.position)},
+                    {"orientation", cleanOrientation(b.orientation)},
+                    {"linear_velocity", array(b.linear_velocity)},
+                    {"angular_velocity", array(b.angular_velocity)}});
+  }
+  const json document = {{"step", state.step},
+                         {"sim_time", state.sim_time},
+                         {"world_revision", state.world_revision},
+                         {"bodies", list}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+}
+
+void printStatusJson(std::FILE* out, const rbsim::status_t& s) {
+  const json document = {{"step", s.step},
+                         {"sim_time", s.sim_time},
+                         {"world_revision", s.world_revision},
+                         {"dt", s.dt},
+                         {"paused", s.paused},
+                         {"target_real_time_factor", s.target_real_time_factor},
+                         {"measured_real_time_factor", s.measured_real_time_factor},
+                         {"window", s.window},
+                         {"step_time_mean", s.step_time_mean},
+                         {"step_time_worst", s.step_time_worst},
+                         {"overruns", s.overruns},
+                         {"commands_accepted", s.commands_accepted},
+                         {"commands_rejected", s.commands_rejected},
+                         {"num_bodies", s.num_bodies},
+                         {"num_frozen_bodies", s.num_frozen_bodies},
+                         {"num_active_wrenches", s.num_active_wrenches},
+                         {"num_contacts", s.num_contacts}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+}
+
+void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
+  json list = json::array();
+  for (const auto& b : world.bodies)
+    list.push_back({{"id", b.id},
+                    {"name", b.name},
+                    {"shape", b.shape_type},
+                    {"static", b.is_static},
+                    {"mass", b.mass},
+                    {"inertia", array(b.inertia)}});
+  const json document = {{"world_revision", world.world_revision},
+                         {"step", world.step},
+                         {"dt", world.dt},
+                         {"integrator", world.integrator},
+                         {"gravity", array(world.gravity)},
+                         {"bodies", list}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
 }  // namespace rbsim::rbctl

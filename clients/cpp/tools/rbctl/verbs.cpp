@@ -61,12 +61,26 @@ bool waitForState(Context& context) {
                                   context.timeout);
 }
 
+// Reads the only option of status and bodies; true with --json.
+bool jsonOption(Arguments& arguments, const char* verb) {
+  bool json = false;
+  while (!arguments.empty()) {
+    const std::string option = arguments.next(verb, "an option");
+    if (option != "--json") throw UsageError(std::string(verb) + ": unknown option '" + option + "'");
+    json = true;
+  }
+  return json;
+}
+
 int runState(Context& context, Arguments& arguments) {
-  std::string body;
+  std::vector<std::string> bodies;
+  bool json = false;
   while (!arguments.empty()) {
     const std::string option = arguments.next("state", "an option");
     if (option == "--body") {
-      body = arguments.next(option, "a body name");
+      bodies.push_back(arguments.next(option, "a body name"));
+    } else if (option == "--json") {
+      json = true;
     } else {
       throw UsageError("state: unknown option '" + option + "'");
     }
@@ -74,32 +88,46 @@ int runState(Context& context, Arguments& arguments) {
   if (!waitForState(context))
     return noAnswer(context, "state on " + context.client.channel("STATE"));
   const auto& state = *context.client.latestState();
-  if (!body.empty() && client::findBody(state, body) == nullptr) {
-    std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
-                 static_cast<long long>(state.step));
-    return kExitRejected;
+  for (const std::string& body : bodies) {
+    if (client::findBody(state, body) == nullptr) {
+      std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
+                   static_cast<long long>(state.step));
+      return kExitRejected;
+    }
   }
-  printState(stdout, state, body);
+  if (json) {
+    printStateJson(stdout, state, bodies);
+  } else {
+    printState(stdout, state, bodies);
+  }
   return kExitOk;
 }
 
 int runStatus(Context& context, Arguments& arguments) {
-  arguments.expectEnd();
+  const bool json = jsonOption(arguments, "status");
   if (!context.client.spinUntil([&] { return context.client.latestStatus().has_value(); },
                                 context.timeout))
     return noAnswer(context, "status on " + context.client.channel("STATUS"));
-  printStatus(stdout, *context.client.latestStatus());
+  if (json) {
+    printStatusJson(stdout, *context.client.latestStatus());
+  } else {
+    printStatus(stdout, *context.client.latestStatus());
+  }
   return kExitOk;
 }
 
 int runBodies(Context& context, Arguments& arguments) {
-  arguments.expectEnd();
+  const bool json = jsonOption(arguments, "bodies");
   // Ask for a fresh description rather than wait for the next change.
   context.client.publishWorld();
   if (!context.client.spinUntil([&] { return context.client.world().has_value(); },
                                 context.timeout))
     return noAnswer(context, "world description on " + context.client.channel("WORLD"));
-  printWorld(stdout, *context.client.world());
+  if (json) {
+    printWorldJson(stdout, *context.client.world());
+  } else {
+    printWorld(stdout, *context.client.world());
+  }
   return kExitOk;
 }
 
@@ -257,18 +285,21 @@ int runRemove(Context& context, Arguments& arguments) {
 const std::vector<Verb>& verbs() {
   static const std::vector<Verb> kVerbs = {
       {"state", "print the latest complete state",
-       "usage: rbctl state [--body NAME]\n\n"
+       "usage: rbctl state [--body NAME]... [--json]\n\n"
        "Waits for a complete state on <prefix>STATE and prints it: a line\n"
        "\"step S sim_time T world_revision R bodies N\", then per body \"body NAME id I\n"
        "position X Y Z orientation W X Y Z linear_velocity ... angular_velocity ...\"\n"
        "(m, unit quaternion body->world, m/s and rad/s in the world frame).\n"
-       "  --body NAME   only that body (exit 1 if there is none)\n",
+       "(orientation components below 1e-12 are printed as 0).\n"
+       "  --body NAME   only that body (repeatable; exit 1 if there is none)\n"
+       "  --json        one JSON object: step, sim_time, world_revision, bodies\n",
        runState},
       {"status", "print the latest heartbeat",
-       "usage: rbctl status\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields.\n",
+       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields\n"
+       "(--json: as one JSON object).\n",
        runStatus},
       {"bodies", "print the world description (bodies, shapes, masses)",
-       "usage: rbctl bodies\n\n"
+       "usage: rbctl bodies [--json]\n\n"
        "Asks the server to publish the world description (PUBLISH_WORLD) and prints\n"
        "the world settings and every body's id, shape, mass (kg) and principal\n"
        "moments of inertia (kg m^2).\n",
@@ -313,8 +344,8 @@ const std::vector<Verb>& verbs() {
       {"reset", "go back to the initial world, step 0",
        "usage: rbctl reset\n\nSends RESET and waits for its ack.\n", runReset},
       {"rtf", "set the real-time factor",
-       "usage: rbctl rtf X\n\nSimulated s per wall-clock s: X > 0 paces the simulation, 0 runs it as\n"
-       "fast as possible.\n",
+       "usage: rbctl rtf X\n\nSimulated s per wall-clock s: X > 0 paces the simulation,\n"
+       "0 runs it as fast as possible.\n",
        runRealTimeFactor},
       {"spawn", "add a body",
        "usage: rbctl spawn FILE | - | --yaml TEXT\n\n"
