@@ -1,14 +1,14 @@
 """rbsim: Python client for the rbsim rigid-body simulation server (LCM).
 
-This package also serves the lcm-gen message types, which are a build output
-(``build/lcmtypes/python/rbsim/``) and share the package name ``rbsim``: their
-directory is appended to this package's ``__path__`` so that
-``rbsim.world_state_t``, ``rbsim.wrench_t`` ... are importable next to the
-hand-written modules. As in lcm-gen's own ``__init__.py``, the package
+This package also serves the lcm-gen message types (``rbsim.world_state_t``,
+``rbsim.wrench_t`` ...). As in lcm-gen's own ``__init__.py``, the package
 attribute ``rbsim.<type>`` is the message class (the generated code relies on
 that: it calls ``rbsim.body_state_t._decode_one``).
 
-The generated directory is looked up, in order, from
+Installed (``pip install --no-build-isolation ./clients/python``), the types
+are modules of this package, generated at install time. Run from the
+repository instead, they are a build output (``build/lcmtypes/python/rbsim/``)
+whose directory is appended to this package's ``__path__``, looked up, in order, from
   1. ``$RBSIM_LCMTYPES_PYTHON_DIR`` (a directory holding the generated ``rbsim/``),
   2. ``$RBSIM_BUILD_DIR/lcmtypes/python``,
   3. ``<repository>/build/lcmtypes/python``.
@@ -56,6 +56,9 @@ def _generated_dir_candidates():
 
 def _find_generated_package():
     """Returns the generated ``rbsim`` directory, or raises ImportError."""
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    if _os.path.isfile(_os.path.join(here, "world_state_t.py")):
+        return here  # installed: the types are modules of this package
     candidates = _generated_dir_candidates()
     for base in candidates:
         package = _os.path.join(base, "rbsim")
@@ -65,7 +68,8 @@ def _find_generated_package():
         "rbsim: the generated LCM Python types were not found in "
         + ", ".join(repr(_os.path.join(c, "rbsim")) for c in candidates)
         + ". Build the project first: cmake --build build "
-        "(or set RBSIM_BUILD_DIR / RBSIM_LCMTYPES_PYTHON_DIR)"
+        "(or set RBSIM_BUILD_DIR / RBSIM_LCMTYPES_PYTHON_DIR), or install the package: "
+        "pip install --no-build-isolation ./clients/python"
     )
 
 

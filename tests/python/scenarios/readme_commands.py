@@ -13,7 +13,7 @@ must still be in a README, so the list cannot drift from them.
 
 import os
 import re
-import shlex
+import shutil
 import signal
 import subprocess
 import time
@@ -52,10 +52,7 @@ def blocks(path, section):
 
 def split_comment(line):
     """The command of a shell line and its trailing comment ('' if none)."""
-    lexer = shlex.shlex(line, posix=True, punctuation_chars=False)
-    lexer.whitespace_split = True
-    lexer.commenters = ""
-    # A '#' that starts a word begins the comment (as in sh).
+    # A '#' that starts a word outside quotes begins the comment (as in sh).
     for match in re.finditer(r"(^|\s)#", line):
         before = line[:match.start()]
         if before.count("'") % 2 == 0 and before.count('"') % 2 == 0:
@@ -79,14 +76,23 @@ def extracted():
 
 
 def workdir_for(workdir):
-    """A directory that looks like the repository root (build/, clients/, config/)."""
+    """A directory that looks like the repository root (build/, clients/,
+    config/, lcmtypes/), with a copy of clients/python so that installing it
+    (clients/python/README.md, "Installing") leaves the repository as it is."""
     root = os.path.join(workdir, "root")
-    os.makedirs(root, exist_ok=True)
-    for name, target in (("build", BUILD), ("clients", os.path.join(REPO, "clients")),
-                         ("config", os.path.join(REPO, "config"))):
+    clients = os.path.join(root, "clients")
+    os.makedirs(clients, exist_ok=True)
+    for name, target in (("build", BUILD), ("config", os.path.join(REPO, "config")),
+                         ("lcmtypes", os.path.join(REPO, "lcmtypes")),
+                         ("clients/cpp", os.path.join(REPO, "clients", "cpp")),
+                         ("clients/spy", os.path.join(REPO, "clients", "spy"))):
         link = os.path.join(root, name)
         if not os.path.lexists(link):
             os.symlink(target, link)
+    python = os.path.join(clients, "python")
+    if not os.path.exists(python):
+        shutil.copytree(os.path.join(REPO, "clients", "python"), python,
+                        ignore=shutil.ignore_patterns("__pycache__", "build", "*.egg-info"))
     return root
 
 
@@ -106,6 +112,7 @@ def readme_commands(workdir):
         os.symlink(PYTHON, os.path.join(bin_dir, "python3"))
     env["PATH"] = os.pathsep.join([bin_dir, os.path.join(BUILD, "clients", "cpp"), env["PATH"]])
     env.pop("RBSIM_CLIENT_ID", None)
+    env["HOME"] = workdir  # where the README's ~/rbsim-venv goes
     ran = 0
     current = None
     server = None
