@@ -206,3 +206,43 @@ def test_waits_time_out(sim):
         sim.wait_state(timeout=0.05)
     with pytest.raises(TimeoutError):
         sim.pause(timeout=0.05)  # nobody answers on memq://
+
+
+def test_state_as_arrays(sim):
+    _publish(sim, "STATE", _pages(4, ["a", "b", "c"], 2))
+    state = sim.wait_state(timeout=2.0, new=False)
+    assert state.positions.shape == (3, 3) and state.orientations.shape == (3, 4)
+    assert state.linear_velocities.shape == (3, 3) and state.angular_velocities.shape == (3, 3)
+    assert state.ids.tolist() == [1, 2, 3] and len(state) == 3
+    np.testing.assert_array_equal(state.positions[1], state["b"].position)
+    np.testing.assert_array_equal(state.orientations[2], state["c"].orientation)
+
+
+def test_constants_are_intenums_with_both_spellings():
+    from rbsim.constants import AckKind, Command, Frame, WrenchMode, parse_enum
+
+    assert WrenchMode.CLEAR == wrench_t.MODE_CLEAR and WrenchMode.CLEAR_ALL == wrench_t.MODE_CLEAR_ALL_CLIENTS
+    assert repr(WrenchMode(3)) == "<WrenchMode.CLEAR: 3>"
+    for text in ("one-step", "one_step", "ONE_STEP", WrenchMode.ONE_STEP, 0):
+        assert parse_enum(WrenchMode, text, "mode") is WrenchMode.ONE_STEP
+    with pytest.raises(ValueError, match="one-step, duration, persistent, clear, clear-all"):
+        parse_enum(WrenchMode, "forever", "mode")
+    assert Frame.BODY == wrench_t.FRAME_BODY and AckKind.WRENCH == 1 and Command.STEP == command_t.STEP
+
+
+def test_messages_have_readable_reprs():
+    ack = ack_t()
+    ack.client, ack.seq, ack.accepted, ack.reason = "py-x", 3, False, "unknown body 'bal'"
+    text = repr(ack)
+    assert text.startswith("ack_t(utime=0, client='py-x', seq=3") and "reason=\"unknown body 'bal'\"" in text
+    page = _pages(1, ["b%d" % i for i in range(10)], 10)[0]
+    assert "bodies=[10 x body_state_t]" in repr(page)
+
+
+def test_named_client_id_from_the_environment(monkeypatch):
+    monkeypatch.setenv("RBSIM_CLIENT_ID", "from-env")
+    with Client(url="memq://") as client:
+        assert client.client_id == "from-env"
+    monkeypatch.delenv("RBSIM_CLIENT_ID")
+    with Client(url="memq://") as client:
+        assert client.client_id.startswith("py-")

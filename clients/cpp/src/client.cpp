@@ -87,6 +87,8 @@ Client::Client(ClientOptions options)
       ->setQueueCapacity(kQueueCapacity);
   m_lcm->subscribe(regexEscaped(channel("ACK")), &Client::onAckMessage, this)
       ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("CONTACTS")), &Client::onContactsMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
 }
 
 Client::~Client() = default;
@@ -140,12 +142,18 @@ Client::CallbackId Client::onAck(AckCallback callback) {
   return m_nextCallbackId++;
 }
 
+Client::CallbackId Client::onContacts(ContactsCallback callback) {
+  m_contactsCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
 void Client::removeCallback(CallbackId id) {
   const auto hasId = [id](const auto& registered) { return registered.id == id; };
   std::erase_if(m_stateCallbacks, hasId);
   std::erase_if(m_worldCallbacks, hasId);
   std::erase_if(m_statusCallbacks, hasId);
   std::erase_if(m_ackCallbacks, hasId);
+  std::erase_if(m_contactsCallbacks, hasId);
 }
 
 void Client::onStateMessage(const lcm::ReceiveBuffer*, const std::string&,
@@ -164,6 +172,15 @@ void Client::onWorldMessage(const lcm::ReceiveBuffer*, const std::string&,
   m_world = std::move(*whole);
   ++m_worldCount;
   notify(m_worldCallbacks, *m_world);
+}
+
+void Client::onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
+                               const rbsim::contacts_t* page) {
+  auto whole = m_contactsPages.add(*page);
+  if (!whole) return;
+  m_contacts = std::move(*whole);
+  ++m_contactsCount;
+  notify(m_contactsCallbacks, *m_contacts);
 }
 
 void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,

@@ -85,6 +85,29 @@ for _name, _module in _modules.items():
 del _name, _module, _modules
 
 
+def _message_repr(message, _limit=4):
+    """``ack_t(client='py-host-1', seq=3, accepted=True, ...)``: every field, by
+    name; lists of more than a few nested messages are summarised by count."""
+    parts = []
+    for field in message.__slots__:
+        value = getattr(message, field)
+        if isinstance(value, list) and len(value) > _limit and value and hasattr(value[0], "__slots__"):
+            text = "[%d x %s]" % (len(value), type(value[0]).__name__)
+        elif isinstance(value, (tuple, list)) and all(isinstance(v, float) for v in value):
+            text = "(" + ", ".join("%.10g" % v for v in value) + ")"
+        elif isinstance(value, float):
+            text = "%.10g" % value
+        else:
+            text = repr(value)
+        parts.append("%s=%s" % (field, text))
+    return "%s(%s)" % (type(message).__name__, ", ".join(parts))
+
+
+for _name in _GENERATED_TYPES:
+    globals()[_name].__repr__ = _message_repr
+del _name
+
+
 def __getattr__(name):
     """Lazy access to the main entry points: rbsim.Client, rbsim.load_log."""
     if name == "Client":

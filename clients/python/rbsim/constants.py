@@ -9,9 +9,9 @@ and prints with its name (``repr(WrenchMode(3))`` is ``<WrenchMode.CLEAR: 3>``).
 from enum import IntEnum
 from typing import Type, TypeVar, Union
 
-from . import ack_t, command_t, wrench_t
+from . import ack_t, command_t, contact_t, wrench_t
 
-__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "parse_enum"]
+__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "ContactKind", "parse_enum"]
 
 
 class Frame(IntEnum):
@@ -62,6 +62,14 @@ class Command(IntEnum):
     REMOVE = command_t.REMOVE
     PUBLISH_WORLD = command_t.PUBLISH_WORLD
     SAVE_CHECKPOINT = command_t.SAVE_CHECKPOINT
+
+
+class ContactKind(IntEnum):
+    """contact_t.classification."""
+
+    COLLIDING = contact_t.COLLIDING
+    RESTING = contact_t.RESTING
+    SEPARATING = contact_t.SEPARATING
 
 
 E = TypeVar("E", bound=IntEnum)

@@ -25,6 +25,7 @@
 #include <optional>
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
+#include <rbsim/contacts_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -63,6 +64,7 @@ class Client {
   using WorldCallback = std::function<void(const rbsim::world_t&)>;
   using StatusCallback = std::function<void(const rbsim::status_t&)>;
   using AckCallback = std::function<void(const rbsim::ack_t&)>;
+  using ContactsCallback = std::function<void(const rbsim::contacts_t&)>;
 
   explicit Client(ClientOptions options = {});
   ~Client();
@@ -100,6 +102,11 @@ class Client {
   // on publishWorld()).
   const std::optional<rbsim::world_t>& world() const { return m_world; }
   uint64_t worldCount() const { return m_worldCount; }
+  // The newest complete contacts of a step (published on <prefix>CONTACTS
+  // when the server's lcm.contacts_rate is above 0; contact_t has the
+  // fields: body ids, point, normal, depth, impulses), pages merged.
+  const std::optional<rbsim::contacts_t>& latestContacts() const { return m_contacts; }
+  uint64_t contactsCount() const { return m_contactsCount; }
 
   // Callbacks run inside handle() for every complete state / world
   // description, every status, and every ack (of any client). They may call
@@ -108,6 +115,7 @@ class Client {
   CallbackId onWorld(WorldCallback callback);
   CallbackId onStatus(StatusCallback callback);
   CallbackId onAck(AckCallback callback);
+  CallbackId onContacts(ContactsCallback callback);
   void removeCallback(CallbackId id);
 
   // --- requests (each returns at once; wait with waitForAck) ---------------
@@ -152,6 +160,8 @@ class Client {
   void onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
                        const rbsim::status_t* status);
   void onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack);
+  void onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
+                         const rbsim::contacts_t* page);
   Request sendCommand(int8_t command, const std::function<void(rbsim::command_t&)>& fill);
   template <class Message>
   bool publish(const std::string& suffix, const Message& message);
@@ -164,6 +174,9 @@ class Client {
 
   PageAssembler<rbsim::world_state_t> m_statePages;
   PageAssembler<rbsim::world_t> m_worldPages;
+  PageAssembler<rbsim::contacts_t> m_contactsPages;
+  std::optional<rbsim::contacts_t> m_contacts;
+  uint64_t m_contactsCount = 0;
   std::optional<rbsim::world_state_t> m_state;
   std::optional<rbsim::status_t> m_status;
   std::optional<rbsim::world_t> m_world;
@@ -180,6 +193,7 @@ class Client {
   std::vector<Registered<WorldCallback>> m_worldCallbacks;
   std::vector<Registered<StatusCallback>> m_statusCallbacks;
   std::vector<Registered<AckCallback>> m_ackCallbacks;
+  std::vector<Registered<ContactsCallback>> m_contactsCallbacks;
 };
 
 }  // namespace rbsim::client
