@@ -187,15 +187,32 @@ void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
                              const rbsim::status_t* status) {
   m_status = *status;
   ++m_statusCount;
+  if (!status->instance_id.empty()) m_instances.insert(status->instance_id);
+  m_reportedOther = status->other_instance_id;
   notify(m_statusCallbacks, *m_status);
 }
 
 void Client::onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
   if (ack->client == m_clientId) {
+    if (!ack->instance_id.empty()) m_instances.insert(ack->instance_id);
     m_acks[{ack->kind, ack->seq}] = *ack;
     if (m_acks.size() > kMaxKeptAcks) m_acks.erase(m_acks.begin());
   }
   notify(m_ackCallbacks, *ack);
+}
+
+std::string Client::instanceConflict() const {
+  std::string ids;
+  for (const std::string& id : m_instances) ids += (ids.empty() ? "" : ", ") + id;
+  if (m_instances.size() >= 2)
+    return "two servers publish on prefix '" + m_prefix + "' of " + m_url + " (instances " + ids +
+           "): their states interleave and requests are answered twice; stop one or give it "
+           "another --channel-prefix";
+  if (!m_reportedOther.empty())
+    return "the server on prefix '" + m_prefix + "' hears another server there (instance " +
+           m_reportedOther + "): their states interleave; stop one or give it another "
+           "--channel-prefix";
+  return "";
 }
 
 template <class Message>

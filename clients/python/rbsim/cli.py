@@ -37,10 +37,18 @@ class CliError(Exception):
         self.status = status
 
 
+_clients = []  # every Client a verb opened, for the instance-conflict warning
+
+
 def _client(args):
+    import warnings
+
     from .client import Client
 
-    return Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
+    warnings.simplefilter("ignore", RuntimeWarning)  # main() reports conflicts once, on stderr
+    client = Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
+    _clients.append(client)
+    return client
 
 
 def _report(ack, what):
@@ -320,6 +328,11 @@ def main(argv=None):
     args = build_parser().parse_args(argv)
     try:
         args.function(args)
+        for client in _clients:
+            conflict = client.instance_conflict()
+            if conflict:
+                print("rbsim %s: warning: %s" % (args.verb, conflict), file=sys.stderr)
+                break
     except CliError as exc:
         print("rbsim %s: %s" % (args.verb, exc), file=sys.stderr)
         return exc.status

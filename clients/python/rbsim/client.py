@@ -40,6 +40,7 @@ import re
 import socket
 import threading
 import time
+import warnings
 from collections import deque
 from typing import Callable, List, Optional, Sequence, Tuple, Union
 
@@ -449,6 +450,9 @@ class Client:
         self._contacts_pages = PageAssembler(item="contact")
         self._contacts = None
         self._contacts_count = 0
+        self._instances = set()  # server instance ids seen in statuses and acks
+        self._reported_other = ""  # the latest status's other_instance_id
+        self._warned_conflict = False
 
         self.lcm = Lcm(self.url)
         try:
@@ -513,7 +517,11 @@ class Client:
         with self._cond:
             self._status = message
             self._status_count += 1
+            if message.instance_id:
+                self._instances.add(message.instance_id)
+            self._reported_other = message.other_instance_id
             self._cond.notify_all()
+        self._warn_on_conflict()
 
     def _on_world(self, _channel, data, _recv_utime):
         message = self._decode(world_t, data)
@@ -549,12 +557,43 @@ class Client:
             self._all_acks.append(message)
             self._ack_count += 1
             if message.client == self.client_id:
+                if message.instance_id:
+                    self._instances.add(message.instance_id)
                 key = (message.kind, message.seq)
                 self._acks[key] = message
                 self._ack_order.append(key)
                 while len(self._ack_order) > 10000:
                     self._acks.pop(self._ack_order.popleft(), None)
             self._cond.notify_all()
+
+    @property
+    def server_instances(self) -> List[str]:
+        """The server instance ids seen in statuses and acks (``status_t.instance_id``)."""
+        with self._cond:
+            return sorted(self._instances)
+
+    def instance_conflict(self) -> str:
+        """A sentence when two servers publish on this URL and prefix (two
+        instance ids seen, or a server reports another), else ""."""
+        with self._cond:
+            ids, other = sorted(self._instances), self._reported_other
+        if len(ids) >= 2:
+            return ("two servers publish on prefix '%s' of %s (instances %s): their states interleave "
+                    "and requests are answered twice; stop one or give it another --channel-prefix"
+                    % (self.prefix, self.url, ", ".join(ids)))
+        if other:
+            return ("the server on prefix '%s' hears another server there (instance %s): their states "
+                    "interleave; stop one or give it another --channel-prefix" % (self.prefix, other))
+        return ""
+
+    def _warn_on_conflict(self):
+        """Warns once (RuntimeWarning) when :meth:`instance_conflict` says so."""
+        if self._warned_conflict:
+            return
+        conflict = self.instance_conflict()
+        if conflict:
+            self._warned_conflict = True
+            warnings.warn("rbsim: " + conflict, RuntimeWarning, stacklevel=2)
 
     def _timeout(self, timeout):
         return self.timeout if timeout is None else float(timeout)

@@ -18,7 +18,7 @@ STATUS_FIELDS = (
     "step", "sim_time", "world_revision", "dt", "paused", "target_real_time_factor",
     "measured_real_time_factor", "window", "step_time_mean", "step_time_worst", "overruns",
     "commands_accepted", "commands_rejected", "num_bodies", "num_frozen_bodies",
-    "num_active_wrenches", "num_contacts",
+    "num_active_wrenches", "num_contacts", "instance_id", "other_instance_id",
 )
 
 
@@ -54,6 +54,8 @@ def _status_value(status, name):
     value = getattr(status, name)
     if name == "paused":
         return "true" if value else "false"
+    if isinstance(value, str):
+        return value or "none"  # every line keeps two fields
     return number(value) if isinstance(value, float) else str(value)
 
 

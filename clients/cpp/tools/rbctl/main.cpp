@@ -109,7 +109,10 @@ int main(int argc, char** argv) {
   Context context{client, client::Client::Timeout(std::llround(options.timeout * 1000.0))};
   Arguments verbArguments(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
   try {
-    return verb->run(context, verbArguments);
+    const int status = verb->run(context, verbArguments);
+    if (const std::string conflict = client.instanceConflict(); !conflict.empty())
+      std::fprintf(stderr, "rbctl: warning: %s\n", conflict.c_str());
+    return status;
   } catch (const UsageError& error) {
     std::fprintf(stderr, "rbctl %s: %s (see rbctl %s --help)\n", verb->name, error.what(),
                  verb->name);

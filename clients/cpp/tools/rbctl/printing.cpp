@@ -20,6 +20,11 @@ std::array<double, 4> cleanOrientation(const double (&q)[4]) {
   return out;
 }
 
+// An empty text field as a word, so that every line keeps two fields.
+const char* orNone(const std::string& text) {
+  return text.empty() ? "none" : text.c_str();
+}
+
 bool selected(const std::vector<std::string>& bodies, const std::string& name) {
   return bodies.empty() || std::find(bodies.begin(), bodies.end(), name) != bodies.end();
 }
@@ -60,13 +65,15 @@ void printStatus(std::FILE* out, const rbsim::status_t& s) {
                "target_real_time_factor %.10g\nmeasured_real_time_factor %.10g\nwindow %.10g\n"
                "step_time_mean %.10g\nstep_time_worst %.10g\noverruns %lld\n"
                "commands_accepted %lld\ncommands_rejected %lld\nnum_bodies %d\n"
-               "num_frozen_bodies %d\nnum_active_wrenches %d\nnum_contacts %d\n",
+               "num_frozen_bodies %d\nnum_active_wrenches %d\nnum_contacts %d\n"
+               "instance_id %s\nother_instance_id %s\n",
                static_cast<long long>(s.step), s.sim_time, static_cast<long long>(s.world_revision),
                s.dt, s.paused ? "true" : "false", s.target_real_time_factor,
                s.measured_real_time_factor, s.window, s.step_time_mean, s.step_time_worst,
                static_cast<long long>(s.overruns), static_cast<long long>(s.commands_accepted),
                static_cast<long long>(s.commands_rejected), s.num_bodies, s.num_frozen_bodies,
-               s.num_active_wrenches, s.num_contacts);
+               s.num_active_wrenches, s.num_contacts, orNone(s.instance_id),
+               orNone(s.other_instance_id));
 }
 
 void printWorld(std::FILE* out, const rbsim::world_t& world) {
@@ -134,7 +141,9 @@ void printStatusJson(std::FILE* out, const rbsim::status_t& s) {
                          {"num_bodies", s.num_bodies},
                          {"num_frozen_bodies", s.num_frozen_bodies},
                          {"num_active_wrenches", s.num_active_wrenches},
-                         {"num_contacts", s.num_contacts}};
+                         {"num_contacts", s.num_contacts},
+                         {"instance_id", s.instance_id},
+                         {"other_instance_id", s.other_instance_id}};
   std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 

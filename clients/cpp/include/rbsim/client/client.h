@@ -22,6 +22,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
+#include <set>
 #include <optional>
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
@@ -106,6 +107,13 @@ class Client {
   // when the server's lcm.contacts_rate is above 0; contact_t has the
   // fields: body ids, point, normal, depth, impulses), pages merged.
   const std::optional<rbsim::contacts_t>& latestContacts() const { return m_contacts; }
+
+  // The server instance ids seen in statuses and acks (status_t.instance_id).
+  const std::set<std::string>& serverInstances() const { return m_instances; }
+  // Non-empty when two servers publish on this URL and prefix (two instance
+  // ids seen, or a server's status reports another): a sentence saying so,
+  // for the user. Their states interleave and a request gets two answers.
+  std::string instanceConflict() const;
   uint64_t contactsCount() const { return m_contactsCount; }
 
   // Callbacks run inside handle() for every complete state / world
@@ -177,6 +185,8 @@ class Client {
   PageAssembler<rbsim::contacts_t> m_contactsPages;
   std::optional<rbsim::contacts_t> m_contacts;
   uint64_t m_contactsCount = 0;
+  std::set<std::string> m_instances;
+  std::string m_reportedOther;  // status_t.other_instance_id of the latest status
   std::optional<rbsim::world_state_t> m_state;
   std::optional<rbsim::status_t> m_status;
   std::optional<rbsim::world_t> m_world;
