@@ -1,5 +1,6 @@
 #include "bridge/wire_convert.h"
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -24,8 +25,18 @@ void copyTo(double (&out)[4], const Quaternion& q) {
 
 Vec3 vec3From(const double (&in)[3]) { return {in[0], in[1], in[2]}; }
 
+// The guard's reason as one word for the wire: "linear speed" -> "linear_speed".
+std::string frozenToken(const Body& body) {
+  if (!body.isFrozen()) return "";
+  std::string token(freezeReasonName(body.freezeReason()));
+  std::replace(token.begin(), token.end(), ' ', '_');
+  std::replace(token.begin(), token.end(), '-', '_');
+  return token;
+}
+
 rbsim::body_state_t bodyState(const Body& body) {
   rbsim::body_state_t out;
+  out.frozen = frozenToken(body);
   out.id = body.serial();
   out.name = body.name();
   copyTo(out.position, body.position());
@@ -87,6 +98,7 @@ rbsim::body_description_t bodyDescription(const Body& body) {
   rbsim::body_description_t out;
   out.id = body.serial();
   out.name = d.name;
+  out.frozen = frozenToken(body);
   out.is_static = d.isStatic;
   out.mass = body.mass();
   copyTo(out.inertia, body.dynamics().inertiaBody);

@@ -242,6 +242,8 @@ void Server::stepOnce() {
   m_session.step();
   const double seconds = static_cast<double>(monotonicNow() - start) * 1e-9;
   for (const FreezeEvent& event : world().freezeEvents()) logWarning(describeFreeze(event));
+  // Which body froze is part of the description: say it now, not at the next change.
+  if (!world().freezeEvents().empty()) publishWorld();
   m_stepTimes.sum += seconds;
   m_stepTimes.worst = std::max(m_stepTimes.worst, seconds);
   ++m_stepTimes.count;

@@ -145,10 +145,11 @@ class BodyState:
     Attributes: ``id`` (int, never reused), ``name``, ``position`` (m, world,
     centre of mass; numpy (3,)), ``orientation`` (unit quaternion w, x, y, z,
     body -> world; (4,)), ``linear_velocity`` (m/s, world; (3,)),
-    ``angular_velocity`` (rad/s, world; (3,)).
+    ``angular_velocity`` (rad/s, world; (3,)), ``frozen`` ("" while
+    integrated, else why the numerical guard froze it, e.g. "linear_speed").
     """
 
-    __slots__ = ("id", "name", "position", "orientation", "linear_velocity", "angular_velocity")
+    __slots__ = ("id", "name", "position", "orientation", "linear_velocity", "angular_velocity", "frozen")
 
     def __init__(self, message):
         self.id = message.id
@@ -157,13 +158,15 @@ class BodyState:
         self.orientation = np.array(message.orientation, dtype=float)
         self.linear_velocity = np.array(message.linear_velocity, dtype=float)
         self.angular_velocity = np.array(message.angular_velocity, dtype=float)
+        self.frozen = message.frozen
 
     def rotation(self) -> np.ndarray:
         """Rotation matrix R (body -> world) of :attr:`orientation`."""
         return quaternion_to_matrix(self.orientation)
 
     def __repr__(self):
-        return "BodyState(%r, id=%d, position=%s)" % (self.name, self.id, self.position.tolist())
+        return "BodyState(%r, id=%d, position=%s%s)" % (
+            self.name, self.id, self.position.tolist(), ", frozen=%r" % self.frozen if self.frozen else "")
 
 
 class WorldState:

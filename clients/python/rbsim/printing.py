@@ -46,7 +46,7 @@ def state_lines(state, bodies: Collection[str] = ()) -> List[str]:
             b.name, b.id, _vector("position", b.position),
             _vector("orientation", orientation_values(b.orientation)),
             _vector("linear_velocity", b.linear_velocity),
-            _vector("angular_velocity", b.angular_velocity)))
+            _vector("angular_velocity", b.angular_velocity)) + (" frozen " + b.frozen if b.frozen else ""))
     return lines
 
 
@@ -85,6 +85,8 @@ def world_lines(world) -> List[str]:
             line += " file %s vertices %d triangles %d" % (b.mesh_file, b.num_vertices, b.num_triangles)
         if b.shape_type == "compound":
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
+        if b.frozen:
+            line += " frozen " + b.frozen
         lines.append(line)
     return lines
 
@@ -99,7 +101,7 @@ def state_json(state, bodies: Collection[str] = ()) -> str:
         "bodies": [{"id": b.id, "name": b.name, "position": b.position.tolist(),
                     "orientation": orientation_values(b.orientation),
                     "linear_velocity": b.linear_velocity.tolist(),
-                    "angular_velocity": b.angular_velocity.tolist()}
+                    "angular_velocity": b.angular_velocity.tolist(), "frozen": b.frozen}
                    for b in state.bodies if not bodies or b.name in bodies],
     })
 
@@ -117,5 +119,6 @@ def world_json(world) -> str:
         "world_revision": world.world_revision, "step": world.step, "dt": world.dt,
         "integrator": world.integrator, "gravity": [float(g) for g in world.gravity],
         "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
-                    "mass": b.mass, "inertia": [float(v) for v in b.inertia]} for b in world.bodies],
+                    "mass": b.mass, "inertia": [float(v) for v in b.inertia], "frozen": b.frozen}
+                   for b in world.bodies],
     })

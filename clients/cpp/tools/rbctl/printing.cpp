@@ -55,6 +55,7 @@ void printState(std::FILE* out, const rbsim::world_state_t& state,
     printVector(out, "orientation", cleanOrientation(b.orientation).data(), 4);
     printVector(out, "linear_velocity", b.linear_velocity, 3);
     printVector(out, "angular_velocity", b.angular_velocity, 3);
+    if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
 }
@@ -101,6 +102,7 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       std::fprintf(out, " parts %d", b.num_parts);
       for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
     }
+    if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
 }
@@ -115,7 +117,8 @@ void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
                     {"position", array(b.position)},
                     {"orientation", cleanOrientation(b.orientation)},
                     {"linear_velocity", array(b.linear_velocity)},
-                    {"angular_velocity", array(b.angular_velocity)}});
+                    {"angular_velocity", array(b.angular_velocity)},
+                    {"frozen", b.frozen}});
   }
   const json document = {{"step", state.step},
                          {"sim_time", state.sim_time},
@@ -155,7 +158,8 @@ void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
                     {"shape", b.shape_type},
                     {"static", b.is_static},
                     {"mass", b.mass},
-                    {"inertia", array(b.inertia)}});
+                    {"inertia", array(b.inertia)},
+                    {"frozen", b.frozen}});
   const json document = {{"world_revision", world.world_revision},
                          {"step", world.step},
                          {"dt", world.dt},
