@@ -137,8 +137,9 @@ int main(int argc, char** argv) {
     return 3;
   }
 
-  // Mass and gravity come from the world description: ask for it.
-  client.publishWorld();
+  // Mass and gravity come from the world description: ask for it once a
+  // state shows the server is up (a request sent before it subscribed is lost).
+  if (client.spinUntil([&] { return client.latestState().has_value(); }, 3s)) client.publishWorld();
   if (!client.spinUntil([&] { return client.world() && client.latestState(); }, 3s)) {
     std::fprintf(stderr, "pd_hold_height: no world description and state from the server\n");
     return 3;

@@ -56,6 +56,7 @@ def main(argv=None):
     kp, kd = args.omega ** 2, 2.0 * args.zeta * args.omega
     with Client(url=args.url, prefix=args.prefix, client_id=args.client_id) as sim:
         try:
+            sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
             world = sim.request_world(args.timeout)
             mass = world[args.body].mass
             gravity_z = float(world.gravity[2])

@@ -181,40 +181,28 @@ def cmd_remove(args):
 
 
 def cmd_plot(args):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from .log import load_log
+    from .plot import make_figure
 
     try:
         log = load_log(args.log, prefix=args.prefix)
     except OSError as exc:
         raise CliError(str(exc), EXIT_ERROR)
     states = log.states
-    names = args.bodies or states.names
-    unknown = [n for n in names if n not in states]
+    unknown = [n for n in args.bodies or [] if n not in states]
     if unknown:
         raise CliError("no body named %s in %s (bodies: %s)" % (
             ", ".join(map(repr, unknown)), args.log, ", ".join(states.names) or "none"), EXIT_REJECTED)
-    if len(states) == 0 or not names:
+    if len(states) == 0:
         raise CliError("no %sSTATE messages with bodies in %s" % (args.prefix, args.log), EXIT_REJECTED)
-    figure, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7))
-    for axis, label in zip(axes, "xyz"):
-        for name in names:
-            axis.plot(states.sim_time, states[name].position[:, "xyz".index(label)], label=name)
-        axis.set_ylabel("%s [m]" % label)
-        axis.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("simulated time [s]")
-    axes[0].legend(loc="best", fontsize="small")
-    axes[0].set_title("centre-of-mass position (world frame): %s" % os.path.basename(args.log))
-    figure.tight_layout()
+    try:
+        figure = make_figure(log, args.quantity, args.bodies, os.path.basename(args.log))
+    except ValueError as exc:
+        raise CliError(str(exc), EXIT_REJECTED)
     figure.savefig(args.output, dpi=args.dpi)
-    plt.close(figure)
-    print("wrote %s (%d states, %d bodies%s)" % (
-        args.output, len(states), len(names),
-        ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
+    print("wrote %s (%d states, %d bodies, %s%s)" % (
+        args.output, len(states), len(figure.rbsim_bodies),
+        args.quantity, ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
 
 
 # -- parser ------------------------------------------------------------------------------
@@ -316,10 +304,14 @@ def build_parser():
     sub = verb("remove", cmd_remove, "remove a body")
     sub.add_argument("name", help="body name")
 
-    sub = verb("plot", cmd_plot, "plot centre-of-mass positions (x, y, z vs simulated time) from an LCM log")
+    sub = verb("plot", cmd_plot, "plot an LCM log: one panel per dynamic body against simulated time, "
+                                 "wrenches and commands marked")
     sub.add_argument("log", help="LCM log (lcm-logger or rbserver --record)")
     sub.add_argument("-o", "--output", required=True, help="output image (PNG)")
-    sub.add_argument("--bodies", nargs="+", metavar="NAME", help="bodies to plot (default: all)")
+    sub.add_argument("--bodies", nargs="+", metavar="NAME",
+                     help="bodies to plot (default: every dynamic body)")
+    sub.add_argument("--quantity", choices=["position", "velocity", "energy"], default="position",
+                     help="x, y, z position (m), velocity (m/s) or kinetic energy (J) (default position)")
     sub.add_argument("--dpi", type=int, default=100, help="image resolution (default 100)")
     return parser
 
