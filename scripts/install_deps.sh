@@ -12,6 +12,8 @@ packages=(
   libjchart2d-java openjdk-17-jdk-headless openjdk-17-jre
   # physics and config
   libeigen3-dev libccd-dev libyaml-cpp-dev libqhull-dev
+  # rbctl --json
+  nlohmann-json3-dev
   # tests and benchmarks
   libgtest-dev googletest libgmock-dev libbenchmark-dev
   # fuzzing (tests/fuzz): clang with libFuzzer and the sanitizer runtimes

@@ -25,6 +25,7 @@ rbsim::ack_t ackFor(const std::string& client, int64_t seq, int8_t kind, int8_t 
   ack.request = request;
   ack.accepted = false;
   ack.effective_step = -1;
+  ack.wrenches_cleared = 0;
   return ack;
 }
 
@@ -94,8 +95,11 @@ CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, 
   World& world = m_session.world();
   const auto request = wrenchRequestFrom(message, world, world.stepCount() + 1, m_settings.limits);
   if (!request) return rejected(std::move(ack), request.error().message);
+  const int cleared = isClear(request->mode) ? m_session.wrenches().countClearedBy(*request) : 0;
   m_session.wrenches().add(*request);
-  return accepted(std::move(ack), request->firstStep);
+  CommandOutcome outcome = accepted(std::move(ack), request->firstStep);
+  outcome.ack.wrenches_cleared = cleared;
+  return outcome;
 }
 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {

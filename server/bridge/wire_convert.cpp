@@ -1,5 +1,6 @@
 #include "bridge/wire_convert.h"
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -24,8 +25,18 @@ void copyTo(double (&out)[4], const Quaternion& q) {
 
 Vec3 vec3From(const double (&in)[3]) { return {in[0], in[1], in[2]}; }
 
+// The guard's reason as one word for the wire: "linear speed" -> "linear_speed".
+std::string frozenToken(BodyView body) {
+  if (!body.isFrozen()) return "";
+  std::string token(freezeReasonName(body.freezeReason()));
+  std::replace(token.begin(), token.end(), ' ', '_');
+  std::replace(token.begin(), token.end(), '-', '_');
+  return token;
+}
+
 rbsim::body_state_t bodyState(BodyView body) {
   rbsim::body_state_t out;
+  out.frozen = frozenToken(body);
   out.id = body.serial();
   out.name = body.name();
   copyTo(out.position, body.position());
@@ -87,6 +98,7 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   rbsim::body_description_t out;
   out.id = body.serial();
   out.name = d.name;
+  out.frozen = frozenToken(body);
   out.is_static = d.isStatic;
   out.mass = body.mass();
   copyTo(out.inertia, body.dynamics().inertiaBody);
@@ -280,17 +292,27 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
     case rbsim::wrench_t::MODE_CLEAR:
       request.mode = WrenchMode::Clear;
       break;
+    case rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS:
+      request.mode = WrenchMode::ClearAllClients;
+      break;
     default:
       return Error{"unknown mode " + std::to_string(message.mode)};
   }
   const auto frame = wrenchFrameFrom(message.frame, "frame");
   if (!frame) return frame.error();
   request.frame = *frame;
-  const auto pointFrame = wrenchFrameFrom(message.point_frame, "point_frame");
-  if (!pointFrame) return pointFrame.error();
-  request.pointFrame = *pointFrame;
+  // The centre of mass is a point fixed in the body: its place in the shape
+  // frame, the frame body points are given in, once the body is known below.
+  const bool atCenterOfMass = message.point_frame == rbsim::wrench_t::POINT_FRAME_CENTER_OF_MASS;
+  if (atCenterOfMass) {
+    request.pointFrame = WrenchFrame::Body;
+  } else {
+    const auto pointFrame = wrenchFrameFrom(message.point_frame, "point_frame");
+    if (!pointFrame) return pointFrame.error();
+    request.pointFrame = *pointFrame;
+  }
 
-  const bool clearEverything = request.mode == WrenchMode::Clear && message.body.empty();
+  const bool clearEverything = isClear(request.mode) && message.body.empty();
   const BodyId id = world.findBody(message.body);
   if (!clearEverything && id.isNull()) return Error{"unknown body '" + message.body + "'"};
 
@@ -306,13 +328,14 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
     request.firstStep = message.apply_at_step;
   }
 
-  if (request.mode == WrenchMode::Clear) return request;
+  if (isClear(request.mode)) return request;
 
-  if (!finite3(message.force) || !finite3(message.torque) || !finite3(message.point))
+  if (!finite3(message.force) || !finite3(message.torque) || (!atCenterOfMass && !finite3(message.point)))
     return Error{"force, torque and point must be finite"};
   request.force = vec3From(message.force);
   request.torque = vec3From(message.torque);
   request.point = vec3From(message.point);
+  if (atCenterOfMass) request.point = world.body(id).description().bodyToShapePoint(Vec3::Zero());
   if (request.force.norm() > limits.maxForce)
     return Error{"force magnitude " + std::to_string(request.force.norm()) + " N exceeds the limit of " +
                  std::to_string(limits.maxForce) + " N"};

@@ -41,6 +41,12 @@ struct ServerSettings {
   CatchUpPolicy catchUp = CatchUpPolicy::Burst;
   int maxBurst = 20;                     // steps, Burst policy only
   bool startPaused = false;
+  // At start, listen this long (s) on the channel prefix before publishing:
+  // a server heard there makes this one refuse to start (two servers on one
+  // prefix interleave their states), unless allowOtherInstances, which only
+  // warns. 0: no check. Command line: --instance-check S, --allow-other-instances.
+  double instanceCheckSeconds = 0.25;
+  bool allowOtherInstances = false;
   // The last part of the wait for a step deadline is spent polling instead
   // of sleeping, for wake-ups on time: a timer wake-up on a virtual machine
   // is often 50-150 µs late. Costs CPU: spin × step rate (25% of a core at

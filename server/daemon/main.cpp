@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
   if (options->stateRate) settings.stateRate = *options->stateRate;
   if (options->startPaused) settings.startPaused = true;
   if (options->readOnly) settings.readOnly = true;
+  if (options->allowOtherInstances) settings.allowOtherInstances = true;
+  if (options->instanceCheck) settings.instanceCheckSeconds = *options->instanceCheck;
   if (options->checkpointDirectory) settings.checkpointDirectory = *options->checkpointDirectory;
   if (options->checkpointEvery) settings.checkpointEvery = *options->checkpointEvery;
   // The guard's limits live with the server's other limits in the config

@@ -47,6 +47,10 @@ options (each overrides the config file's key):
   --resume FILE            start from the checkpoint FILE instead of the config's world
                            (the config's dt, gravity, integrator and contact model must match)
   --log-level LEVEL        debug, info, warning or error (default info)
+  --instance-check S       listen S s (default 0.25) on the channel prefix before publishing;
+                           another server heard there makes rbserver refuse to start, since two
+                           servers on one prefix interleave their states (0: no check)
+  --allow-other-instances  warn about another server on the prefix and run anyway
 
 replay (instead of serving; as fast as possible, no pacing):
   --replay LOG             re-simulate the session recorded in LOG (an rbserver --record
@@ -80,13 +84,15 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       options.startPaused = true;
     } else if (arg == "--read-only") {
       options.readOnly = true;
+    } else if (arg == "--allow-other-instances") {
+      options.allowOtherInstances = true;
     } else if (arg == "--verify") {
       options.verify = true;
     } else if (arg == "--config" || arg == "--lcm-url" || arg == "--channel-prefix" ||
                arg == "--record" || arg == "--log-level" || arg == "--real-time-factor" ||
                arg == "--duration" || arg == "--state-rate" || arg == "--replay" ||
                arg == "--replay-output" || arg == "--checkpoint-dir" || arg == "--checkpoint-every" ||
-               arg == "--resume") {
+               arg == "--resume" || arg == "--instance-check") {
       const auto text = value();
       if (!text) return text.error();
       if (arg == "--config") options.configPath = *text;
@@ -103,6 +109,12 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
         options.checkpointEvery = *number;
       }
       if (arg == "--replay-output") options.replayOutputPath = *text;
+      if (arg == "--instance-check") {
+        const auto number = parseNumber(arg, *text, true);
+        if (!number) return number.error();
+        if (*number > 60.0) return Error{"--instance-check: at most 60 s, got " + *text};
+        options.instanceCheck = *number;
+      }
       if (arg == "--real-time-factor" || arg == "--state-rate") {
         const auto number = parseNumber(arg, *text, true);
         if (!number) return number.error();

@@ -22,6 +22,8 @@ struct Options {
   std::optional<std::string> logLevel;
   bool startPaused = false;
   bool readOnly = false;
+  bool allowOtherInstances = false;
+  std::optional<double> instanceCheck;  // s
   std::optional<std::string> checkpointDirectory;
   std::optional<double> checkpointEvery;  // s of simulated time
   std::optional<std::string> resumePath;  // a checkpoint file to start from

@@ -8,6 +8,8 @@
 #include <filesystem>
 
 #include <rbsim/ack_t.hpp>
+
+#include "rbsim/client/lcm_url.h"
 #include <rbsim/command_t.hpp>
 #include <rbsim/handled_t.hpp>
 #include <rbsim/status_t.hpp>
@@ -56,11 +58,29 @@ Expected<bool> Server::open() {
           : std::max<int64_t>(1, static_cast<int64_t>(std::llround(1.0 / (m_settings.contactsRate * dt))));
   m_lcm = std::make_unique<lcm::LCM>(m_settings.lcmUrl);
   if (!m_lcm->good())
-    return Error{"cannot open LCM with URL '" + m_settings.lcmUrl +
-                 "' (is there a route for multicast, e.g. `ip route add 224.0.0.0/4 dev lo`?)"};
+    return Error{client::explainLcmOpenFailure(m_settings.lcmUrl)};
+  // Before publishing anything: is another server on this URL and prefix?
+  if (m_settings.instanceCheckSeconds > 0.0) {
+    const auto other = listenForOtherInstance(
+        *m_lcm, m_settings.channelPrefix,
+        static_cast<Nanoseconds>(std::llround(m_settings.instanceCheckSeconds * 1e9)));
+    if (other) {
+      const std::string message =
+          "another server publishes on channel prefix '" + m_settings.channelPrefix + "' of " +
+          m_settings.lcmUrl + " (heard on " + other->channel +
+          (other->instanceId.empty() ? "" : ", instance " + other->instanceId) +
+          "): two servers on one prefix interleave their states";
+      if (!m_settings.allowOtherInstances)
+        return Error{message + "; stop it, give this one another --channel-prefix, or pass "
+                               "--allow-other-instances to run anyway"};
+      logWarning(message + "; running anyway (--allow-other-instances)");
+    }
+  }
+  logInfo("instance " + m_instances.ownId());
   // Channel names are exact: the prefix was checked to hold no regex characters.
   m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
+  m_lcm->subscribe(channel("STATUS"), &Server::onStatus, this);
   if (m_settings.checkpointEvery > 0.0) {
     if (m_settings.checkpointDirectory.empty())
       return Error{"checkpoint_every needs a checkpoint directory (server.checkpoint_dir or --checkpoint-dir)"};
@@ -101,15 +121,18 @@ int Server::run(SignalEvents& signals) {
   publishStatus(now);
   m_clock.anchor(now);
   const Nanoseconds runStart = now;
-  const int64_t stepAtStart = world().stepCount();
   logInfo("stepping " + std::to_string(world().bodyCount()) + " bodies at dt = " +
           std::to_string(world().settings().dt) + " s, real-time factor " +
           std::to_string(m_settings.realTimeFactor) + (m_session.paused() ? " (paused)" : ""));
 
   pollfd fds[2] = {{m_lcm->getFileno(), POLLIN, 0}, {signals.fileDescriptor(), POLLIN, 0}};
   bool wasStepping = shouldStep();
+  bool wasRunning = !m_session.paused();
+  m_runningRate.mark(now, false);
   while (!m_stopRequested && !durationReached()) {
     now = monotonicNow();
+    m_runningRate.mark(now, wasRunning);
+    wasRunning = !m_session.paused();
     const bool stepping = shouldStep();
     if (stepping && !wasStepping) m_clock.anchor(now);  // resumed: no burst for the pause
     wasStepping = stepping;
@@ -161,6 +184,7 @@ int Server::run(SignalEvents& signals) {
     if (now >= m_lastStatus + statusPeriod) publishStatus(now);
   }
 
+  m_runningRate.mark(monotonicNow(), wasRunning);
   // Clean exit: a last state and status, then close the record file.
   drainMessages();
   publishState();
@@ -173,10 +197,6 @@ int Server::run(SignalEvents& signals) {
             " superseded by a newer one before they were written");
   const auto micros = [](Nanoseconds ns) { return std::to_string(static_cast<double>(ns) * 1e-3); };
   const double wallSeconds = static_cast<double>(monotonicNow() - runStart) * 1e-9;
-  const double achievedFactor =
-      wallSeconds > 0.0
-          ? static_cast<double>(world().stepCount() - stepAtStart) * world().settings().dt / wallSeconds
-          : 0.0;
   logInfo("stopped at step " + std::to_string(world().stepCount()) + " (t = " +
           std::to_string(world().time()) + " s), " + std::to_string(m_clock.overruns()) +
           " overruns, " + std::to_string(m_clock.slips()) + " slips, worst step " +
@@ -184,7 +204,9 @@ int Server::run(SignalEvents& signals) {
           std::to_string(m_lateness.count()) + " paced steps: p50 " +
           micros(m_lateness.percentile(0.5)) + " us, p99 " + micros(m_lateness.percentile(0.99)) +
           " us, max " + micros(m_lateness.maximum()) + " us; achieved real-time factor " +
-          std::to_string(achievedFactor) + " over " + std::to_string(wallSeconds) + " s");
+          std::to_string(m_runningRate.factor(world().settings().dt)) + " over " +
+          std::to_string(m_runningRate.runningSeconds()) + " s running (" +
+          std::to_string(wallSeconds - m_runningRate.runningSeconds()) + " s paused not counted)");
   return 0;
 }
 
@@ -215,10 +237,13 @@ void Server::checkpointIfDue() {
 void Server::stepOnce() {
   const bool requested = m_session.takeRequestedStep();
   if (!requested) m_lateness.add(m_clock.beginStep(monotonicNow()));
+  if (!requested) m_runningRate.stepped();
   const Nanoseconds start = monotonicNow();
   m_session.step();
   const double seconds = static_cast<double>(monotonicNow() - start) * 1e-9;
   for (const FreezeEvent& event : world().freezeEvents()) logWarning(describeFreeze(event));
+  // Which body froze is part of the description: say it now, not at the next change.
+  if (!world().freezeEvents().empty()) publishWorld();
   m_stepTimes.sum += seconds;
   m_stepTimes.worst = std::max(m_stepTimes.worst, seconds);
   ++m_stepTimes.count;
@@ -234,6 +259,7 @@ void Server::stepOnce() {
 
 void Server::acknowledge(rbsim::ack_t ack) {
   ack.utime = wallMicroseconds();
+  ack.instance_id = m_instances.ownId();
   if (ack.accepted) {
     ++m_counters.accepted;
   } else {
@@ -294,6 +320,15 @@ void Server::publishWorld() {
     publish(channel("WORLD"), page);
 }
 
+void Server::onStatus(const lcm::ReceiveBuffer*, const std::string& channelName,
+                      const rbsim::status_t* status) {
+  constexpr Nanoseconds kLogEvery = 10 * kNanosecondsPerSecond;
+  if (m_instances.heard(status->instance_id, monotonicNow(), kLogEvery))
+    logWarning("another server publishes on " + channelName + " (instance " + status->instance_id +
+               ", this one is " + m_instances.ownId() +
+               "): clients see both worlds' states interleaved; stop one of them");
+}
+
 void Server::publishStatus(Nanoseconds now) {
   rbsim::status_t status;
   status.utime = wallMicroseconds();
@@ -318,6 +353,9 @@ void Server::publishStatus(Nanoseconds now) {
   status.num_frozen_bodies = world().frozenBodyCount();
   status.num_active_wrenches = m_session.wrenches().activeCount();
   status.num_contacts = world().contactPointCount();
+  status.instance_id = m_instances.ownId();
+  constexpr Nanoseconds kRecent = 5 * kNanosecondsPerSecond;
+  status.other_instance_id = m_instances.recentOther(now, kRecent);
   publish(channel("STATUS"), status);
   m_recorder.flush();
   m_lastStatus = now;

@@ -9,10 +9,13 @@
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
+#include <rbsim/status_t.hpp>
 
 #include "bridge/command_handler.h"
 #include "config/server_settings.h"
 #include "daemon/checkpoint_writer.h"
+#include "daemon/instance_guard.h"
+#include "daemon/running_rate.h"
 #include "daemon/lateness_histogram.h"
 #include "daemon/signal_events.h"
 #include "daemon/step_clock.h"
@@ -61,6 +64,9 @@ class Server {
 
   // A wrench or command: recorded, handed to the command handler, answered.
   void onInput(const lcm::ReceiveBuffer* buffer, const std::string& channelName);
+  // Every status on our prefix (ours too): another instance's is logged.
+  void onStatus(const lcm::ReceiveBuffer* buffer, const std::string& channelName,
+                const rbsim::status_t* status);
   void acknowledge(rbsim::ack_t ack);
 
   void publishState();
@@ -94,6 +100,8 @@ class Server {
   LatenessHistogram m_lateness;   // paced steps only
   double m_worstStepEver = 0.0;   // s
   std::vector<uint8_t> m_encodeBuffer;
+  InstanceWatch m_instances{makeInstanceId()};
+  RunningRate m_runningRate;  // for the shutdown summary
 };
 
 }  // namespace rbsim

@@ -41,7 +41,7 @@ WrenchRequest readRequest(ByteReader& in) {
   r.firstStep = in.i64("wrench first step");
   if (frame > static_cast<uint8_t>(WrenchFrame::Body) ||
       pointFrame > static_cast<uint8_t>(WrenchFrame::Body) ||
-      mode > static_cast<uint8_t>(WrenchMode::Clear) || r.durationSteps < 1 ||
+      mode > static_cast<uint8_t>(WrenchMode::ClearAllClients) || r.durationSteps < 1 ||
       !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
     in.fail("a wrench of client '" + r.client + "' has an invalid frame, mode, duration or value");
   r.frame = static_cast<WrenchFrame>(frame);

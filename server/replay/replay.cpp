@@ -1,5 +1,6 @@
 #include "replay/replay.h"
 
+#include <algorithm>
 #include <deque>
 #include <map>
 #include <tuple>
@@ -88,6 +89,11 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
     if (!event->has_value()) break;
     const LogEvent& e = **event;
     ++m_report.eventsRead;
+    if (!m_firstTimestamp) {
+      m_firstTimestamp = e.timestamp;
+      m_firstStep = m_session.world().stepCount();
+    }
+    m_eventTimestamp = e.timestamp;
     Expected<bool> done = true;
     if (e.channel == wrench || e.channel == command) {
       done = onInput(e);
@@ -188,6 +194,19 @@ Expected<bool> Replay::advanceTo(int64_t step, const std::string& why) {
   if (step < current)
     return Error{why + " belongs to step " + std::to_string(step) + ", but the replay is already at step " +
                  std::to_string(current) + " (a log out of order, or of another session)"};
+  // What the log holds bounds the steps: the recorded server cannot have
+  // taken more than kMaxStepsPerSecond steps a wall-clock second (one free
+  // body steps in about 100 ns) between its first event and this one, so a
+  // corrupt step number fails here instead of replaying practically forever.
+  constexpr double kMaxStepsPerSecond = 2e7;
+  constexpr double kSlackSteps = 1e6;
+  const double elapsed = std::max(0.0, static_cast<double>(m_eventTimestamp - *m_firstTimestamp) * 1e-6);
+  const double reachable = static_cast<double>(m_firstStep) + kSlackSteps + kMaxStepsPerSecond * elapsed;
+  if (static_cast<double>(step) > reachable)
+    return Error{why + " belongs to step " + std::to_string(step) + ", which no server reaches " +
+                 std::to_string(elapsed) + " s after the log's first event (at most " +
+                 std::to_string(static_cast<int64_t>(reachable)) +
+                 "): a corrupt log, not replayed"};
   for (int64_t s = current; s < step; ++s) {
     m_session.step();
     ++m_report.stepsSimulated;

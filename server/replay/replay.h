@@ -80,6 +80,11 @@ class Replay {
   ReplayReport m_report;
   struct Pending;
   std::unique_ptr<Pending> m_pending;
+  // The log's first event (its timestamp, the step the replay started at)
+  // and the current event's timestamp, µs: they bound the steps a log can ask for.
+  std::optional<int64_t> m_firstTimestamp;
+  int64_t m_firstStep = 0;
+  int64_t m_eventTimestamp = 0;
 };
 
 }  // namespace rbsim

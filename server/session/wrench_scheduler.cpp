@@ -7,15 +7,17 @@ namespace rbsim {
 
 void WrenchScheduler::add(const WrenchRequest& request) { m_pending.push_back(request); }
 
-void WrenchScheduler::start(const WrenchRequest& request) {
+int WrenchScheduler::start(const WrenchRequest& request) {
   const auto sameClientAndBody = [&](const WrenchRequest& active) {
     return active.client == request.client && (request.body.empty() || active.body == request.body);
   };
-  if (request.mode == WrenchMode::Clear) {
-    std::erase_if(m_active, [&](const WrenchRequest& active) {
-      return sameClientAndBody(active) && active.mode != WrenchMode::OneStep;
-    });
-    return;
+  if (isClear(request.mode)) {
+    const bool everyClient = request.mode == WrenchMode::ClearAllClients;
+    return static_cast<int>(std::erase_if(m_active, [&](const WrenchRequest& active) {
+      const bool owned = everyClient ? (request.body.empty() || active.body == request.body)
+                                     : sameClientAndBody(active);
+      return owned && active.mode != WrenchMode::OneStep;
+    }));
   }
   if (request.mode == WrenchMode::Persistent) {
     std::erase_if(m_active, [&](const WrenchRequest& active) {
@@ -23,6 +25,36 @@ void WrenchScheduler::start(const WrenchRequest& request) {
     });
   }
   m_active.push_back(request);
+  return 0;
+}
+
+int WrenchScheduler::countClearedBy(const WrenchRequest& clear) const {
+  // A copy steps through the steps at which pending requests start, up to the
+  // clear's: before each, what finishStep would have retired by then goes
+  // (finishStep(s - 1) retires every wrench that ends before step s), then
+  // the requests due start in acceptance order, as applyForStep does.
+  WrenchScheduler preview = *this;
+  preview.m_pending.push_back(clear);
+  std::vector<int64_t> steps;
+  for (const WrenchRequest& request : preview.m_pending)
+    if (request.firstStep <= clear.firstStep) steps.push_back(request.firstStep);
+  std::sort(steps.begin(), steps.end());
+  steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
+  for (const int64_t step : steps) {
+    preview.finishStep(step - 1);
+    std::vector<WrenchRequest> stillPending;
+    for (std::size_t i = 0; i < preview.m_pending.size(); ++i) {
+      const WrenchRequest& request = preview.m_pending[i];
+      if (request.firstStep > step) {
+        stillPending.push_back(request);
+        continue;
+      }
+      const int removed = preview.start(request);
+      if (i + 1 == preview.m_pending.size() && step == clear.firstStep) return removed;
+    }
+    preview.m_pending.swap(stillPending);
+  }
+  return 0;  // not reached: the clear is the last pending request and due at its own step
 }
 
 void WrenchScheduler::applyForStep(World& world, int64_t step) {

@@ -11,6 +11,7 @@
 //    on the same body replaces the old one when it starts.
 //  - Clear: at step k removes the client's active duration and persistent
 //    wrenches on the body (on all bodies when the body name is empty).
+//  - ClearAllClients: the same for the wrenches of every client.
 // Everything is processed in acceptance order, so the result depends only on
 // the sequence of accepted requests: replayable and deterministic.
 
@@ -26,12 +27,16 @@ namespace rbsim {
 // Body frame here is the frame the body was given in (its shape frame, as
 // for a URDF link), not the principal-axes frame of the physics.
 enum class WrenchFrame { World, Body };
-enum class WrenchMode { OneStep, Duration, Persistent, Clear };
+enum class WrenchMode { OneStep, Duration, Persistent, Clear, ClearAllClients };
+
+inline bool isClear(WrenchMode mode) {
+  return mode == WrenchMode::Clear || mode == WrenchMode::ClearAllClients;
+}
 
 struct WrenchRequest {
   std::string client;
   int64_t seq = 0;
-  std::string body;  // empty only for Clear (= every body)
+  std::string body;  // empty only for the clears (= every body)
   WrenchFrame frame = WrenchFrame::World;       // of force and torque
   WrenchFrame pointFrame = WrenchFrame::World;  // of point
   Vec3 force = Vec3::Zero();                    // N, in `frame`
@@ -51,6 +56,11 @@ class WrenchScheduler {
   // The request must already be validated (body exists, finite values,
   // firstStep not in the past).
   void add(const WrenchRequest& request);
+  // How many duration and persistent wrenches `clear` (a Clear or
+  // ClearAllClients request not yet added) will remove when it starts at its
+  // firstStep, if it is added now and nothing else is added or removed
+  // before then: the lists are run forward without a world to that step.
+  int countClearedBy(const WrenchRequest& clear) const;
 
   // Applies the wrenches acting during `step` (= world.stepCount() + 1) to the
   // world's bodies: call right before world.step(). Wrenches whose body no
@@ -77,7 +87,8 @@ class WrenchScheduler {
   const std::vector<WrenchRequest>& pending() const { return m_pending; }
 
  private:
-  void start(const WrenchRequest& request);
+  // Starts one request; returns how many wrenches a clear removed (else 0).
+  int start(const WrenchRequest& request);
 
   std::vector<WrenchRequest> m_pending;  // firstStep in the future, acceptance order
   std::vector<WrenchRequest> m_active;   // acting now, acceptance order

@@ -125,5 +125,27 @@ TEST_F(Contacts, AFallingBallsImpulseIsItsMomentumChange) {
   EXPECT_NEAR(after, -0.5 * c.normal_velocity, 0.02 * std::abs(c.normal_velocity));
 }
 
+// The client library reassembles RBSIM_CONTACTS like the states: the
+// contacts it holds for a step are those on the wire.
+TEST_F(Contacts, TheClientLibraryHoldsTheLatestContacts) {
+  stepAndCollect(300);
+  const int64_t step = currentStep();
+  waitFor("the client's contacts of step " + std::to_string(step), [&] {
+    client().handle(std::chrono::milliseconds(10));
+    return client().latestContacts() && client().latestContacts()->step == step;
+  });
+  const rbsim::contacts_t& held = *client().latestContacts();
+  const auto& wire = m_contacts.at(step);
+  ASSERT_EQ(held.contacts.size(), wire.size());
+  EXPECT_EQ(held.num_pages, 1);
+  EXPECT_EQ(held.total_contacts, static_cast<int32_t>(wire.size()));
+  for (std::size_t i = 0; i < wire.size(); ++i) {
+    EXPECT_EQ(held.contacts[i].body_a, wire[i].body_a);
+    EXPECT_EQ(held.contacts[i].body_b, wire[i].body_b);
+    EXPECT_EQ(held.contacts[i].normal_impulse, wire[i].normal_impulse);
+  }
+  EXPECT_GT(client().contactsCount(), 0u);
+}
+
 }  // namespace
 }  // namespace rbsim::e2e

@@ -47,6 +47,16 @@ TEST_F(Hardening, AnOverSpeedBodyIsFrozenCountedOnStatusAndClearedByReset) {
   // Held at its pose after step 50: Σ 0.099 i · 1 ms over i = 1..50 = 0.126 m.
   EXPECT_NEAR(runner.position[0], 0.126, 0.001);
   EXPECT_GT(stateOf(after, "bystander").position[0], 0.0) << "the other body steps on";
+  // The wire says which body froze and why, in the state and the description.
+  EXPECT_EQ(runner.frozen, "linear_speed");
+  EXPECT_EQ(stateOf(after, "bystander").frozen, "");
+  waitFor("a world description naming the frozen body", [&] {
+    const auto& world = client().world();
+    if (!world) return false;
+    for (const auto& body : world->bodies)
+      if (body.name == "runner") return body.frozen == "linear_speed";
+    return false;
+  });
 
   waitFor("a status counting the frozen body",
           [&] { return client().latestStatus()->step == after.step && client().latestStatus()->num_frozen_bodies == 1; });
@@ -64,6 +74,10 @@ TEST_F(Hardening, AnOverSpeedBodyIsFrozenCountedOnStatusAndClearedByReset) {
     return status->step == 0 && status->num_frozen_bodies == 0;
   });
   expectAccepted(client().applyWrench(push("runner", 1.0, 0.01)));
+  waitFor("a state where nothing is frozen", [&] {
+    return client().latestState() && client().latestState()->step == 0 &&
+           stateOf(*client().latestState(), "runner").frozen.empty();
+  });
 }
 
 TEST_F(Hardening, SpawnedMeshesMustComeFromTheConfigDirectory) {

@@ -100,7 +100,7 @@ TEST_F(WrenchPhysics, WorldForceAtABodyCornerChangesAngularMomentumByItsLeverMom
     const auto& body = history().body(step, "tilted");
     return angularMomentum(body.orientation, tilted.inertia, body.angular_velocity);
   };
-  const Vec3 lever = rotation * wrench.point;
+  const Vec3 lever = rotation * *wrench.point;
   const Vec3 expected = dt() * cross(lever, wrench.force);
   const Vec3 change = momentumAt(start + 1) - momentumAt(start);
   EXPECT_LT(relativeError(change, expected), kTolerance);
@@ -108,8 +108,8 @@ TEST_F(WrenchPhysics, WorldForceAtABodyCornerChangesAngularMomentumByItsLeverMom
                           (dt() / tilted.mass) * wrench.force),
             kTolerance);
   // Neither the unturned corner nor the same numbers read as a world point.
-  EXPECT_GT(relativeError(change, dt() * cross(wrench.point, wrench.force)), 0.1);
-  const Vec3 asWorldPoint = wrench.point - toVec3(before.position);
+  EXPECT_GT(relativeError(change, dt() * cross(*wrench.point, wrench.force)), 0.1);
+  const Vec3 asWorldPoint = *wrench.point - toVec3(before.position);
   EXPECT_GT(relativeError(change, dt() * cross(asWorldPoint, wrench.force)), 0.1);
   // One step only: torque-free afterwards.
   EXPECT_LT(relativeError(momentumAt(start + 3), momentumAt(start + 1)), 1e-12);

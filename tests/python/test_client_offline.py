@@ -127,17 +127,20 @@ def test_sent_wrenches_and_commands(sim):
     _publish(sim, "STATE", _pages(0, ["ball"], 1))
     sim.wait_state(timeout=2.0, new=False)
 
-    s1 = sim.apply_wrench("ball", (1, 2, 3))  # world frame, point None: the centre of mass
+    s1 = sim.apply_wrench("ball", (1, 2, 3), wait=False)  # world frame, point None: the centre of mass
     s2 = sim.apply_wrench("ball", (0, 0, 1), torque=(0.5, 0, 0), point=(0.1, 0, 0), frame="body",
-                          mode="duration", duration=0.25, apply_at_step=99)
+                          mode="duration", duration=0.25, apply_at_step=99, wait=False)
     s3 = sim.clear_wrenches("", wait=False)
     s4 = sim.step(7, wait=False)
     s5 = sim.spawn("name: x", wait=False)
-    assert [s1, s2, s3, s4, s5] == [1, 2, 3, 4, 5]  # increasing per client
+    # Increasing per client; a named id ("offline") starts at the wall clock
+    # in us, so that a later run under the same id keeps increasing.
+    assert [s2 - s1, s3 - s1, s4 - s1, s5 - s1] == [1, 2, 3, 4]
+    assert s1 > 1.7e15
     with pytest.raises(ValueError):
-        sim.apply_wrench("ball", (1, 2))  # not a 3-vector
+        sim.apply_wrench("ball", (1, 2), wait=False)  # not a 3-vector
     with pytest.raises(ValueError):
-        sim.apply_wrench("ball", (1, 2, 3), mode="forever")
+        sim.apply_wrench("ball", (1, 2, 3), mode="forever", wait=False)
 
     def wait_sent():
         deadline = 200
@@ -149,15 +152,17 @@ def test_sent_wrenches_and_commands(sim):
     (c1, d1), (c2, d2), (c3, d3), (c4, d4), (c5, d5) = wait_sent()
     assert (c1, c2, c3, c4, c5) == ("RBSIM_WRENCH",) * 3 + ("RBSIM_COMMAND",) * 2
     w1, w2, w3 = (wrench_t.decode(d) for d in (d1, d2, d3))
-    assert (w1.client, w1.seq, w1.body, w1.frame, w1.mode) == ("offline", 1, "ball", 0, 0)
-    assert (w1.point_frame, w2.point_frame) == (0, 1)  # by default the frame of the force
-    assert w1.force == (1.0, 2.0, 3.0) and w1.point == (0.0, 0.0, 0.5)  # ball's position
+    assert (w1.client, w1.seq, w1.body, w1.frame, w1.mode) == ("offline", s1, "ball", 0, 0)
+    # No point: the centre of mass, placed by the server; a point: by default
+    # in the frame of the force.
+    assert (w1.point_frame, w2.point_frame) == (wrench_t.POINT_FRAME_CENTER_OF_MASS, 1)
+    assert w1.force == (1.0, 2.0, 3.0) and w1.point == (0.0, 0.0, 0.0)
     assert w1.apply_at_step == -1 and w1.utime > 0
     assert (w2.frame, w2.mode, w2.duration, w2.apply_at_step) == (1, 1, 0.25, 99)
     assert w2.torque == (0.5, 0.0, 0.0) and w2.point == (0.1, 0.0, 0.0)
-    assert (w3.mode, w3.body, w3.seq) == (wrench_t.MODE_CLEAR, "", 3)
+    assert (w3.mode, w3.body, w3.seq) == (wrench_t.MODE_CLEAR, "", s3)
     c4m, c5m = command_t.decode(d4), command_t.decode(d5)
-    assert (c4m.command, c4m.num_steps, c4m.seq) == (command_t.STEP, 7, 4)
+    assert (c4m.command, c4m.num_steps, c4m.seq) == (command_t.STEP, 7, s4)
     assert (c5m.command, c5m.spawn_yaml) == (command_t.SPAWN, "name: x")
 
 
@@ -166,18 +171,19 @@ def test_point_frame_is_sent_apart_from_the_frame(sim):
     sim.lcm.subscribe("RBSIM_WRENCH", lambda c, d, u: sent.append(wrench_t.decode(d)))
     _publish(sim, "STATE", _pages(0, ["ball"], 1))
     sim.wait_state(timeout=2.0, new=False)
-    sim.apply_wrench("ball", (0, 0, 1), point=(0.1, 0, 0), point_frame="body")
-    sim.apply_wrench("ball", (0, 0, 1), frame="body", point_frame="world")  # point None: the centre
-    sim.apply_wrench("ball", (0, 0, 1), point_frame="body")  # point None: the body-frame origin
+    sim.apply_wrench("ball", (0, 0, 1), point=(0.1, 0, 0), point_frame="body", wait=False)
+    sim.apply_wrench("ball", (0, 0, 1), frame="body", point_frame="world", wait=False)  # no point: the centre
+    sim.apply_wrench("ball", (0, 0, 1), point_frame="body", wait=False)  # no point: the centre
     with pytest.raises(ValueError):
-        sim.apply_wrench("ball", (0, 0, 1), point_frame="shape")
+        sim.apply_wrench("ball", (0, 0, 1), point_frame="shape", wait=False)
     for _ in range(200):
         if len(sent) == 3:
             break
         threading.Event().wait(0.01)
-    assert [(w.frame, w.point_frame) for w in sent] == [(0, 1), (1, 0), (0, 1)]
+    centre = wrench_t.POINT_FRAME_CENTER_OF_MASS
+    assert [(w.frame, w.point_frame) for w in sent] == [(0, 1), (1, centre), (0, centre)]
     assert sent[0].point == (0.1, 0.0, 0.0)
-    assert sent[1].point == (0.0, 0.0, 0.5)  # the ball's position in the latest state
+    assert sent[1].point == (0.0, 0.0, 0.0)
     assert sent[2].point == (0.0, 0.0, 0.0)
 
 
@@ -200,3 +206,43 @@ def test_waits_time_out(sim):
         sim.wait_state(timeout=0.05)
     with pytest.raises(TimeoutError):
         sim.pause(timeout=0.05)  # nobody answers on memq://
+
+
+def test_state_as_arrays(sim):
+    _publish(sim, "STATE", _pages(4, ["a", "b", "c"], 2))
+    state = sim.wait_state(timeout=2.0, new=False)
+    assert state.positions.shape == (3, 3) and state.orientations.shape == (3, 4)
+    assert state.linear_velocities.shape == (3, 3) and state.angular_velocities.shape == (3, 3)
+    assert state.ids.tolist() == [1, 2, 3] and len(state) == 3
+    np.testing.assert_array_equal(state.positions[1], state["b"].position)
+    np.testing.assert_array_equal(state.orientations[2], state["c"].orientation)
+
+
+def test_constants_are_intenums_with_both_spellings():
+    from rbsim.constants import AckKind, Command, Frame, WrenchMode, parse_enum
+
+    assert WrenchMode.CLEAR == wrench_t.MODE_CLEAR and WrenchMode.CLEAR_ALL == wrench_t.MODE_CLEAR_ALL_CLIENTS
+    assert repr(WrenchMode(3)) == "<WrenchMode.CLEAR: 3>"
+    for text in ("one-step", "one_step", "ONE_STEP", WrenchMode.ONE_STEP, 0):
+        assert parse_enum(WrenchMode, text, "mode") is WrenchMode.ONE_STEP
+    with pytest.raises(ValueError, match="one-step, duration, persistent, clear, clear-all"):
+        parse_enum(WrenchMode, "forever", "mode")
+    assert Frame.BODY == wrench_t.FRAME_BODY and AckKind.WRENCH == 1 and Command.STEP == command_t.STEP
+
+
+def test_messages_have_readable_reprs():
+    ack = ack_t()
+    ack.client, ack.seq, ack.accepted, ack.reason = "py-x", 3, False, "unknown body 'bal'"
+    text = repr(ack)
+    assert text.startswith("ack_t(utime=0, client='py-x', seq=3") and "reason=\"unknown body 'bal'\"" in text
+    page = _pages(1, ["b%d" % i for i in range(10)], 10)[0]
+    assert "bodies=[10 x body_state_t]" in repr(page)
+
+
+def test_named_client_id_from_the_environment(monkeypatch):
+    monkeypatch.setenv("RBSIM_CLIENT_ID", "from-env")
+    with Client(url="memq://") as client:
+        assert client.client_id == "from-env"
+    monkeypatch.delenv("RBSIM_CLIENT_ID")
+    with Client(url="memq://") as client:
+        assert client.client_id.startswith("py-")

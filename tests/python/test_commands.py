@@ -12,7 +12,8 @@ def test_wrench_modes(scenario, name):
     assert result.returncode == 0
 
 
-@pytest.mark.parametrize("name", ["pause_step_resume", "reset", "spawn_remove", "real_time_factor"])
+@pytest.mark.parametrize("name", ["pause_step_resume", "reset", "spawn_remove", "real_time_factor",
+                                  "summary_after_pause"])
 def test_commands(scenario, name):
     result = scenario("commands.py", name)
     # The scenario asserts the physics itself and exits 0 only if all held.

@@ -88,7 +88,7 @@ def write_world(directory, bodies):
 
 
 def raise_priority():
-    """The server runs at nice -5, as config/rbserver.service has it, so that
+    """The server runs at nice -5, as config/systemd/rbserver.service has it, so that
     four clients on two cores delay it less; without the right to (not root),
     at the default."""
     try:

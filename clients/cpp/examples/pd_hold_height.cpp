@@ -2,8 +2,9 @@
 // that pushes it through its centre of mass, computed from the states the
 // server publishes.
 //
-//   pd_hold_height [--url URL] [--prefix P] [--body NAME] [--height M]
+//   pd_hold_height [--url URL] [--prefix P] [--client-id ID] [--body NAME] [--height M]
 //                  [--frequency HZ] [--damping-ratio Z] [--duration S] [--tolerance M]
+//   pd_hold_height --help
 //
 // The control law works on accelerations, so the gains do not depend on the
 // mass: a = ω² (h − z) − 2ζω v_z, with ω = 2π·frequency, and the force adds
@@ -23,6 +24,7 @@
 #include <string>
 
 #include "rbsim/client/client.h"
+#include "rbsim/client/lcm_url.h"
 #include "rbsim/client/lookup.h"
 
 using namespace std::chrono_literals;
@@ -38,7 +40,7 @@ void onStopSignal(int) {
 
 struct Options {
   rbsim::client::ClientOptions client;
-  std::string body = "ball";
+  std::string body = "bouncy_ball";  // a dynamic body of config/default.yaml
   double height = 1.0;        // m, world z of the centre of mass
   double frequency = 1.0;     // Hz, natural frequency of the closed loop
   double dampingRatio = 1.0;  // 1: critically damped, no overshoot
@@ -46,12 +48,34 @@ struct Options {
   double tolerance = 0.005;   // m
 };
 
+constexpr const char* kUsage =
+    "usage: pd_hold_height [--url URL] [--prefix P] [--client-id ID] [--body NAME] [--height M]\n"
+    "                      [--frequency HZ] [--damping-ratio Z] [--duration S] [--tolerance M]\n";
+
+void printHelp() {
+  const Options defaults;
+  std::printf(
+      "%s\n"
+      "Holds a body at a height with a PD law on its acceleration plus gravity\n"
+      "compensation, sent as a persistent world-frame force through its centre of mass.\n"
+      "  --url URL            LCM URL (default: $LCM_DEFAULT_URL, else %s)\n"
+      "  --prefix P           channel prefix (default %s)\n"
+      "  --client-id ID       sender id (default: $RBSIM_CLIENT_ID, else cpp-<host>-<pid>)\n"
+      "  --body NAME          the dynamic body to hold (default %s)\n"
+      "  --height M           m, target world z of its centre of mass (default %g)\n"
+      "  --frequency HZ       natural frequency of the closed loop (default %g)\n"
+      "  --damping-ratio Z    1 = critically damped (default %g)\n"
+      "  --duration S         s of simulated time to control for (default %g)\n"
+      "  --tolerance M        m, final error for exit status 0 (default %g)\n\n"
+      "Exit status: 0 within tolerance, 1 not (or a wrench rejected), 2 bad arguments or\n"
+      "no such dynamic body, 3 no answer from the server, 130 interrupted.\n",
+      kUsage, rbsim::client::kDefaultUrl, rbsim::client::kDefaultChannelPrefix,
+      defaults.body.c_str(), defaults.height, defaults.frequency, defaults.dampingRatio,
+      defaults.duration, defaults.tolerance);
+}
+
 [[noreturn]] void usageError(const std::string& message) {
-  std::fprintf(stderr,
-               "pd_hold_height: %s\nusage: pd_hold_height [--url URL] [--prefix P] [--body NAME] "
-               "[--height M] [--frequency HZ] [--damping-ratio Z] [--duration S] "
-               "[--tolerance M]\n",
-               message.c_str());
+  std::fprintf(stderr, "pd_hold_height: %s\n%s", message.c_str(), kUsage);
   std::exit(2);
 }
 
@@ -59,6 +83,10 @@ Options parseOptions(int argc, char** argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
     const std::string option = argv[i];
+    if (option == "--help" || option == "-h") {
+      printHelp();
+      std::exit(0);
+    }
     if (i + 1 >= argc) usageError(option + ": missing value");
     const std::string value = argv[++i];
     const auto number = [&] {
@@ -72,6 +100,8 @@ Options parseOptions(int argc, char** argv) {
       options.client.url = value;
     } else if (option == "--prefix") {
       options.client.channelPrefix = value;
+    } else if (option == "--client-id") {
+      options.client.clientId = value;
     } else if (option == "--body") {
       options.body = value;
     } else if (option == "--height") {
@@ -102,12 +132,14 @@ int main(int argc, char** argv) {
 
   Client client(options.client);
   if (!client.good()) {
-    std::fprintf(stderr, "pd_hold_height: cannot open LCM with URL '%s'\n", client.url().c_str());
+    std::fprintf(stderr, "pd_hold_height: %s\n",
+                 rbsim::client::explainLcmOpenFailure(client.url()).c_str());
     return 3;
   }
 
-  // Mass and gravity come from the world description: ask for it.
-  client.publishWorld();
+  // Mass and gravity come from the world description: ask for it once a
+  // state shows the server is up (a request sent before it subscribed is lost).
+  if (client.spinUntil([&] { return client.latestState().has_value(); }, 3s)) client.publishWorld();
   if (!client.spinUntil([&] { return client.world() && client.latestState(); }, 3s)) {
     std::fprintf(stderr, "pd_hold_height: no world description and state from the server\n");
     return 3;
@@ -144,8 +176,8 @@ int main(int argc, char** argv) {
     wrench.mode = rbsim::client::WrenchMode::Persistent;
     wrench.frame = rbsim::client::Frame::World;
     wrench.force = {-mass * gravity[0], -mass * gravity[1], mass * (acceleration - gravity[2])};
-    // Through the centre of mass, so the push does not spin the body.
-    wrench.point = {body->position[0], body->position[1], body->position[2]};
+    // No point: through the centre of mass (placed there exactly by the
+    // server), so the push does not spin the body.
     client.applyWrench(wrench);
   });
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdlib>
 #include <rbsim/command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 #include <string_view>
@@ -15,6 +16,8 @@ static_assert(static_cast<int8_t>(WrenchMode::OneStep) == rbsim::wrench_t::MODE_
 static_assert(static_cast<int8_t>(WrenchMode::Duration) == rbsim::wrench_t::MODE_DURATION);
 static_assert(static_cast<int8_t>(WrenchMode::Persistent) == rbsim::wrench_t::MODE_PERSISTENT);
 static_assert(static_cast<int8_t>(WrenchMode::Clear) == rbsim::wrench_t::MODE_CLEAR);
+static_assert(static_cast<int8_t>(WrenchMode::ClearAllClients) ==
+              rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS);
 static_assert(static_cast<int8_t>(AckKind::Wrench) == rbsim::ack_t::KIND_WRENCH);
 static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAND);
 
@@ -67,8 +70,14 @@ void notify(const Callbacks& callbacks, const Message& message) {
 Client::Client(ClientOptions options)
     : m_url(resolveLcmUrl(options.url)),
       m_prefix(std::move(options.channelPrefix)),
-      m_clientId(options.clientId.empty() ? makeDefaultClientId() : std::move(options.clientId)),
+      m_clientId(resolveClientId(options.clientId)),
       m_lcm(std::make_unique<lcm::LCM>(m_url)) {
+  // A named client id may outlive this process: start its sequence numbers
+  // at the wall clock in microseconds, so that they keep increasing across
+  // runs (wrench_t.seq) and an ack of an earlier run never answers this one.
+  const char* named = std::getenv("RBSIM_CLIENT_ID");
+  if (!options.clientId.empty() || (named != nullptr && *named != '\0'))
+    m_nextSeq = wallMicroseconds();
   if (!m_lcm->good()) return;
   m_lcm->subscribe(regexEscaped(channel("STATE")), &Client::onStateMessage, this)
       ->setQueueCapacity(kQueueCapacity);
@@ -77,6 +86,8 @@ Client::Client(ClientOptions options)
   m_lcm->subscribe(regexEscaped(channel("STATUS")), &Client::onStatusMessage, this)
       ->setQueueCapacity(kQueueCapacity);
   m_lcm->subscribe(regexEscaped(channel("ACK")), &Client::onAckMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("CONTACTS")), &Client::onContactsMessage, this)
       ->setQueueCapacity(kQueueCapacity);
 }
 
@@ -131,12 +142,18 @@ Client::CallbackId Client::onAck(AckCallback callback) {
   return m_nextCallbackId++;
 }
 
+Client::CallbackId Client::onContacts(ContactsCallback callback) {
+  m_contactsCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
 void Client::removeCallback(CallbackId id) {
   const auto hasId = [id](const auto& registered) { return registered.id == id; };
   std::erase_if(m_stateCallbacks, hasId);
   std::erase_if(m_worldCallbacks, hasId);
   std::erase_if(m_statusCallbacks, hasId);
   std::erase_if(m_ackCallbacks, hasId);
+  std::erase_if(m_contactsCallbacks, hasId);
 }
 
 void Client::onStateMessage(const lcm::ReceiveBuffer*, const std::string&,
@@ -157,19 +174,45 @@ void Client::onWorldMessage(const lcm::ReceiveBuffer*, const std::string&,
   notify(m_worldCallbacks, *m_world);
 }
 
+void Client::onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
+                               const rbsim::contacts_t* page) {
+  auto whole = m_contactsPages.add(*page);
+  if (!whole) return;
+  m_contacts = std::move(*whole);
+  ++m_contactsCount;
+  notify(m_contactsCallbacks, *m_contacts);
+}
+
 void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
                              const rbsim::status_t* status) {
   m_status = *status;
   ++m_statusCount;
+  if (!status->instance_id.empty()) m_instances.insert(status->instance_id);
+  m_reportedOther = status->other_instance_id;
   notify(m_statusCallbacks, *m_status);
 }
 
 void Client::onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
   if (ack->client == m_clientId) {
+    if (!ack->instance_id.empty()) m_instances.insert(ack->instance_id);
     m_acks[{ack->kind, ack->seq}] = *ack;
     if (m_acks.size() > kMaxKeptAcks) m_acks.erase(m_acks.begin());
   }
   notify(m_ackCallbacks, *ack);
+}
+
+std::string Client::instanceConflict() const {
+  std::string ids;
+  for (const std::string& id : m_instances) ids += (ids.empty() ? "" : ", ") + id;
+  if (m_instances.size() >= 2)
+    return "two servers publish on prefix '" + m_prefix + "' of " + m_url + " (instances " + ids +
+           "): their states interleave and requests are answered twice; stop one or give it "
+           "another --channel-prefix";
+  if (!m_reportedOther.empty())
+    return "the server on prefix '" + m_prefix + "' hears another server there (instance " +
+           m_reportedOther + "): their states interleave; stop one or give it another "
+           "--channel-prefix";
+  return "";
 }
 
 template <class Message>
@@ -184,20 +227,24 @@ Request Client::applyWrench(const Wrench& wrench) {
   message.seq = m_nextSeq++;
   message.body = wrench.body;
   message.frame = static_cast<int8_t>(wrench.frame);
-  message.point_frame = static_cast<int8_t>(wrench.pointFrame.value_or(wrench.frame));
+  // No point: the server puts it at the centre of mass, exactly, when the
+  // wrench first acts.
+  message.point_frame =
+      wrench.point ? static_cast<int8_t>(wrench.pointFrame.value_or(wrench.frame))
+                   : rbsim::wrench_t::POINT_FRAME_CENTER_OF_MASS;
   copyVec3(message.force, wrench.force);
   copyVec3(message.torque, wrench.torque);
-  copyVec3(message.point, wrench.point);
+  copyVec3(message.point, wrench.point.value_or(Vec3{0.0, 0.0, 0.0}));
   message.mode = static_cast<int8_t>(wrench.mode);
   message.duration = wrench.duration;
   message.apply_at_step = wrench.applyAtStep;
   return {message.seq, AckKind::Wrench, publish("WRENCH", message)};
 }
 
-Request Client::clearWrenches(const std::string& body, int64_t applyAtStep) {
+Request Client::clearWrenches(const std::string& body, int64_t applyAtStep, bool allClients) {
   Wrench clear;
   clear.body = body;
-  clear.mode = WrenchMode::Clear;
+  clear.mode = allClients ? WrenchMode::ClearAllClients : WrenchMode::Clear;
   clear.applyAtStep = applyAtStep;
   return applyWrench(clear);
 }

@@ -24,4 +24,11 @@ std::string makeDefaultClientId() {
   return id;
 }
 
+std::string resolveClientId(const std::string& clientId) {
+  if (!clientId.empty()) return clientId;
+  const char* fromEnvironment = std::getenv("RBSIM_CLIENT_ID");
+  if (fromEnvironment != nullptr && *fromEnvironment != '\0') return fromEnvironment;
+  return makeDefaultClientId();
+}
+
 }  // namespace rbsim::client

@@ -11,29 +11,28 @@ sends it through the centre of mass:
 
 * ``--mode persistent`` (default): a persistent wrench, which each new one
   from this client replaces, so the force stays on between states;
-* ``--mode one_step``: a one-step wrench per state, which acts only during
+* ``--mode one-step``: a one-step wrench per state, which acts only during
   one step: use it with ``--state-rate 0`` (a state every step).
 
 On exit it clears its wrenches. Exit status 0 if the height was within
 ``--tolerance`` of the target for the last ``--settle`` seconds of simulated
 time, 1 otherwise, 3 if the server did not answer.
 
-    PYTHONPATH=clients/python /usr/bin/python3 clients/python/examples/pd_hold_height.py \\
-        --body ball --target 1.5 --duration 5
+    python3 clients/python/examples/pd_hold_height.py --body bouncy_ball --target 1.5 --duration 5
+
+(with the package installed, ``pip install ./clients/python``, or ``PYTHONPATH=clients/python``).
 """
 
 import argparse
-import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-
-from rbsim.client import Client  # noqa: E402
+from rbsim.client import Client
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--body", default="ball", help="body to hold (default ball)")
+    parser.add_argument("--body", default="bouncy_ball",
+                        help="body to hold (default bouncy_ball, of config/default.yaml)")
     parser.add_argument("--target", type=float, default=1.5, help="target height z, m (default 1.5)")
     parser.add_argument("--omega", type=float, default=6.0,
                         help="closed-loop natural frequency, rad/s (default 6)")
@@ -43,17 +42,21 @@ def main(argv=None):
     parser.add_argument("--settle", type=float, default=1.0,
                         help="s at the end over which the error must stay within tolerance (default 1)")
     parser.add_argument("--tolerance", type=float, default=0.01, help="m (default 0.01)")
-    parser.add_argument("--mode", choices=["persistent", "one_step"], default="persistent")
+    parser.add_argument("--mode", choices=["persistent", "one-step", "one_step"], default="persistent",
+                        help="wrench mode (default persistent)")
     parser.add_argument("--max-force", type=float, default=1e4, help="N, force clamp (default 1e4)")
     parser.add_argument("--url", default=None, help="LCM URL (default as rbsim.client)")
     parser.add_argument("--prefix", default="RBSIM_", help="channel prefix (default RBSIM_)")
+    parser.add_argument("--client-id", default=None,
+                        help="sender id (default $RBSIM_CLIENT_ID, else py-<host>-<pid>)")
     parser.add_argument("--timeout", type=float, default=5.0, help="s to wait for the server")
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args(argv)
 
     kp, kd = args.omega ** 2, 2.0 * args.zeta * args.omega
-    with Client(url=args.url, prefix=args.prefix) as sim:
+    with Client(url=args.url, prefix=args.prefix, client_id=args.client_id) as sim:
         try:
+            sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
             world = sim.request_world(args.timeout)
             mass = world[args.body].mass
             gravity_z = float(world.gravity[2])
@@ -74,7 +77,9 @@ def main(argv=None):
                 z, vz = body.position[2], body.linear_velocity[2]
                 force_z = mass * (kp * (args.target - z) - kd * vz - gravity_z)
                 force_z = max(-args.max_force, min(args.max_force, force_z))
-                sim.apply_wrench(args.body, (0.0, 0.0, force_z), point=body.position, mode=args.mode)
+                # Through the centre of mass (no point); no wait for the ack:
+                # a rejection is reported below.
+                sim.apply_wrench(args.body, (0.0, 0.0, force_z), mode=args.mode, wait=False)
                 sent += 1
                 worst_recent.append((state.sim_time, abs(args.target - z)))
                 state = sim.wait_state(args.timeout)
@@ -83,9 +88,14 @@ def main(argv=None):
             return 3
         finally:
             try:
-                sim.clear_wrenches(args.body, timeout=args.timeout)
+                sim.clear_wrenches(args.body, timeout=args.timeout, check=False)
             except TimeoutError:
                 pass
+        rejected = [a for a in sim.acks() if a.client == sim.client_id and not a.accepted]
+        if rejected:
+            print("pd_hold_height: %d wrenches rejected, the first: %s"
+                  % (len(rejected), rejected[0].reason), file=sys.stderr)
+            return 1
 
     end = state.sim_time
     window = [error for t, error in worst_recent if t >= end - args.settle]

@@ -8,7 +8,7 @@
 # ./rbsim_session). The server runs the world $WORLD (default
 # config/default.yaml) for $DURATION s of simulated time (default 2) at
 # real-time factor $RTF (default 4); halfway through (simulated time), a client pushes body
-# $BODY (default ball) up with $FORCE N (default 500) for 0.5 s. Everything uses the LCM URL
+# $BODY (default bouncy_ball, of config/default.yaml) up with $FORCE N (default 500) for 0.5 s. Everything uses the LCM URL
 # $LCM_DEFAULT_URL (default udpm://239.255.76.67:7667?ttl=0); to keep the
 # traffic off your network, run it as
 #   tests/tools/in_private_network.sh clients/python/examples/record_and_plot.sh OUT_DIR
@@ -21,7 +21,7 @@ out=${1:-rbsim_session}
 world=${WORLD:-$repo/config/default.yaml}
 duration=${DURATION:-2}
 rtf=${RTF:-4}
-body=${BODY:-ball}
+body=${BODY:-bouncy_ball}
 force=${FORCE:-500}
 timeout=${TIMEOUT:-5}   # s that each CLI call waits for the server
 url=${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}

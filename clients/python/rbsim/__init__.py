@@ -1,14 +1,14 @@
 """rbsim: Python client for the rbsim rigid-body simulation server (LCM).
 
-This package also serves the lcm-gen message types, which are a build output
-(``build/lcmtypes/python/rbsim/``) and share the package name ``rbsim``: their
-directory is appended to this package's ``__path__`` so that
-``rbsim.world_state_t``, ``rbsim.wrench_t`` ... are importable next to the
-hand-written modules. As in lcm-gen's own ``__init__.py``, the package
+This package also serves the lcm-gen message types (``rbsim.world_state_t``,
+``rbsim.wrench_t`` ...). As in lcm-gen's own ``__init__.py``, the package
 attribute ``rbsim.<type>`` is the message class (the generated code relies on
 that: it calls ``rbsim.body_state_t._decode_one``).
 
-The generated directory is looked up, in order, from
+Installed (``pip install --no-build-isolation ./clients/python``), the types
+are modules of this package, generated at install time. Run from the
+repository instead, they are a build output (``build/lcmtypes/python/rbsim/``)
+whose directory is appended to this package's ``__path__``, looked up, in order, from
   1. ``$RBSIM_LCMTYPES_PYTHON_DIR`` (a directory holding the generated ``rbsim/``),
   2. ``$RBSIM_BUILD_DIR/lcmtypes/python``,
   3. ``<repository>/build/lcmtypes/python``.
@@ -56,6 +56,9 @@ def _generated_dir_candidates():
 
 def _find_generated_package():
     """Returns the generated ``rbsim`` directory, or raises ImportError."""
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    if _os.path.isfile(_os.path.join(here, "world_state_t.py")):
+        return here  # installed: the types are modules of this package
     candidates = _generated_dir_candidates()
     for base in candidates:
         package = _os.path.join(base, "rbsim")
@@ -65,7 +68,8 @@ def _find_generated_package():
         "rbsim: the generated LCM Python types were not found in "
         + ", ".join(repr(_os.path.join(c, "rbsim")) for c in candidates)
         + ". Build the project first: cmake --build build "
-        "(or set RBSIM_BUILD_DIR / RBSIM_LCMTYPES_PYTHON_DIR)"
+        "(or set RBSIM_BUILD_DIR / RBSIM_LCMTYPES_PYTHON_DIR), or install the package: "
+        "pip install --no-build-isolation ./clients/python"
     )
 
 
@@ -79,6 +83,29 @@ _modules = {name: _importlib.import_module(__name__ + "." + name) for name in _G
 for _name, _module in _modules.items():
     globals()[_name] = getattr(_module, _name)
 del _name, _module, _modules
+
+
+def _message_repr(message, _limit=4):
+    """``ack_t(client='py-host-1', seq=3, accepted=True, ...)``: every field, by
+    name; lists of more than a few nested messages are summarised by count."""
+    parts = []
+    for field in message.__slots__:
+        value = getattr(message, field)
+        if isinstance(value, list) and len(value) > _limit and value and hasattr(value[0], "__slots__"):
+            text = "[%d x %s]" % (len(value), type(value[0]).__name__)
+        elif isinstance(value, (tuple, list)) and all(isinstance(v, float) for v in value):
+            text = "(" + ", ".join("%.10g" % v for v in value) + ")"
+        elif isinstance(value, float):
+            text = "%.10g" % value
+        else:
+            text = repr(value)
+        parts.append("%s=%s" % (field, text))
+    return "%s(%s)" % (type(message).__name__, ", ".join(parts))
+
+
+for _name in _GENERATED_TYPES:
+    globals()[_name].__repr__ = _message_repr
+del _name
 
 
 def __getattr__(name):

@@ -3,25 +3,26 @@
     python3 -m rbsim state [--body NAME]        print the next complete state
     python3 -m rbsim status                     print the next heartbeat
     python3 -m rbsim bodies                     print the world description
-    python3 -m rbsim wrench BODY --force FX FY FZ [--torque ...] [--point ...]
+    python3 -m rbsim wrench BODY [--force FX FY FZ] [--torque ...] [--point ...]
                             [--frame world|body] [--point-frame world|body]
-                            [--mode one_step|duration|persistent|clear]
+                            [--mode one-step|duration|persistent|clear|clear-all]
                             [--duration S] [--at-step K]
     python3 -m rbsim pause | resume | reset
-    python3 -m rbsim step [N] [--sync]
-    python3 -m rbsim rtf FACTOR
-    python3 -m rbsim spawn FILE_OR_YAML
+    python3 -m rbsim step [N] [--no-wait]
+    python3 -m rbsim rtf X
+    python3 -m rbsim spawn FILE | - | --yaml TEXT
     python3 -m rbsim remove NAME
     python3 -m rbsim plot LOG -o OUT.png [--bodies NAME ...]
 
-Global options (before or after the verb): --url, --prefix, --timeout,
---client-id. Exit status: 0 done/accepted, 1 rejected by the server (or
-nothing to plot), 2 usage error, 3 timeout (no server answering), 4 other
-errors (e.g. LCM could not be opened).
+The verbs, options, defaults, outputs and exit statuses are those of rbctl,
+specified once in docs/cli.md (docs/cli_spec.json, checked against both by
+tests/python/test_cli_conformance.py). Global options (before or after the
+verb): --url, --prefix, --timeout, --client-id. Exit status: 0 done/accepted,
+1 rejected by the server (or nothing to plot), 2 usage error, 3 no answer
+within --timeout, 4 LCM could not be opened (or another error).
 """
 
 import argparse
-import json
 import os
 import sys
 
@@ -36,206 +37,172 @@ class CliError(Exception):
         self.status = status
 
 
-def _vec(values):
-    return "[" + ", ".join("%.6g" % v for v in values) + "]"
+_clients = []  # every Client a verb opened, for the instance-conflict warning
 
 
 def _client(args):
+    import warnings
+
     from .client import Client
 
-    return Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
+    warnings.simplefilter("ignore", RuntimeWarning)  # main() reports conflicts once, on stderr
+    client = Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
+    _clients.append(client)
+    return client
 
 
-def _check(ack, what):
-    """Prints an accepted ack's summary or raises CliError for a rejection."""
+def _report(ack, what):
+    """Prints an accepted ack as rbctl does ("WHAT accepted: effective_step K
+    [cleared N] [note TEXT]") or raises CliError for a rejection."""
+    from .constants import AckKind, WrenchMode
+
     if not ack.accepted:
         raise CliError("%s rejected: %s" % (what, ack.reason or "no reason given"), EXIT_REJECTED)
+    line = "%s accepted: effective_step %d" % (what, ack.effective_step)
+    if ack.kind == AckKind.WRENCH and ack.request in (WrenchMode.CLEAR, WrenchMode.CLEAR_ALL):
+        line += " cleared %d" % ack.wrenches_cleared
+    if ack.reason:
+        line += " note %s" % ack.reason
+    print(line)
     return ack
 
 
 # -- verbs -----------------------------------------------------------------------------
 
 
-def _state_dict(state, names):
-    return {
-        "step": state.step,
-        "sim_time": state.sim_time,
-        "world_revision": state.world_revision,
-        "bodies": [
-            {
-                "id": b.id,
-                "name": b.name,
-                "position": b.position.tolist(),
-                "orientation": b.orientation.tolist(),
-                "linear_velocity": b.linear_velocity.tolist(),
-                "angular_velocity": b.angular_velocity.tolist(),
-            }
-            for b in state.bodies
-            if not names or b.name in names
-        ],
-    }
-
-
 def cmd_state(args):
+    from . import printing
+
     with _client(args) as sim:
         state = sim.wait_state(args.timeout)
     unknown = [n for n in args.body or [] if n not in state]
     if unknown:
-        raise CliError("no body named %s in the state (bodies: %s)"
-                       % (", ".join(map(repr, unknown)), ", ".join(state.names())), EXIT_REJECTED)
+        raise CliError("no body named '%s' in the state of step %d" % (unknown[0], state.step),
+                       EXIT_REJECTED)
+    names = set(args.body or [])
     if args.json:
-        print(json.dumps(_state_dict(state, args.body)))
-        return
-    print("step %d  sim_time %.6f s  world_revision %d  bodies %d"
-          % (state.step, state.sim_time, state.world_revision, len(state.bodies)))
-    for b in state.bodies:
-        if args.body and b.name not in args.body:
-            continue
-        print("  %-16s id %-4d position %s m  orientation (w,x,y,z) %s  velocity %s m/s  "
-              "angular_velocity %s rad/s"
-              % (b.name, b.id, _vec(b.position), _vec(b.orientation), _vec(b.linear_velocity),
-                 _vec(b.angular_velocity)))
+        print(printing.state_json(state, names))
+    else:
+        print("\n".join(printing.state_lines(state, names)))
 
 
 def cmd_status(args):
+    from . import printing
+
     with _client(args) as sim:
         status = sim.wait_status(args.timeout)
-    fields = [
-        ("step", status.step), ("sim_time_s", status.sim_time),
-        ("paused", bool(status.paused)), ("world_revision", status.world_revision),
-        ("dt_s", status.dt), ("target_real_time_factor", status.target_real_time_factor),
-        ("measured_real_time_factor", status.measured_real_time_factor),
-        ("step_time_mean_s", status.step_time_mean), ("step_time_worst_s", status.step_time_worst),
-        ("overruns", status.overruns), ("commands_accepted", status.commands_accepted),
-        ("commands_rejected", status.commands_rejected), ("num_bodies", status.num_bodies),
-        ("num_frozen_bodies", status.num_frozen_bodies),
-        ("num_active_wrenches", status.num_active_wrenches), ("num_contacts", status.num_contacts),
-    ]
-    if args.json:
-        print(json.dumps(dict(fields)))
-        return
-    for name, value in fields:
-        print("%-26s %s" % (name, value))
+    print(printing.status_json(status) if args.json else "\n".join(printing.status_lines(status)))
 
 
 def cmd_bodies(args):
+    from . import printing
+
     with _client(args) as sim:
         sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
         world = sim.request_world(args.timeout)
-    if args.json:
-        print(json.dumps({
-            "world_revision": world.world_revision, "dt": world.dt,
-            "gravity": world.gravity.tolist(), "integrator": world.integrator,
-            "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
-                        "mass": b.mass, "inertia": list(b.inertia)} for b in world.bodies],
-        }))
-        return
-    print("world_revision %d  dt %g s  gravity %s m/s^2  integrator %s  bodies %d"
-          % (world.world_revision, world.dt, _vec(world.gravity), world.integrator, len(world.bodies)))
-    for b in world.bodies:
-        print("  %-16s id %-4d %-8s %s mass %.6g kg  inertia %s kg*m^2"
-              % (b.name, b.id, b.shape_type, "static" if b.is_static else "free  ", b.mass,
-                 _vec(b.inertia)))
+    print(printing.world_json(world) if args.json else "\n".join(printing.world_lines(world)))
 
 
 def cmd_wrench(args):
+    mode = args.mode
+    if mode is None:
+        mode = "duration" if args.duration is not None else "one-step"
+    mode = mode.replace("_", "-")
+    if mode == "duration" and args.duration is None:
+        raise CliError("--mode duration needs --duration S", EXIT_USAGE)
+    clear = mode in ("clear", "clear-all")
+    if clear and args.duration is not None:
+        raise CliError("--duration goes with --mode duration, not %s" % mode, EXIT_USAGE)
+    if not args.body and not clear:
+        raise CliError("missing BODY (only --mode clear or clear-all may leave it out, for every body)",
+                       EXIT_USAGE)
     with _client(args) as sim:
         ack = sim.apply_wrench(
             args.body, args.force, torque=args.torque, point=args.point, frame=args.frame,
-            point_frame=args.point_frame,
-            mode=args.mode, duration=args.duration, apply_at_step=args.at_step, wait=True,
-            timeout=args.timeout,
+            point_frame=args.point_frame, mode=mode, duration=args.duration or 0.0,
+            apply_at_step=args.at_step, wait=True, check=False, timeout=args.timeout,
         )
-    _check(ack, "wrench on %r" % args.body)
-    print("wrench seq %d accepted: %s from step %d" % (ack.seq, args.mode, ack.effective_step))
+    _report(ack, "wrench seq %d" % ack.seq)
 
 
 def _simple_command(name):
     def run(args):
         with _client(args) as sim:
             ack = getattr(sim, name)(timeout=args.timeout)
-        _check(ack, name)
-        print("%s accepted (effective from step %d)" % (name, ack.effective_step))
+        _report(ack, name)
 
     run.__name__ = "cmd_" + name
     return run
 
 
 def cmd_step(args):
+    if args.n < 1:
+        raise CliError("step N: expected N >= 1, got %d" % args.n, EXIT_USAGE)
     with _client(args) as sim:
-        ack = sim.step(args.n, sync=args.sync, timeout=args.timeout)
-        _check(ack, "step")
-        last = ack.effective_step + args.n - 1
-        print("step accepted: steps %d..%d" % (ack.effective_step, last))
-        if args.sync:
-            state = sim.state
-            print("now at step %d, sim_time %.6f s" % (state.step, state.sim_time))
+        ack = sim.step(args.n, timeout=args.timeout)
+        _report(ack, "step %d" % args.n)
+        if not args.no_wait:
+            # The server publishes the state after the last requested step.
+            state = sim.wait_for_step(ack.effective_step + args.n - 1, args.timeout + 1e-3 * args.n)
+            print("step %d" % state.step)
 
 
 def cmd_rtf(args):
     with _client(args) as sim:
         ack = sim.set_real_time_factor(args.factor, timeout=args.timeout)
-    _check(ack, "set_real_time_factor")
-    print("real-time factor %g accepted" % args.factor)
+    _report(ack, "rtf")
 
 
 def cmd_spawn(args):
-    source = args.body
-    if source == "-":
+    if args.yaml is not None:
+        if args.source is not None:
+            raise CliError("give FILE, - or --yaml TEXT, not two of them", EXIT_USAGE)
+        text = args.yaml
+    elif args.source is None:
+        raise CliError("missing FILE, - or --yaml TEXT", EXIT_USAGE)
+    elif args.source == "-":
         text = sys.stdin.read()
-    elif os.path.isfile(source):
-        with open(source, encoding="utf-8") as f:
-            text = f.read()
     else:
-        text = source
+        try:
+            with open(args.source, encoding="utf-8") as f:
+                text = f.read()
+        except OSError as exc:
+            raise CliError("cannot read '%s': %s (inline YAML goes after --yaml)"
+                           % (args.source, exc.strerror or exc), EXIT_USAGE)
     with _client(args) as sim:
         ack = sim.spawn(text, timeout=args.timeout)
-    _check(ack, "spawn")
-    print("spawn accepted (in the world from step %d)" % ack.effective_step)
+    _report(ack, "spawn")
 
 
 def cmd_remove(args):
     with _client(args) as sim:
         ack = sim.remove(args.name, timeout=args.timeout)
-    _check(ack, "remove %r" % args.name)
-    print("remove %r accepted" % args.name)
+    _report(ack, "remove %s" % args.name)
 
 
 def cmd_plot(args):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from .log import load_log
+    from .plot import make_figure
 
     try:
         log = load_log(args.log, prefix=args.prefix)
     except OSError as exc:
         raise CliError(str(exc), EXIT_ERROR)
     states = log.states
-    names = args.bodies or states.names
-    unknown = [n for n in names if n not in states]
+    unknown = [n for n in args.bodies or [] if n not in states]
     if unknown:
         raise CliError("no body named %s in %s (bodies: %s)" % (
             ", ".join(map(repr, unknown)), args.log, ", ".join(states.names) or "none"), EXIT_REJECTED)
-    if len(states) == 0 or not names:
+    if len(states) == 0:
         raise CliError("no %sSTATE messages with bodies in %s" % (args.prefix, args.log), EXIT_REJECTED)
-    figure, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7))
-    for axis, label in zip(axes, "xyz"):
-        for name in names:
-            axis.plot(states.sim_time, states[name].position[:, "xyz".index(label)], label=name)
-        axis.set_ylabel("%s [m]" % label)
-        axis.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("simulated time [s]")
-    axes[0].legend(loc="best", fontsize="small")
-    axes[0].set_title("centre-of-mass position (world frame): %s" % os.path.basename(args.log))
-    figure.tight_layout()
+    try:
+        figure = make_figure(log, args.quantity, args.bodies, os.path.basename(args.log))
+    except ValueError as exc:
+        raise CliError(str(exc), EXIT_REJECTED)
     figure.savefig(args.output, dpi=args.dpi)
-    plt.close(figure)
-    print("wrote %s (%d states, %d bodies%s)" % (
-        args.output, len(states), len(names),
-        ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
+    print("wrote %s (%d states, %d bodies, %s%s)" % (
+        args.output, len(states), len(figure.rbsim_bodies),
+        args.quantity, ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
 
 
 # -- parser ------------------------------------------------------------------------------
@@ -277,7 +244,8 @@ def build_parser():
         return sub
 
     sub = verb("state", cmd_state, "print the next complete world state")
-    sub.add_argument("--body", action="append", metavar="NAME", help="only this body (repeatable)")
+    sub.add_argument("--body", action="append", metavar="NAME",
+                     help="only this body (repeatable; exit 1 if there is none)")
     sub.add_argument("--json", action="store_true", help="print JSON")
 
     sub = verb("status", cmd_status, "print the next status heartbeat")
@@ -287,23 +255,29 @@ def build_parser():
     sub.add_argument("--json", action="store_true", help="print JSON")
 
     sub = verb("wrench", cmd_wrench, "apply a force and torque to a body")
-    sub.add_argument("body", help="body name ('' with --mode clear: every body)")
+    sub.add_argument("body", nargs="?", default="",
+                     help="body name (may be left out with --mode clear or clear-all: every body)")
     sub.add_argument("--force", nargs=3, type=float, default=[0.0, 0.0, 0.0],
                      metavar=("FX", "FY", "FZ"), help="N, in --frame (default 0 0 0)")
     sub.add_argument("--torque", nargs=3, type=float, default=[0.0, 0.0, 0.0],
                      metavar=("TX", "TY", "TZ"), help="N*m, pure couple, in --frame (default 0 0 0)")
     sub.add_argument("--point", nargs=3, type=float, default=None, metavar=("PX", "PY", "PZ"),
-                     help="m, where the force acts, in --point-frame (default: the centre of mass)")
+                     help="m, where the force acts, in --point-frame (default: the centre of mass, "
+                          "placed exactly by the server)")
     sub.add_argument("--frame", choices=["world", "body"], default="world",
                      help="frame of force and torque (default world: keeps its world direction; "
                           "body: the body's config frame, turning with it)")
     sub.add_argument("--point-frame", choices=["world", "body"], default=None,
                      help="frame of point (default: --frame): world = a world position when the "
                           "wrench first acts, carried with the body; body = fixed in the body")
-    sub.add_argument("--mode", choices=["one_step", "duration", "persistent", "clear"],
-                     default="one_step", help="how long it acts (default one_step)")
-    sub.add_argument("--duration", type=float, default=0.0,
-                     help="s of simulated time, for --mode duration")
+    sub.add_argument("--mode", choices=["one-step", "duration", "persistent", "clear", "clear-all",
+                                        "one_step", "clear_all"],
+                     default=None, metavar="MODE",
+                     help="one-step (default), duration, persistent, clear (this client's duration "
+                          "and persistent wrenches) or clear-all (every client's); a clear's ack "
+                          "says how many it cleared")
+    sub.add_argument("--duration", type=float, default=None, metavar="S",
+                     help="s of simulated time (implies --mode duration)")
     sub.add_argument("--at-step", type=int, default=-1, metavar="K",
                      help="the step during which it first acts (default -1: the next)")
 
@@ -311,24 +285,33 @@ def build_parser():
                             ("reset", "return to the initial world (step 0)")):
         verb(name, _simple_command(name), help_text)
 
-    sub = verb("step", cmd_step, "take N steps while paused (send pause first)")
+    sub = verb("step", cmd_step, "take N steps while paused (send pause first); waits for the state "
+                                 "after the last of them unless --no-wait")
     sub.add_argument("n", type=int, nargs="?", default=1, help="number of steps (default 1)")
-    sub.add_argument("--sync", action="store_true", help="wait for the state after the last step")
+    sub.add_argument("--no-wait", action="store_true", help="return once the STEP is acknowledged")
+    sub.add_argument("--sync", action="store_true", help=argparse.SUPPRESS)  # the old default-off wait
 
     sub = verb("rtf", cmd_rtf, "set the real-time factor")
-    sub.add_argument("factor", type=float, help="simulated s per wall s; 0 = as fast as possible")
+    sub.add_argument("factor", type=float, metavar="X",
+                     help="simulated s per wall-clock s: X > 0 paces the simulation, 0 runs it as "
+                          "fast as possible")
 
     sub = verb("spawn", cmd_spawn, "add a body described in YAML (a bodies: entry of a world file)")
-    sub.add_argument("body", metavar="FILE_OR_YAML",
-                     help="a YAML file, '-' for stdin, or the YAML text itself")
+    sub.add_argument("source", nargs="?", default=None, metavar="FILE",
+                     help="a YAML file, or '-' for standard input")
+    sub.add_argument("--yaml", default=None, metavar="TEXT", help="the body's YAML given inline")
 
     sub = verb("remove", cmd_remove, "remove a body")
     sub.add_argument("name", help="body name")
 
-    sub = verb("plot", cmd_plot, "plot centre-of-mass positions (x, y, z vs simulated time) from an LCM log")
+    sub = verb("plot", cmd_plot, "plot an LCM log: one panel per dynamic body against simulated time, "
+                                 "wrenches and commands marked")
     sub.add_argument("log", help="LCM log (lcm-logger or rbserver --record)")
     sub.add_argument("-o", "--output", required=True, help="output image (PNG)")
-    sub.add_argument("--bodies", nargs="+", metavar="NAME", help="bodies to plot (default: all)")
+    sub.add_argument("--bodies", nargs="+", metavar="NAME",
+                     help="bodies to plot (default: every dynamic body)")
+    sub.add_argument("--quantity", choices=["position", "velocity", "energy"], default="position",
+                     help="x, y, z position (m), velocity (m/s) or kinetic energy (J) (default position)")
     sub.add_argument("--dpi", type=int, default=100, help="image resolution (default 100)")
     return parser
 
@@ -337,6 +320,11 @@ def main(argv=None):
     args = build_parser().parse_args(argv)
     try:
         args.function(args)
+        for client in _clients:
+            conflict = client.instance_conflict()
+            if conflict:
+                print("rbsim %s: warning: %s" % (args.verb, conflict), file=sys.stderr)
+                break
     except CliError as exc:
         print("rbsim %s: %s" % (args.verb, exc), file=sys.stderr)
         return exc.status

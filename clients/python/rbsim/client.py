@@ -32,17 +32,22 @@ the state whose ``step`` is k-1, so the state with ``step == k`` is the first
 one that shows it.
 """
 
+from __future__ import annotations
+
 import itertools
 import os
 import re
 import socket
 import threading
 import time
+import warnings
 from collections import deque
+from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import ack_t, command_t, status_t, world_state_t, world_t, wrench_t
+from . import ack_t, command_t, contacts_t, status_t, world_state_t, world_t, wrench_t
+from .constants import AckKind, Command, ContactKind, Frame, PointFrame, WrenchMode, parse_enum
 from .lcm_ctypes import Lcm
 
 __all__ = [
@@ -52,45 +57,46 @@ __all__ = [
     "WorldState",
     "WorldDescription",
     "PageAssembler",
+    "Contacts",
+    "ContactKind",
     "DEFAULT_URL",
     "default_url",
     "FRAMES",
     "MODES",
     "ACK_KINDS",
+    "Frame",
+    "PointFrame",
+    "WrenchMode",
+    "AckKind",
+    "Command",
 ]
 
 #: The server's default bus with a 2 MiB kernel receive buffer, so that bursts
 #: of states (e.g. after ``step(n)``) are not dropped by the kernel.
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
 
-#: wrench_t.frame by name.
-FRAMES = {"world": wrench_t.FRAME_WORLD, "body": wrench_t.FRAME_BODY}
-#: wrench_t.mode by name.
+#: wrench_t.frame by name (see rbsim.constants for the IntEnums).
+FRAMES = {"world": Frame.WORLD, "body": Frame.BODY}
+#: wrench_t.mode by name; "one-step" and "clear-all" are accepted too.
 MODES = {
-    "one_step": wrench_t.MODE_ONE_STEP,
-    "duration": wrench_t.MODE_DURATION,
-    "persistent": wrench_t.MODE_PERSISTENT,
-    "clear": wrench_t.MODE_CLEAR,
+    "one_step": WrenchMode.ONE_STEP,
+    "duration": WrenchMode.DURATION,
+    "persistent": WrenchMode.PERSISTENT,
+    "clear": WrenchMode.CLEAR,
+    "clear_all": WrenchMode.CLEAR_ALL,
 }
 #: ack_t.kind by name.
-ACK_KINDS = {"wrench": ack_t.KIND_WRENCH, "command": ack_t.KIND_COMMAND}
+ACK_KINDS = {"wrench": AckKind.WRENCH, "command": AckKind.COMMAND}
 #: command_t.command by name (for messages).
-COMMAND_NAMES = {
-    command_t.PAUSE: "pause",
-    command_t.RESUME: "resume",
-    command_t.STEP: "step",
-    command_t.RESET: "reset",
-    command_t.SET_REAL_TIME_FACTOR: "set_real_time_factor",
-    command_t.SPAWN: "spawn",
-    command_t.REMOVE: "remove",
-    command_t.PUBLISH_WORLD: "publish_world",
-    command_t.SAVE_CHECKPOINT: "save_checkpoint",
-}
+COMMAND_NAMES = {command: command.name.lower() for command in Command}
+
+#: A 3- or 4-vector: any sequence of numbers (tuple, list, numpy array).
+Vector = Sequence[float]
 
 _PREFIX_PATTERN = re.compile(r"^[A-Za-z0-9_]{0,40}$")
 
 
-def default_url():
+def default_url() -> str:
     """``$LCM_DEFAULT_URL`` if set and not empty, else :data:`DEFAULT_URL`."""
     return os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
 
@@ -111,7 +117,7 @@ def _vector(values, length, what):
     return out
 
 
-def quaternion_to_matrix(q):
+def quaternion_to_matrix(q: Vector) -> np.ndarray:
     """Rotation matrix (3x3 numpy array) of a unit quaternion (w, x, y, z)."""
     w, x, y, z = (float(v) for v in q)
     return np.array(
@@ -139,10 +145,11 @@ class BodyState:
     Attributes: ``id`` (int, never reused), ``name``, ``position`` (m, world,
     centre of mass; numpy (3,)), ``orientation`` (unit quaternion w, x, y, z,
     body -> world; (4,)), ``linear_velocity`` (m/s, world; (3,)),
-    ``angular_velocity`` (rad/s, world; (3,)).
+    ``angular_velocity`` (rad/s, world; (3,)), ``frozen`` ("" while
+    integrated, else why the numerical guard froze it, e.g. "linear_speed").
     """
 
-    __slots__ = ("id", "name", "position", "orientation", "linear_velocity", "angular_velocity")
+    __slots__ = ("id", "name", "position", "orientation", "linear_velocity", "angular_velocity", "frozen")
 
     def __init__(self, message):
         self.id = message.id
@@ -151,13 +158,15 @@ class BodyState:
         self.orientation = np.array(message.orientation, dtype=float)
         self.linear_velocity = np.array(message.linear_velocity, dtype=float)
         self.angular_velocity = np.array(message.angular_velocity, dtype=float)
+        self.frozen = message.frozen
 
-    def rotation(self):
+    def rotation(self) -> np.ndarray:
         """Rotation matrix R (body -> world) of :attr:`orientation`."""
         return quaternion_to_matrix(self.orientation)
 
     def __repr__(self):
-        return "BodyState(%r, id=%d, position=%s)" % (self.name, self.id, self.position.tolist())
+        return "BodyState(%r, id=%d, position=%s%s)" % (
+            self.name, self.id, self.position.tolist(), ", frozen=%r" % self.frozen if self.frozen else "")
 
 
 class WorldState:
@@ -187,8 +196,38 @@ class WorldState:
     def __contains__(self, name):
         return name in self.by_name
 
-    def names(self):
+    def names(self) -> List[str]:
         return [b.name for b in self.bodies]
+
+    def __len__(self):
+        return len(self.bodies)
+
+    # The whole state as arrays, one row per body in the order of ``bodies``
+    # (ascending id), for vectorised code: ``state.positions[:, 2]`` is every z.
+    @property
+    def ids(self) -> np.ndarray:
+        """Body ids, numpy (N,) int."""
+        return np.array([b.id for b in self.bodies], dtype=np.int64)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """m, world, centre of mass: numpy (N, 3)."""
+        return np.array([b.position for b in self.bodies], dtype=float).reshape(-1, 3)
+
+    @property
+    def orientations(self) -> np.ndarray:
+        """Unit quaternions (w, x, y, z), body -> world: numpy (N, 4)."""
+        return np.array([b.orientation for b in self.bodies], dtype=float).reshape(-1, 4)
+
+    @property
+    def linear_velocities(self) -> np.ndarray:
+        """m/s, world: numpy (N, 3)."""
+        return np.array([b.linear_velocity for b in self.bodies], dtype=float).reshape(-1, 3)
+
+    @property
+    def angular_velocities(self) -> np.ndarray:
+        """rad/s, world: numpy (N, 3)."""
+        return np.array([b.angular_velocity for b in self.bodies], dtype=float).reshape(-1, 3)
 
     def __repr__(self):
         return "WorldState(step=%d, sim_time=%g, revision=%d, bodies=%r)" % (
@@ -243,7 +282,7 @@ class WorldDescription:
     def __contains__(self, name):
         return name in self.by_name
 
-    def inertia_world(self, name, orientation):
+    def inertia_world(self, name: str, orientation: Vector) -> np.ndarray:
         """Inertia tensor (kg*m^2, 3x3, world frame, about the centre of mass)
         of body ``name`` at ``orientation`` (w, x, y, z): R diag(I) R^T."""
         rotation = quaternion_to_matrix(orientation)
@@ -257,8 +296,57 @@ class WorldDescription:
         )
 
 
+class Contacts:
+    """One step's contacts (``contacts_t`` pages merged), as arrays with one
+    row per contact point, in wire order. Published on ``prefix + CONTACTS``
+    when the server's ``lcm.contacts_rate`` is above 0.
+
+    Attributes: ``utime``, ``step``, ``sim_time`` (s), ``body_a``, ``body_b``
+    (body ids, numpy (N,) int; names with :meth:`names`), ``positions`` (m,
+    world, (N, 3)), ``normals`` (unit, from a to b, (N, 3)), ``depths`` (m,
+    penetration, (N,)), ``normal_velocities`` (m/s, (N,)), ``classifications``
+    (:class:`ContactKind`, (N,) int), ``normal_impulses`` (N*s, (N,)),
+    ``friction_impulses`` (N*s, world, (N, 3)).
+    """
+
+    __slots__ = ("utime", "step", "sim_time", "body_a", "body_b", "positions", "normals", "depths",
+                 "normal_velocities", "classifications", "normal_impulses", "friction_impulses")
+
+    def __init__(self, pages):
+        first = pages[0]
+        self.utime, self.step, self.sim_time = first.utime, first.step, first.sim_time
+        points = [c for page in pages for c in page.contacts]
+        self.body_a = np.array([c.body_a for c in points], dtype=np.int64)
+        self.body_b = np.array([c.body_b for c in points], dtype=np.int64)
+        self.positions = np.array([c.position for c in points], dtype=float).reshape(-1, 3)
+        self.normals = np.array([c.normal for c in points], dtype=float).reshape(-1, 3)
+        self.depths = np.array([c.depth for c in points], dtype=float)
+        self.normal_velocities = np.array([c.normal_velocity for c in points], dtype=float)
+        self.classifications = np.array([c.classification for c in points], dtype=np.int64)
+        self.normal_impulses = np.array([c.normal_impulse for c in points], dtype=float)
+        self.friction_impulses = np.array([c.friction_impulse for c in points], dtype=float).reshape(-1, 3)
+
+    def __len__(self):
+        return len(self.depths)
+
+    def names(self, state) -> List[Tuple[str, str]]:
+        """[(name_a, name_b)] per contact, from a WorldState (or WorldDescription)'s bodies."""
+        by_id = {b.id: b.name for b in state.bodies}
+        return [(by_id.get(int(a), "#%d" % a), by_id.get(int(b), "#%d" % b))
+                for a, b in zip(self.body_a, self.body_b)]
+
+    def between(self, a: int, b: int) -> np.ndarray:
+        """Indices of the contacts between body ids ``a`` and ``b`` (either order)."""
+        return np.flatnonzero(((self.body_a == a) & (self.body_b == b)) |
+                              ((self.body_a == b) & (self.body_b == a)))
+
+    def __repr__(self):
+        return "Contacts(step=%d, sim_time=%g, points=%d)" % (self.step, self.sim_time, len(self))
+
+
 class PageAssembler:
-    """Collects the pages of paged messages (``world_state_t``, ``world_t``).
+    """Collects the pages of paged messages (``world_state_t``, ``world_t``;
+    ``contacts_t`` with ``item="contact"``).
 
     Pages belong together when they share ``(utime, step, world_revision)``
     (the server gives all pages of one publication the same values); a group
@@ -267,7 +355,10 @@ class PageAssembler:
     newer group completes or when more than ``max_pending`` are open.
     """
 
-    def __init__(self, max_pending=16):
+    def __init__(self, max_pending=16, item="body"):
+        plural = "bodies" if item == "body" else item + "s"
+        self._items, self._total = plural, "total_" + plural
+        self._first, self._count = "first_%s_index" % item, "num_" + plural
         self.max_pending = max_pending
         self._pending = {}  # key -> {page: message}, in insertion order
         self.dropped = 0  # incomplete groups given up
@@ -280,7 +371,7 @@ class PageAssembler:
             return None
         if message.num_pages == 1:
             return [message] if self._consistent([message]) else None
-        key = (message.utime, message.step, message.world_revision)
+        key = (message.utime, message.step, getattr(message, "world_revision", 0))
         group = self._pending.setdefault(key, {})
         group[message.page] = message
         if len(group) < message.num_pages:
@@ -298,18 +389,19 @@ class PageAssembler:
         return pages if self._consistent(pages) else None
 
     def _consistent(self, pages):
-        total = pages[0].total_bodies
+        total = getattr(pages[0], self._total)
         expected = 0
         for page in pages:
+            count = getattr(page, self._count)
             if (
                 page.num_pages != pages[0].num_pages
-                or page.total_bodies != total
-                or page.first_body_index != expected
-                or page.num_bodies != len(page.bodies)
+                or getattr(page, self._total) != total
+                or getattr(page, self._first) != expected
+                or count != len(getattr(page, self._items))
             ):
                 self.invalid += 1
                 return False
-            expected += page.num_bodies
+            expected += count
         if expected != total:
             self.invalid += 1
             return False
@@ -321,21 +413,26 @@ class Client:
 
     ``url``: LCM URL; None -> ``$LCM_DEFAULT_URL`` or :data:`DEFAULT_URL`.
     ``prefix``: channel prefix (letters, digits, '_'), default ``RBSIM_``.
-    ``client_id``: echoed in acks, default ``py-<hostname>-<pid>``; wrench
-    replacement and CLEAR work per client id.
+    ``client_id``: echoed in acks, default ``$RBSIM_CLIENT_ID``, else
+    ``py-<hostname>-<pid>``; wrench replacement and CLEAR work per client id,
+    so a named id lets a later run clear an earlier run's wrenches (a named
+    id's sequence numbers start at the wall clock in us, to keep increasing
+    across runs).
     ``history``: how many complete states to keep (see :meth:`states`).
     ``timeout``: s, the default of every ``timeout`` argument (None there).
     """
 
-    def __init__(self, url=None, prefix="RBSIM_", client_id=None, history=2000, timeout=2.0):
+    def __init__(self, url: Optional[str] = None, prefix: str = "RBSIM_", client_id: Optional[str] = None,
+                 history: int = 2000, timeout: float = 2.0) -> None:
         if not _PREFIX_PATTERN.match(prefix):
             raise ValueError("channel prefix %r: use at most 40 letters, digits and '_'" % prefix)
         self.url = url if url is not None else default_url()
         self.prefix = prefix
-        self.client_id = client_id or "py-%s-%d" % (socket.gethostname(), os.getpid())
+        named = client_id or os.environ.get("RBSIM_CLIENT_ID")
+        self.client_id = named or "py-%s-%d" % (socket.gethostname(), os.getpid())
         self.timeout = float(timeout)
         self._cond = threading.Condition()
-        self._seq = itertools.count(1)
+        self._seq = itertools.count(_wall_utime() if named else 1)
         self._seq_lock = threading.Lock()
 
         self._state = None
@@ -353,6 +450,12 @@ class Client:
         self.decode_errors = 0
         self._state_pages = PageAssembler()
         self._world_pages = PageAssembler()
+        self._contacts_pages = PageAssembler(item="contact")
+        self._contacts = None
+        self._contacts_count = 0
+        self._instances = set()  # server instance ids seen in statuses and acks
+        self._reported_other = ""  # the latest status's other_instance_id
+        self._warned_conflict = False
 
         self.lcm = Lcm(self.url)
         try:
@@ -361,6 +464,7 @@ class Client:
                 ("STATUS", self._on_status),
                 ("WORLD", self._on_world),
                 ("ACK", self._on_ack),
+                ("CONTACTS", self._on_contacts),
             ):
                 self.lcm.subscribe(self.channel(suffix), handler, queue_capacity=10000)
             self.lcm.start()
@@ -368,11 +472,11 @@ class Client:
             self.lcm.close()
             raise
 
-    def channel(self, suffix):
+    def channel(self, suffix: str) -> str:
         """The full channel name, e.g. ``channel("STATE") == "RBSIM_STATE"``."""
         return self.prefix + suffix
 
-    def close(self):
+    def close(self) -> None:
         """Stops receiving and releases the LCM instance."""
         self.lcm.close()
 
@@ -416,7 +520,11 @@ class Client:
         with self._cond:
             self._status = message
             self._status_count += 1
+            if message.instance_id:
+                self._instances.add(message.instance_id)
+            self._reported_other = message.other_instance_id
             self._cond.notify_all()
+        self._warn_on_conflict()
 
     def _on_world(self, _channel, data, _recv_utime):
         message = self._decode(world_t, data)
@@ -431,6 +539,19 @@ class Client:
             self._world_count += 1
             self._cond.notify_all()
 
+    def _on_contacts(self, _channel, data, _recv_utime):
+        message = self._decode(contacts_t, data)
+        if message is None:
+            return
+        pages = self._contacts_pages.add(message)
+        if pages is None:
+            return
+        contacts = Contacts(pages)
+        with self._cond:
+            self._contacts = contacts
+            self._contacts_count += 1
+            self._cond.notify_all()
+
     def _on_ack(self, _channel, data, _recv_utime):
         message = self._decode(ack_t, data)
         if message is None:
@@ -439,12 +560,43 @@ class Client:
             self._all_acks.append(message)
             self._ack_count += 1
             if message.client == self.client_id:
+                if message.instance_id:
+                    self._instances.add(message.instance_id)
                 key = (message.kind, message.seq)
                 self._acks[key] = message
                 self._ack_order.append(key)
                 while len(self._ack_order) > 10000:
                     self._acks.pop(self._ack_order.popleft(), None)
             self._cond.notify_all()
+
+    @property
+    def server_instances(self) -> List[str]:
+        """The server instance ids seen in statuses and acks (``status_t.instance_id``)."""
+        with self._cond:
+            return sorted(self._instances)
+
+    def instance_conflict(self) -> str:
+        """A sentence when two servers publish on this URL and prefix (two
+        instance ids seen, or a server reports another), else ""."""
+        with self._cond:
+            ids, other = sorted(self._instances), self._reported_other
+        if len(ids) >= 2:
+            return ("two servers publish on prefix '%s' of %s (instances %s): their states interleave "
+                    "and requests are answered twice; stop one or give it another --channel-prefix"
+                    % (self.prefix, self.url, ", ".join(ids)))
+        if other:
+            return ("the server on prefix '%s' hears another server there (instance %s): their states "
+                    "interleave; stop one or give it another --channel-prefix" % (self.prefix, other))
+        return ""
+
+    def _warn_on_conflict(self):
+        """Warns once (RuntimeWarning) when :meth:`instance_conflict` says so."""
+        if self._warned_conflict:
+            return
+        conflict = self.instance_conflict()
+        if conflict:
+            self._warned_conflict = True
+            warnings.warn("rbsim: " + conflict, RuntimeWarning, stacklevel=2)
 
     def _timeout(self, timeout):
         return self.timeout if timeout is None else float(timeout)
@@ -467,11 +619,11 @@ class Client:
     # -- state -----------------------------------------------------------------------
 
     @property
-    def state(self):
+    def state(self) -> Optional[WorldState]:
         """The latest complete :class:`WorldState`, or None before the first."""
         return self._state
 
-    def states(self):
+    def states(self) -> List[WorldState]:
         """The recent complete states, oldest first (a copy; at most ``history``)."""
         with self._cond:
             return list(self._history)
@@ -481,7 +633,9 @@ class Client:
         with self._cond:
             self._history.clear()
 
-    def wait_state(self, timeout=None, predicate=None, new=True):
+    def wait_state(self, timeout: Optional[float] = None,
+                   predicate: Optional[Callable[[WorldState], bool]] = None,
+                   new: bool = True) -> WorldState:
         """The next complete state (``new=True``), or the latest if ``new`` is
         False and one is there; with ``predicate``, the first of those states
         (in arrival order) for which ``predicate(state)`` is true. States that
@@ -505,7 +659,7 @@ class Client:
 
         return self._wait(ready, timeout, "state")
 
-    def state_at(self, step, revision=None):
+    def state_at(self, step: int, revision: Optional[int] = None) -> Optional[WorldState]:
         """The most recent kept state with this ``step`` (and ``world_revision``), or None."""
         with self._cond:
             for state in reversed(self._history):
@@ -513,7 +667,8 @@ class Client:
                     return state
         return None
 
-    def wait_for_step(self, step, timeout=None, revision=None):
+    def wait_for_step(self, step: int, timeout: Optional[float] = None,
+                      revision: Optional[int] = None) -> WorldState:
         """Waits until a state at or after ``step`` arrived (of ``world_revision``
         ``revision`` if given) and returns the state of exactly that step if it
         was received, else the latest."""
@@ -529,7 +684,7 @@ class Client:
         latest = self._wait(ready, timeout, "state of step %d" % step)
         return self.state_at(step, latest.world_revision) or latest
 
-    def on_state(self, callback):
+    def on_state(self, callback: Callable[[WorldState], None]) -> Callable[[WorldState], None]:
         """Calls ``callback(state)`` (on the receiving thread) for every complete
         state; returns ``callback`` (so it can decorate). Keep it short."""
         with self._cond:
@@ -540,14 +695,37 @@ class Client:
         with self._cond:
             self._state_callbacks.remove(callback)
 
+    # -- contacts ----------------------------------------------------------------------
+
+    @property
+    def contacts(self) -> Optional[Contacts]:
+        """The latest complete :class:`Contacts`, or None (the server publishes
+        them only when its ``lcm.contacts_rate`` is above 0)."""
+        return self._contacts
+
+    def wait_contacts(self, timeout: Optional[float] = None, step: Optional[int] = None) -> Contacts:
+        """The next complete contacts (of ``step`` or a later one, if given)."""
+        with self._cond:
+            start = self._contacts_count
+
+        def ready():
+            if self._contacts_count <= start and step is None:
+                return None
+            if self._contacts is None or (step is not None and self._contacts.step < step):
+                return None
+            return self._contacts
+
+        return self._wait(ready, timeout, "contacts" if step is None else "contacts of step %d" % step)
+
     # -- status and world ------------------------------------------------------------
 
     @property
-    def status(self):
+    def status(self) -> Optional[status_t]:
         """The latest ``status_t`` heartbeat, or None."""
         return self._status
 
-    def wait_status(self, timeout=None, new=True, predicate=None):
+    def wait_status(self, timeout: Optional[float] = None, new: bool = True,
+                    predicate: Optional[Callable[[status_t], bool]] = None) -> status_t:
         """The next ``status_t`` (or the latest if ``new`` is False and one is there)."""
         with self._cond:
             start = self._status_count if new else self._status_count - (self._status is not None)
@@ -560,11 +738,11 @@ class Client:
         return self._wait(ready, timeout, "status")
 
     @property
-    def world(self):
+    def world(self) -> Optional[WorldDescription]:
         """The latest complete :class:`WorldDescription`, or None."""
         return self._world
 
-    def wait_world(self, timeout=None, new=False):
+    def wait_world(self, timeout: Optional[float] = None, new: bool = False) -> WorldDescription:
         """The next world description (or the latest if ``new`` is False and one is there)."""
         with self._cond:
             start = self._world_count if new else self._world_count - (self._world is not None)
@@ -572,7 +750,7 @@ class Client:
             lambda: self._world if self._world_count > start else None, timeout, "world description"
         )
 
-    def request_world(self, timeout=None):
+    def request_world(self, timeout: Optional[float] = None) -> WorldDescription:
         """Asks the server to publish its world description and returns it."""
         with self._cond:
             start = self._world_count
@@ -583,25 +761,27 @@ class Client:
 
     # -- acks -------------------------------------------------------------------------
 
-    def wait_ack(self, seq, kind="command", timeout=None):
+    def wait_ack(self, seq: int, kind: Union[str, int] = "command",
+                 timeout: Optional[float] = None) -> ack_t:
         """The ``ack_t`` answering this client's request ``seq`` of ``kind``
         ("wrench" or "command", or ack_t.KIND_*). Raises TimeoutError."""
         kind = ACK_KINDS.get(kind, kind)
         key = (kind, int(seq))
         return self._wait(lambda: self._acks.get(key), timeout, "ack for seq %d" % seq)
 
-    def acks(self):
+    def acks(self) -> List[ack_t]:
         """Every ack seen recently, any client (``ack_t``, oldest first)."""
         with self._cond:
             return list(self._all_acks)
 
     @property
-    def ack_count(self):
+    def ack_count(self) -> int:
         """How many acks (any client) were received so far: a marker for
         :meth:`wait_any_ack`'s ``since``."""
         return self._ack_count
 
-    def wait_any_ack(self, predicate, timeout=None, since=None):
+    def wait_any_ack(self, predicate: Callable[[ack_t], bool], timeout: Optional[float] = None,
+                     since: Optional[int] = None) -> ack_t:
         """The first ack (of any client) satisfying ``predicate(ack)`` among the
         acks received after the first ``since`` (an :attr:`ack_count` taken
         before sending the request, so that a quick answer is not missed;
@@ -634,20 +814,20 @@ class Client:
 
     def apply_wrench(
         self,
-        body,
-        force,
-        torque=(0.0, 0.0, 0.0),
-        point=None,
-        frame="world",
-        mode="one_step",
-        duration=0.0,
-        apply_at_step=-1,
-        wait=False,
-        timeout=None,
-        check=False,
-        point_frame=None,
-    ):
-        """Sends a ``wrench_t`` on ``prefix + WRENCH``.
+        body: str,
+        force: Vector = (0.0, 0.0, 0.0),
+        torque: Vector = (0.0, 0.0, 0.0),
+        point: Optional[Vector] = None,
+        frame: Union[Frame, str, int] = "world",
+        mode: Union[WrenchMode, str, int] = "one_step",
+        duration: float = 0.0,
+        apply_at_step: int = -1,
+        wait: bool = True,
+        timeout: Optional[float] = None,
+        check: bool = True,
+        point_frame: Union[Frame, str, int, None] = None,
+    ) -> Union[ack_t, int]:
+        """Sends a ``wrench_t`` on ``prefix + WRENCH`` and returns its ``ack_t``.
 
         ``force`` (N) and ``torque`` (N*m, a pure couple) are 3-vectors in
         ``frame``: "world" (keeping their world direction while the body
@@ -656,49 +836,40 @@ class Client:
         point of the body where the force acts: in "world", a world position
         at the moment the wrench first acts, carried with the body from then
         on; in "body", a point fixed in the body. None means the centre of
-        mass: for a world point, the body's position in the latest received
-        state (waited for if there is none yet), which is exact while the
-        server is paused and lags by the state latency otherwise; for a body
-        point, the body-frame origin (the centre of mass for spheres, boxes,
-        cylinders and capsules).
+        mass, exactly: the server places it there (``point_frame`` is then
+        ignored).
 
-        ``mode``: "one_step" (acts during one step), "duration" (during
-        ``duration`` s of simulated time, rounded to whole steps, >= 1),
-        "persistent" (until cleared; replaces this client's previous
-        persistent wrench on ``body``), "clear" (removes this client's
-        duration and persistent wrenches on ``body``, or on every body if
-        ``body`` is ""). ``apply_at_step``: the step during which it first acts,
-        -1 = the next one.
+        ``mode`` (a :class:`WrenchMode` or its name): "one_step" (acts during
+        one step), "duration" (during ``duration`` s of simulated time,
+        rounded to whole steps, >= 1), "persistent" (until cleared; replaces
+        this client's previous persistent wrench on ``body``), "clear"
+        (removes this client's duration and persistent wrenches on ``body``,
+        or on every body if ``body`` is ""), "clear_all" (the same for every
+        client's). A clear's ack says how many in ``wrenches_cleared``.
+        ``apply_at_step``: the step during which it first acts, -1 = the next.
 
-        Returns the sequence number; with ``wait=True`` waits for and returns
-        the ``ack_t`` instead (``check=True`` raises :class:`Rejected` if it was
-        rejected). Values are not range-checked here: the server judges them.
+        Waits for the ack and raises :class:`Rejected` if the server rejected
+        the wrench (``check=False``: returns the rejected ack instead);
+        ``wait=False`` returns the sequence number at once. Values are not
+        range-checked here: the server judges them.
         """
-        frame_code = FRAMES.get(frame, frame)
-        point_code = frame_code if point_frame is None else FRAMES.get(point_frame, point_frame)
-        mode_code = MODES.get(mode, mode)
-        if frame_code not in FRAMES.values():
-            raise ValueError("frame must be one of %s, not %r" % (sorted(FRAMES), frame))
-        if point_code not in FRAMES.values():
-            raise ValueError("point_frame must be one of %s, not %r" % (sorted(FRAMES), point_frame))
-        if mode_code not in MODES.values():
-            raise ValueError("mode must be one of %s, not %r" % (sorted(MODES), mode))
+        frame_code = parse_enum(Frame, frame, "frame")
+        point_code = frame_code if point_frame is None else parse_enum(Frame, point_frame, "point_frame")
+        mode_code = parse_enum(WrenchMode, mode, "mode")
         message = wrench_t()
         message.body = body
-        message.frame = frame_code
-        message.point_frame = point_code
-        message.mode = mode_code
-        if mode_code == wrench_t.MODE_CLEAR:
+        message.frame = int(frame_code)
+        message.mode = int(mode_code)
+        if mode_code.is_clear:
             force, torque, point = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         message.force = _vector(force, 3, "force")
         message.torque = _vector(torque, 3, "torque")
         if point is None:
-            point = (0.0, 0.0, 0.0)
-            if point_code == wrench_t.FRAME_WORLD:
-                state = self._state or self.wait_state(timeout)
-                if body in state:
-                    point = state[body].position
-        message.point = _vector(point, 3, "point")
+            message.point_frame = int(PointFrame.CENTER_OF_MASS)
+            message.point = (0.0, 0.0, 0.0)
+        else:
+            message.point_frame = int(point_code)
+            message.point = _vector(point, 3, "point")
         message.duration = float(duration)
         message.apply_at_step = int(apply_at_step)
         message.client = self.client_id
@@ -707,16 +878,20 @@ class Client:
         self.lcm.publish(self.channel("WRENCH"), message.encode())
         return self._finish(message.seq, "wrench", wait, timeout, check, "wrench on %r" % body)
 
-    def clear_wrenches(self, body="", wait=True, timeout=None, check=False):
+    def clear_wrenches(self, body: str = "", all_clients: bool = False, wait: bool = True,
+                       timeout: Optional[float] = None, check: bool = True) -> Union[ack_t, int]:
         """Removes this client's duration and persistent wrenches on ``body``
-        (every body if ""); returns the ack (or the seq with ``wait=False``)."""
+        (every body if ""), or every client's with ``all_clients``; returns the
+        ack, whose ``wrenches_cleared`` says how many (the seq with ``wait=False``)."""
         return self.apply_wrench(
-            body, (0, 0, 0), mode="clear", wait=wait, timeout=timeout, check=check
+            body, mode=WrenchMode.CLEAR_ALL if all_clients else WrenchMode.CLEAR, wait=wait,
+            timeout=timeout, check=check
         )
 
     # -- commands ---------------------------------------------------------------------
 
-    def send_command(self, command, wait=True, timeout=None, check=False, **fields):
+    def send_command(self, command: Union[Command, int], wait: bool = True, timeout: Optional[float] = None,
+                     check: bool = False, **fields) -> Union[ack_t, int]:
         """Sends a ``command_t`` (``command`` = command_t.PAUSE, ...; other fields
         by keyword: num_steps, real_time_factor, body, spawn_yaml, path).
 
@@ -735,15 +910,16 @@ class Client:
             message.seq, "command", wait, timeout, check, COMMAND_NAMES.get(command, "command")
         )
 
-    def pause(self, **kw):
+    def pause(self, **kw) -> Union[ack_t, int]:
         """Stops stepping (state and status keep coming). Keywords as :meth:`send_command`."""
         return self.send_command(command_t.PAUSE, **kw)
 
-    def resume(self, **kw):
+    def resume(self, **kw) -> Union[ack_t, int]:
         """Steps again at the target real-time factor."""
         return self.send_command(command_t.RESUME, **kw)
 
-    def step(self, n=1, sync=False, wait=True, timeout=None, check=False):
+    def step(self, n: int = 1, sync: bool = False, wait: bool = True, timeout: Optional[float] = None,
+             check: bool = False) -> Union[ack_t, int]:
         """Takes ``n`` steps, then stays paused (the server must be paused).
 
         The ack's ``effective_step`` is the first of the steps. ``sync=True``
@@ -759,22 +935,22 @@ class Client:
             self.wait_for_step(ack.effective_step + int(n) - 1, self._timeout(timeout) + 1e-3 * n)
         return ack
 
-    def reset(self, **kw):
+    def reset(self, **kw) -> Union[ack_t, int]:
         """Returns to the world loaded at start: step and sim_time restart at 0."""
         return self.send_command(command_t.RESET, **kw)
 
-    def set_real_time_factor(self, factor, **kw):
+    def set_real_time_factor(self, factor: float, **kw) -> Union[ack_t, int]:
         """Paces at ``factor`` simulated s per wall s; 0 = as fast as possible."""
         return self.send_command(command_t.SET_REAL_TIME_FACTOR, real_time_factor=float(factor), **kw)
 
-    def spawn(self, yaml_text, **kw):
+    def spawn(self, yaml_text: str, **kw) -> Union[ack_t, int]:
         """Adds one body described in YAML like a ``bodies:`` entry of a world file."""
         return self.send_command(command_t.SPAWN, spawn_yaml=str(yaml_text), **kw)
 
-    def remove(self, name, **kw):
+    def remove(self, name: str, **kw) -> Union[ack_t, int]:
         """Removes the body called ``name``."""
         return self.send_command(command_t.REMOVE, body=str(name), **kw)
 
-    def publish_world(self, **kw):
+    def publish_world(self, **kw) -> Union[ack_t, int]:
         """Asks for a ``world_t`` now (see :meth:`request_world` to also wait for it)."""
         return self.send_command(command_t.PUBLISH_WORLD, **kw)

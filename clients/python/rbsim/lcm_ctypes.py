@@ -175,10 +175,10 @@ class Lcm:
         self.url = url
         self._pointer = self._lib.lcm_create(None if url is None else _encode(url))
         if not self._pointer:
-            raise LcmError(
-                "lcm_create(%r) failed (for udpm://, is there a multicast route? "
-                "e.g. `ip route add 224.0.0.0/4 dev lo`)" % (url,)
-            )
+            from .lcm_url import explain_open_failure
+
+            effective = url or os.environ.get("LCM_DEFAULT_URL") or "udpm://239.255.76.67:7667?ttl=0"
+            raise LcmError(explain_open_failure(effective))
         self._lock = threading.Lock()
         self._subscriptions = {}  # pointer -> Subscription
         self._retired_callbacks = []  # callbacks of unsubscribed handlers, freed at close

@@ -128,7 +128,7 @@ def spawn_remove(workdir):
 
         # Wrenches on a removed body are refused.
         assert sim.remove("probe").accepted
-        ack = sim.apply_wrench("probe", (1, 0, 0), point=(0, 0, 0), wait=True)
+        ack = sim.apply_wrench("probe", (1, 0, 0), point=(0, 0, 0), wait=True, check=False)
         assert not ack.accepted and "unknown body" in ack.reason, ack.reason
 
 
@@ -154,5 +154,25 @@ def real_time_factor(workdir):
         assert np.array_equal(world.gravity, [0, 0, 0]) and world.dt == 0.001
 
 
+def summary_after_pause(workdir):
+    """The shutdown summary's real-time factor counts the running time only:
+    0.5 s paused, a RESET, 0.5 s running at real time give about 1, not 0.5."""
+    import re
+
+    with session(workdir, "free_bodies") as (sim, server):
+        time.sleep(0.5)
+        assert sim.reset().accepted
+        assert sim.pause().accepted
+        time.sleep(0.5)
+        assert sim.resume().accepted
+        time.sleep(0.5)
+    found = re.search(r"achieved real-time factor ([\d.]+) over ([\d.]+) s running", server.output())
+    assert found, server.output()
+    factor, running = float(found.group(1)), float(found.group(2))
+    assert 0.85 < factor < 1.1, server.output()
+    assert 0.9 < running < 1.6, server.output()
+
+
 if __name__ == "__main__":
-    run({f.__name__: f for f in (pause_step_resume, reset, spawn_remove, real_time_factor)})
+    run({f.__name__: f for f in (pause_step_resume, reset, spawn_remove, real_time_factor,
+                                 summary_after_pause)})

@@ -4,7 +4,7 @@ import os
 import re
 import subprocess
 
-from harness import PYTHON, REPO, run, session, subprocess_env, world_file
+from harness import PYTHON, REPO, Server, np, run, session, subprocess_env, world_file
 from rbsim import ack_t, wrench_t
 
 EXAMPLES = os.path.join(REPO, "clients", "python", "examples")
@@ -67,5 +67,91 @@ def record_and_plot(workdir):
     assert any(w.body == "ball" for w in log.wrenches)
 
 
+def pd_hold_height_default_world(workdir):
+    """With no options, pd_hold_height.py holds a body of config/default.yaml
+    (its default, bouncy_ball) at its default target."""
+    server = Server(workdir, os.path.join(REPO, "config", "default.yaml"), "--real-time-factor", "2")
+    try:
+        proc = subprocess.run([PYTHON, os.path.join(EXAMPLES, "pd_hold_height.py"), "--timeout", "10"],
+                              capture_output=True, text=True, timeout=60, env=subprocess_env())
+        assert proc.returncode == 0, "pd_hold_height exited %d\n%s%s" % (
+            proc.returncode, proc.stdout, proc.stderr)
+        assert "final z" in proc.stdout, proc.stdout
+    finally:
+        assert server.stop() == 0
+
+
+def record_and_plot_default_world(workdir):
+    """With no settings, record_and_plot.sh runs config/default.yaml, pushes
+    its default body (bouncy_ball, accepted) and leaves a plot."""
+    out = os.path.join(workdir, "out")
+    env = subprocess_env()
+    for name in ("WORLD", "BODY", "FORCE", "DURATION", "RTF"):
+        env.pop(name, None)
+    proc = subprocess.run([os.path.join(EXAMPLES, "record_and_plot.sh"), out], capture_output=True,
+                          text=True, timeout=60, env=env)
+    assert proc.returncode == 0, "record_and_plot.sh exited %d\n%s%s" % (
+        proc.returncode, proc.stdout, proc.stderr)
+    assert os.path.getsize(os.path.join(out, "session.png")) > 10000
+    from rbsim.log import load_log
+
+    log = load_log(os.path.join(out, "session.lcmlog"))
+    pushes = [a for a in log.acks if a.kind == ack_t.KIND_WRENCH]
+    assert pushes and all(a.accepted for a in pushes), [(a.accepted, a.reason) for a in pushes]
+    assert any(w.body == "bouncy_ball" for w in log.wrenches)
+    check_plot_layout(log, os.path.join(out, "session.png"))
+
+
+def _png_size(path):
+    with open(path, "rb") as f:
+        header = f.read(24)
+    assert header[:8] == b"\x89PNG\r\n\x1a\n"
+    return int.from_bytes(header[16:20], "big"), int.from_bytes(header[20:24], "big")
+
+
+def check_plot_layout(log, png):
+    """The default plot of the default world is readable: a panel per dynamic
+    body with its own y axis, three distinct colours, the legend and the title
+    clear of every panel, the pushed body's wrench marked."""
+    from rbsim.plot import AXIS_COLOURS, make_figure
+
+    figure = make_figure(log, "position", title="session.lcmlog")
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()
+    static = {b.name for b in log.worlds[0].bodies if b.is_static}
+    dynamic = [n for n in log.states.names if n not in static]
+    panels = [a for a in figure.axes if a.get_visible()]
+    assert [a.get_title() for a in panels] == dynamic, [a.get_title() for a in panels]
+    assert "ground" not in figure.rbsim_bodies
+    boxes = [a.get_window_extent(renderer) for a in panels]
+    legend = figure.legends[0].get_window_extent(renderer)
+    title = figure._suptitle.get_window_extent(renderer)
+    for box, axis in zip(boxes, panels):
+        assert not legend.overlaps(box), "the legend covers the panel of %s" % axis.get_title()
+        assert not title.overlaps(box), "the title covers the panel of %s" % axis.get_title()
+        colours = [line.get_color() for line in axis.get_lines() if line.get_label() in "xyz"]
+        assert colours == list(AXIS_COLOURS), (axis.get_title(), colours)
+    by_name = dict(zip(dynamic, panels))
+    low, high = by_name["tower_0"].get_ylim()
+    assert high - low < 1.0, "tower_0's axis is flattened by another body: %s" % ((low, high),)
+    spans = lambda axis: [p for p in axis.patches if p.get_label() == "wrench (accepted)"]
+    assert spans(by_name["bouncy_ball"]) and not spans(by_name["slider"])
+    labels = [t.get_text() for t in figure.legends[0].get_texts()]
+    assert labels[:3] == ["x", "y", "z"] and "wrench (accepted)" in labels and "command" in labels, labels
+    # The PNG the example wrote is this figure.
+    width, height = _png_size(png)
+    expected = figure.get_size_inches() * figure.dpi
+    assert abs(width - expected[0]) <= 2 and abs(height - expected[1]) <= 2, ((width, height), expected)
+    for quantity in ("velocity", "energy"):
+        other = make_figure(log, quantity)
+        assert len([a for a in other.axes if a.get_visible()]) == len(dynamic)
+    energy = make_figure(log, "energy")
+    values = np.concatenate([line.get_ydata() for a in energy.axes for line in a.get_lines()
+                             if line.get_label() == "kinetic energy"])
+    assert np.all(np.isfinite(values)) and np.all(values >= 0), "kinetic energy"
+
+
 if __name__ == "__main__":
-    run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot})
+    run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot,
+         "pd_hold_height_default_world": pd_hold_height_default_world,
+         "record_and_plot_default_world": record_and_plot_default_world})

@@ -56,7 +56,8 @@ class Server:
 
     def __init__(self, workdir, world, *args):
         self.log_path = os.path.join(workdir, "rbserver-%d.log" % len(_servers))
-        self.command = [RBSERVER, "--config", world_file(world), "--log-level", "info"] + list(args)
+        path = world if os.path.isabs(world) else world_file(world)
+        self.command = [RBSERVER, "--config", path, "--log-level", "info"] + list(args)
         self._log = open(self.log_path, "w")
         self.process = subprocess.Popen(self.command, stdout=self._log, stderr=subprocess.STDOUT)
         _servers.append(self)

@@ -9,6 +9,7 @@ import time
 
 from harness import run, session
 from rbsim import ack_t, command_t
+from rbsim.client import Rejected
 
 
 def _rejected(ack, *words):
@@ -24,18 +25,25 @@ def rejections(workdir):
         sim.wait_state(predicate=lambda s: s.step > 100)
         status0 = sim.wait_status()
 
-        _rejected(sim.apply_wrench("nosuch", (1, 0, 0), point=(0, 0, 0), wait=True),
+        _rejected(sim.apply_wrench("nosuch", (1, 0, 0), point=(0, 0, 0), wait=True, check=False),
                   "unknown body", "nosuch")
-        _rejected(sim.apply_wrench("box", (float("nan"), 0, 0), wait=True), "finite")
-        _rejected(sim.apply_wrench("box", (0, 0, 0), torque=(0, float("inf"), 0), wait=True), "finite")
-        _rejected(sim.apply_wrench("box", (1, 0, 0), apply_at_step=1, wait=True), "past")
-        _rejected(sim.apply_wrench("box", (1, 0, 0), mode="duration", duration=0.0, wait=True),
+        _rejected(sim.apply_wrench("box", (float("nan"), 0, 0), wait=True, check=False), "finite")
+        _rejected(sim.apply_wrench("box", (0, 0, 0), torque=(0, float("inf"), 0), wait=True, check=False), "finite")
+        _rejected(sim.apply_wrench("box", (1, 0, 0), apply_at_step=1, wait=True, check=False), "past")
+        _rejected(sim.apply_wrench("box", (1, 0, 0), mode="duration", duration=0.0, wait=True, check=False),
                   "duration")
-        _rejected(sim.apply_wrench("box", (1e12, 0, 0), wait=True), "force")
+        _rejected(sim.apply_wrench("box", (1e12, 0, 0), wait=True, check=False), "force")
+        # By default a rejection raises, naming the reason: a typo is never silent.
+        try:
+            sim.apply_wrench("boxx", (1, 0, 0))
+        except Rejected as exc:
+            assert "unknown body 'boxx'" in str(exc) and not exc.ack.accepted, exc
+        else:
+            raise AssertionError("apply_wrench on an unknown body did not raise")
         _rejected(sim.send_command(0), "unknown command")
         _rejected(sim.send_command(42), "unknown command")
         _rejected(sim.remove("nosuch"), "nosuch")
-        sent = 9
+        sent = 10
 
         # Garbage on both input channels: an ack with client "" and seq -1.
         for channel, kind in (("WRENCH", ack_t.KIND_WRENCH), ("COMMAND", ack_t.KIND_COMMAND)):

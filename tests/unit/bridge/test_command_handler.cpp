@@ -1,6 +1,8 @@
 // The command path without LCM: bytes in, acks and session changes out.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "bridge/command_handler.h"
 #include "handler_test_messages.h"
 
@@ -45,6 +47,77 @@ TEST(CommandHandler, AcceptedWrenchIsScheduledForTheNextStep) {
   f.session.step();
   const BodyView a = f.session.world().body(f.session.world().findBody("a"));
   EXPECT_GT(a.linearMomentum().x(), 0.0);
+}
+
+// The motivating case: one run leaves a persistent wrench, the next run is a
+// new client id. Its CLEAR clears nothing and says so; a CLEAR under the
+// first run's id, or MODE_CLEAR_ALL_CLIENTS, clears it and says 1.
+TEST(CommandHandler, ClearAcksSayHowManyWrenchesTheyCleared) {
+  Fixture f;
+  auto persistent = wrenchMessage("run-1", 1, "a");
+  persistent.mode = rbsim::wrench_t::MODE_PERSISTENT;
+  ASSERT_TRUE(send(f.handler, persistent).ack.accepted);
+  f.session.step();
+  auto clear = wrenchMessage("run-2", 1, "a");
+  clear.mode = rbsim::wrench_t::MODE_CLEAR;
+  const CommandOutcome notMine = send(f.handler, clear);
+  EXPECT_TRUE(notMine.ack.accepted);
+  EXPECT_EQ(notMine.ack.wrenches_cleared, 0);
+  f.session.step();
+  EXPECT_EQ(f.session.wrenches().activeCount(), 1);
+
+  clear.client = "run-1";
+  clear.seq = 2;
+  EXPECT_EQ(send(f.handler, clear).ack.wrenches_cleared, 1);
+  f.session.step();
+  EXPECT_EQ(f.session.wrenches().activeCount(), 0);
+
+  persistent.seq = 3;
+  ASSERT_TRUE(send(f.handler, persistent).ack.accepted);
+  auto clearAll = wrenchMessage("run-3", 1, "a");
+  clearAll.mode = rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS;
+  const CommandOutcome everyone = send(f.handler, clearAll);  // before it even started
+  EXPECT_TRUE(everyone.ack.accepted) << everyone.ack.reason;
+  EXPECT_EQ(everyone.ack.wrenches_cleared, 1);
+  EXPECT_EQ(everyone.ack.request, rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS);
+  f.session.step();
+  EXPECT_EQ(f.session.wrenches().activeCount(), 0);
+  EXPECT_EQ(send(f.handler, wrenchMessage("c", 9, "a")).ack.wrenches_cleared, 0);
+}
+
+// POINT_FRAME_CENTER_OF_MASS puts the force at the centre of mass even where
+// the shape frame's origin is elsewhere (given mass properties here), so it
+// turns nothing; the same force at the shape origin does.
+TEST(CommandHandler, CenterOfMassPointFramePushesWithoutTurning) {
+  Fixture f;
+  auto spawn = commandMessage("c", 1, rbsim::command_t::SPAWN);
+  spawn.spawn_yaml =
+      "{name: plate, shape: {type: box, half_extents: [0.3, 0.2, 0.01]}, position: [0, 3, 0],\n"
+      " mass: 2, center_of_mass: [0.1, 0, 0], inertia: [0.01, 0.02, 0.03]}";
+  ASSERT_TRUE(send(f.handler, spawn).ack.accepted);
+  auto push = wrenchMessage("c", 2, "plate");
+  push.force[0] = 0.0;
+  push.force[1] = 1.0;
+  push.point_frame = rbsim::wrench_t::POINT_FRAME_CENTER_OF_MASS;
+  push.point[0] = std::nan("");  // ignored
+  const CommandOutcome atCentre = send(f.handler, push);
+  ASSERT_TRUE(atCentre.ack.accepted) << atCentre.ack.reason;
+  f.session.step();
+  const World& world = f.session.world();
+  const BodyView plate = world.body(world.findBody("plate"));
+  EXPECT_EQ(plate.angularMomentum(), Vec3::Zero());
+  EXPECT_GT(plate.linearMomentum().y(), 0.0);
+
+  push.seq = 3;
+  push.point_frame = rbsim::wrench_t::FRAME_BODY;
+  push.point[0] = 0.0;  // the shape frame's origin, 0.1 m from the centre of mass
+  ASSERT_TRUE(send(f.handler, push).ack.accepted);
+  f.session.step();
+  EXPECT_GT(plate.angularMomentum().norm(), 0.0);
+
+  push.seq = 4;
+  push.point_frame = 3;
+  EXPECT_FALSE(send(f.handler, push).ack.accepted);
 }
 
 TEST(CommandHandler, GarbageIsRejectedWithoutChangingAnything) {

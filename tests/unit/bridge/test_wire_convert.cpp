@@ -76,8 +76,8 @@ TEST(WireConvert, RejectsBadWrenchesWithReasons) {
   w.frame = 5;
   EXPECT_NE(reason(w).find("frame"), std::string::npos);
   w = goodWrench();
-  w.point_frame = 2;
-  EXPECT_NE(reason(w).find("unknown point_frame 2"), std::string::npos);
+  w.point_frame = 3;  // 2 is POINT_FRAME_CENTER_OF_MASS
+  EXPECT_NE(reason(w).find("unknown point_frame 3"), std::string::npos);
   w = goodWrench();
   w.duration = 0.0;
   EXPECT_NE(reason(w).find("duration"), std::string::npos);

@@ -93,6 +93,57 @@ TEST(WrenchScheduler, PersistentIsReplacedPerClientAndBodyAndCleared) {
   EXPECT_EQ(scheduler.activeCount(), 0);
 }
 
+// The count a clear's ack carries is what the clear then removes, whether it
+// acts at once or later, among wrenches that start or run out before it.
+TEST(WrenchScheduler, CountClearedByIsWhatTheClearRemoves) {
+  World world = makeWorld();
+  WrenchScheduler scheduler;
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Persistent, 1));
+  scheduler.add(push("c", "a", 2.0, WrenchMode::Persistent, 1));  // replaces the first
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Duration, 1, 5));   // over by step 5
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Duration, 1, 50));
+  scheduler.add(push("c", "a", 1.0, WrenchMode::OneStep, 1));       // never counted
+  scheduler.add(push("c", "b", 1.0, WrenchMode::Persistent, 1));    // another body
+  scheduler.add(push("other", "a", 1.0, WrenchMode::Persistent, 1));  // another client
+  run(world, scheduler, 2);
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Duration, 8, 10));  // pending, starts before
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Persistent, 30));   // pending, starts after
+
+  WrenchRequest clear = push("c", "a", 0.0, WrenchMode::Clear, 10);
+  // Acting at step 10: the 2 N persistent, the 50-step duration and the
+  // duration from step 8; the 5-step one has run out.
+  EXPECT_EQ(scheduler.countClearedBy(clear), 3);
+  WrenchRequest now = push("c", "a", 0.0, WrenchMode::Clear, 3);
+  EXPECT_EQ(scheduler.countClearedBy(now), 3);  // the 5-step duration still acts at step 3
+  WrenchRequest all = push("c", "", 0.0, WrenchMode::Clear, 10);
+  EXPECT_EQ(scheduler.countClearedBy(all), 4);  // and b's
+  WrenchRequest everyClient = push("x", "a", 0.0, WrenchMode::ClearAllClients, 10);
+  EXPECT_EQ(scheduler.countClearedBy(everyClient), 4);  // and other's on a
+  WrenchRequest nobody = push("x", "a", 0.0, WrenchMode::Clear, 10);
+  EXPECT_EQ(scheduler.countClearedBy(nobody), 0);
+
+  // What the scheduler then does: 3 of the 6 acting at step 10 go.
+  scheduler.add(clear);
+  run(world, scheduler, 7);  // steps 3..9
+  const int before = scheduler.activeCount();
+  EXPECT_EQ(before, 5);      // a: 2 N, 50-step, step-8 duration; b; other
+  run(world, scheduler, 1);  // step 10
+  EXPECT_EQ(scheduler.activeCount(), before - 3);
+}
+
+TEST(WrenchScheduler, ClearAllClientsClearsEveryClientsOnTheBody) {
+  World world = makeWorld();
+  WrenchScheduler scheduler;
+  scheduler.add(push("c", "a", 1.0, WrenchMode::Persistent, 1));
+  scheduler.add(push("other", "a", 1.0, WrenchMode::Persistent, 1));
+  scheduler.add(push("other", "b", 1.0, WrenchMode::Persistent, 1));
+  run(world, scheduler, 1);
+  scheduler.add(push("third", "a", 0.0, WrenchMode::ClearAllClients, 2));
+  run(world, scheduler, 1);
+  ASSERT_EQ(scheduler.activeCount(), 1);
+  EXPECT_EQ(scheduler.active().front().body, "b");
+}
+
 TEST(WrenchScheduler, WrenchOnRemovedBodyIsDropped) {
   World world = makeWorld();
   WrenchScheduler scheduler;

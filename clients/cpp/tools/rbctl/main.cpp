@@ -7,6 +7,7 @@
 
 #include "arguments.h"
 #include "rbsim/client/client.h"
+#include "rbsim/client/lcm_url.h"
 #include "verbs.h"
 
 using namespace rbsim;
@@ -30,8 +31,9 @@ void printUsage(std::FILE* out) {
       "  --url URL      LCM URL (default: $LCM_DEFAULT_URL, else %s)\n"
       "  --prefix P     channel prefix (default %s)\n"
       "  --timeout S    seconds to wait for the server's answer (default 2)\n"
-      "  --client-id ID the sender id (default cpp-<host>-<pid>); reuse one to CLEAR or\n"
-      "                 replace the persistent wrenches of an earlier rbctl run\n\n"
+      "  --client-id ID the sender id (default: $RBSIM_CLIENT_ID, else cpp-<host>-<pid>);\n"
+      "                 reuse one to clear or replace the persistent wrenches of an\n"
+      "                 earlier rbctl run\n\n"
       "verbs:\n",
       client::kDefaultUrl, client::kDefaultChannelPrefix);
   for (const Verb& verb : verbs()) std::fprintf(out, "  %-8s %s\n", verb.name, verb.summary);
@@ -101,16 +103,16 @@ int main(int argc, char** argv) {
   clientOptions.clientId = options.clientId;
   client::Client client(clientOptions);
   if (!client.good()) {
-    std::fprintf(stderr,
-                 "rbctl: cannot open LCM with URL '%s' (is there a route for multicast, e.g. "
-                 "`ip route add 224.0.0.0/4 dev lo`?)\n",
-                 client.url().c_str());
+    std::fprintf(stderr, "rbctl: %s\n", client::explainLcmOpenFailure(client.url()).c_str());
     return kExitNoConnection;
   }
   Context context{client, client::Client::Timeout(std::llround(options.timeout * 1000.0))};
   Arguments verbArguments(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
   try {
-    return verb->run(context, verbArguments);
+    const int status = verb->run(context, verbArguments);
+    if (const std::string conflict = client.instanceConflict(); !conflict.empty())
+      std::fprintf(stderr, "rbctl: warning: %s\n", conflict.c_str());
+    return status;
   } catch (const UsageError& error) {
     std::fprintf(stderr, "rbctl %s: %s (see rbctl %s --help)\n", verb->name, error.what(),
                  verb->name);

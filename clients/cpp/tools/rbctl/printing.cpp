@@ -1,8 +1,38 @@
 #include "printing.h"
 
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 namespace rbsim::rbctl {
 
 namespace {
+
+using nlohmann::json;
+
+// Below this a quaternion component is rounding noise of a unit quaternion,
+// beyond what 10 significant digits of the others can show: printed as 0.
+constexpr double kQuaternionNoise = 1e-12;
+
+std::array<double, 4> cleanOrientation(const double (&q)[4]) {
+  std::array<double, 4> out{};
+  for (int i = 0; i < 4; ++i) out[i] = std::abs(q[i]) < kQuaternionNoise ? 0.0 : q[i];
+  return out;
+}
+
+// An empty text field as a word, so that every line keeps two fields.
+const char* orNone(const std::string& text) {
+  return text.empty() ? "none" : text.c_str();
+}
+
+bool selected(const std::vector<std::string>& bodies, const std::string& name) {
+  return bodies.empty() || std::find(bodies.begin(), bodies.end(), name) != bodies.end();
+}
+
+template <std::size_t N>
+json array(const double (&values)[N]) {
+  return json(std::vector<double>(std::begin(values), std::end(values)));
+}
 
 // 10 significant digits: readable, and enough to tell one step's velocity
 // change from the next.
@@ -13,17 +43,19 @@ void printVector(std::FILE* out, const char* key, const double* values, int coun
 
 }  // namespace
 
-void printState(std::FILE* out, const rbsim::world_state_t& state, const std::string& body) {
+void printState(std::FILE* out, const rbsim::world_state_t& state,
+                const std::vector<std::string>& bodies) {
   std::fprintf(out, "step %lld sim_time %.10g world_revision %lld bodies %d\n",
                static_cast<long long>(state.step), state.sim_time,
                static_cast<long long>(state.world_revision), state.total_bodies);
   for (const auto& b : state.bodies) {
-    if (!body.empty() && b.name != body) continue;
+    if (!selected(bodies, b.name)) continue;
     std::fprintf(out, "body %s id %d", b.name.c_str(), b.id);
     printVector(out, "position", b.position, 3);
-    printVector(out, "orientation", b.orientation, 4);
+    printVector(out, "orientation", cleanOrientation(b.orientation).data(), 4);
     printVector(out, "linear_velocity", b.linear_velocity, 3);
     printVector(out, "angular_velocity", b.angular_velocity, 3);
+    if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
 }
@@ -34,13 +66,15 @@ void printStatus(std::FILE* out, const rbsim::status_t& s) {
                "target_real_time_factor %.10g\nmeasured_real_time_factor %.10g\nwindow %.10g\n"
                "step_time_mean %.10g\nstep_time_worst %.10g\noverruns %lld\n"
                "commands_accepted %lld\ncommands_rejected %lld\nnum_bodies %d\n"
-               "num_frozen_bodies %d\nnum_active_wrenches %d\nnum_contacts %d\n",
+               "num_frozen_bodies %d\nnum_active_wrenches %d\nnum_contacts %d\n"
+               "instance_id %s\nother_instance_id %s\n",
                static_cast<long long>(s.step), s.sim_time, static_cast<long long>(s.world_revision),
                s.dt, s.paused ? "true" : "false", s.target_real_time_factor,
                s.measured_real_time_factor, s.window, s.step_time_mean, s.step_time_worst,
                static_cast<long long>(s.overruns), static_cast<long long>(s.commands_accepted),
                static_cast<long long>(s.commands_rejected), s.num_bodies, s.num_frozen_bodies,
-               s.num_active_wrenches, s.num_contacts);
+               s.num_active_wrenches, s.num_contacts, orNone(s.instance_id),
+               orNone(s.other_instance_id));
 }
 
 void printWorld(std::FILE* out, const rbsim::world_t& world) {
@@ -68,8 +102,71 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       std::fprintf(out, " parts %d", b.num_parts);
       for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
     }
+    if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
+}
+
+void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
+                    const std::vector<std::string>& bodies) {
+  json list = json::array();
+  for (const auto& b : state.bodies) {
+    if (!selected(bodies, b.name)) continue;
+    list.push_back({{"id", b.id},
+                    {"name", b.name},
+                    {"position", array(b.position)},
+                    {"orientation", cleanOrientation(b.orientation)},
+                    {"linear_velocity", array(b.linear_velocity)},
+                    {"angular_velocity", array(b.angular_velocity)},
+                    {"frozen", b.frozen}});
+  }
+  const json document = {{"step", state.step},
+                         {"sim_time", state.sim_time},
+                         {"world_revision", state.world_revision},
+                         {"bodies", list}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+}
+
+void printStatusJson(std::FILE* out, const rbsim::status_t& s) {
+  const json document = {{"step", s.step},
+                         {"sim_time", s.sim_time},
+                         {"world_revision", s.world_revision},
+                         {"dt", s.dt},
+                         {"paused", s.paused},
+                         {"target_real_time_factor", s.target_real_time_factor},
+                         {"measured_real_time_factor", s.measured_real_time_factor},
+                         {"window", s.window},
+                         {"step_time_mean", s.step_time_mean},
+                         {"step_time_worst", s.step_time_worst},
+                         {"overruns", s.overruns},
+                         {"commands_accepted", s.commands_accepted},
+                         {"commands_rejected", s.commands_rejected},
+                         {"num_bodies", s.num_bodies},
+                         {"num_frozen_bodies", s.num_frozen_bodies},
+                         {"num_active_wrenches", s.num_active_wrenches},
+                         {"num_contacts", s.num_contacts},
+                         {"instance_id", s.instance_id},
+                         {"other_instance_id", s.other_instance_id}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+}
+
+void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
+  json list = json::array();
+  for (const auto& b : world.bodies)
+    list.push_back({{"id", b.id},
+                    {"name", b.name},
+                    {"shape", b.shape_type},
+                    {"static", b.is_static},
+                    {"mass", b.mass},
+                    {"inertia", array(b.inertia)},
+                    {"frozen", b.frozen}});
+  const json document = {{"world_revision", world.world_revision},
+                         {"step", world.step},
+                         {"dt", world.dt},
+                         {"integrator", world.integrator},
+                         {"gravity", array(world.gravity)},
+                         {"bodies", list}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
 }  // namespace rbsim::rbctl

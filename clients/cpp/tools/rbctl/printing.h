@@ -1,18 +1,25 @@
 #pragma once
 // rbctl's output: one line per record, "key value" pairs, so that people can
-// read it and scripts can pick fields with awk.
+// read it and scripts can pick fields with awk; or JSON with the wire field
+// names (--json). python3 -m rbsim prints the same (rbsim/printing.py).
 
 #include <cstdio>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
 #include <string>
+#include <vector>
 
 namespace rbsim::rbctl {
 
-// `body` empty: every body.
-void printState(std::FILE* out, const rbsim::world_state_t& state, const std::string& body);
+// `bodies` empty: every body.
+void printState(std::FILE* out, const rbsim::world_state_t& state,
+                const std::vector<std::string>& bodies);
 void printStatus(std::FILE* out, const rbsim::status_t& status);
 void printWorld(std::FILE* out, const rbsim::world_t& world);
+void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
+                    const std::vector<std::string>& bodies);
+void printStatusJson(std::FILE* out, const rbsim::status_t& status);
+void printWorldJson(std::FILE* out, const rbsim::world_t& world);
 
 }  // namespace rbsim::rbctl

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <rbsim/wrench_t.hpp>
 
 #include "printing.h"
 #include "rbsim/client/lookup.h"
@@ -36,9 +37,14 @@ int report(Context& context, const client::Request& request, const std::string& 
     std::fprintf(stderr, "rbctl: %s rejected: %s\n", what.c_str(), ack->reason.c_str());
     return kExitRejected;
   }
-  std::printf("%s accepted: effective_step %lld%s%s\n", what.c_str(),
-              static_cast<long long>(ack->effective_step), ack->reason.empty() ? "" : " note ",
-              ack->reason.c_str());
+  std::printf("%s accepted: effective_step %lld", what.c_str(),
+              static_cast<long long>(ack->effective_step));
+  if (ack->kind == rbsim::ack_t::KIND_WRENCH &&
+      (ack->request == rbsim::wrench_t::MODE_CLEAR ||
+       ack->request == rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS))
+    std::printf(" cleared %d", ack->wrenches_cleared);
+  if (!ack->reason.empty()) std::printf(" note %s", ack->reason.c_str());
+  std::printf("\n");
   return kExitOk;
 }
 
@@ -55,12 +61,26 @@ bool waitForState(Context& context) {
                                   context.timeout);
 }
 
+// Reads the only option of status and bodies; true with --json.
+bool jsonOption(Arguments& arguments, const char* verb) {
+  bool json = false;
+  while (!arguments.empty()) {
+    const std::string option = arguments.next(verb, "an option");
+    if (option != "--json") throw UsageError(std::string(verb) + ": unknown option '" + option + "'");
+    json = true;
+  }
+  return json;
+}
+
 int runState(Context& context, Arguments& arguments) {
-  std::string body;
+  std::vector<std::string> bodies;
+  bool json = false;
   while (!arguments.empty()) {
     const std::string option = arguments.next("state", "an option");
     if (option == "--body") {
-      body = arguments.next(option, "a body name");
+      bodies.push_back(arguments.next(option, "a body name"));
+    } else if (option == "--json") {
+      json = true;
     } else {
       throw UsageError("state: unknown option '" + option + "'");
     }
@@ -68,41 +88,59 @@ int runState(Context& context, Arguments& arguments) {
   if (!waitForState(context))
     return noAnswer(context, "state on " + context.client.channel("STATE"));
   const auto& state = *context.client.latestState();
-  if (!body.empty() && client::findBody(state, body) == nullptr) {
-    std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
-                 static_cast<long long>(state.step));
-    return kExitRejected;
+  for (const std::string& body : bodies) {
+    if (client::findBody(state, body) == nullptr) {
+      std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
+                   static_cast<long long>(state.step));
+      return kExitRejected;
+    }
   }
-  printState(stdout, state, body);
+  if (json) {
+    printStateJson(stdout, state, bodies);
+  } else {
+    printState(stdout, state, bodies);
+  }
   return kExitOk;
 }
 
 int runStatus(Context& context, Arguments& arguments) {
-  arguments.expectEnd();
+  const bool json = jsonOption(arguments, "status");
   if (!context.client.spinUntil([&] { return context.client.latestStatus().has_value(); },
                                 context.timeout))
     return noAnswer(context, "status on " + context.client.channel("STATUS"));
-  printStatus(stdout, *context.client.latestStatus());
+  if (json) {
+    printStatusJson(stdout, *context.client.latestStatus());
+  } else {
+    printStatus(stdout, *context.client.latestStatus());
+  }
   return kExitOk;
 }
 
 int runBodies(Context& context, Arguments& arguments) {
-  arguments.expectEnd();
+  const bool json = jsonOption(arguments, "bodies");
   // Ask for a fresh description rather than wait for the next change.
   context.client.publishWorld();
   if (!context.client.spinUntil([&] { return context.client.world().has_value(); },
                                 context.timeout))
     return noAnswer(context, "world description on " + context.client.channel("WORLD"));
-  printWorld(stdout, *context.client.world());
+  if (json) {
+    printWorldJson(stdout, *context.client.world());
+  } else {
+    printWorld(stdout, *context.client.world());
+  }
   return kExitOk;
 }
 
-client::WrenchMode parseMode(const std::string& text) {
+// The spellings of docs/cli.md: hyphens, with underscores accepted too.
+client::WrenchMode parseMode(std::string text) {
+  std::replace(text.begin(), text.end(), '_', '-');
   if (text == "one-step") return client::WrenchMode::OneStep;
   if (text == "duration") return client::WrenchMode::Duration;
   if (text == "persistent") return client::WrenchMode::Persistent;
   if (text == "clear") return client::WrenchMode::Clear;
-  throw UsageError("--mode: expected one-step, duration, persistent or clear, got '" + text + "'");
+  if (text == "clear-all") return client::WrenchMode::ClearAllClients;
+  throw UsageError("--mode: expected one-step, duration, persistent, clear or clear-all, got '" +
+                   text + "'");
 }
 
 client::Frame parseFrame(const std::string& option, const std::string& text) {
@@ -114,7 +152,6 @@ client::Frame parseFrame(const std::string& option, const std::string& text) {
 int runWrench(Context& context, Arguments& arguments) {
   client::Wrench wrench;
   bool hasBody = false;
-  bool hasPoint = false;
   bool hasMode = false;
   bool hasDuration = false;
   while (!arguments.empty()) {
@@ -125,7 +162,6 @@ int runWrench(Context& context, Arguments& arguments) {
       wrench.torque = arguments.nextVec3(option);
     } else if (option == "--point") {
       wrench.point = arguments.nextVec3(option);
-      hasPoint = true;
     } else if (option == "--frame") {
       wrench.frame = parseFrame(option, arguments.next(option, "world or body"));
     } else if (option == "--point-frame") {
@@ -150,26 +186,17 @@ int runWrench(Context& context, Arguments& arguments) {
   if (hasDuration && !hasMode) wrench.mode = client::WrenchMode::Duration;
   if (wrench.mode == client::WrenchMode::Duration && !hasDuration)
     throw UsageError("wrench: --mode duration needs --duration S");
-  if (!hasBody && wrench.mode != client::WrenchMode::Clear)
-    throw UsageError("wrench: missing BODY (only --mode clear may leave it out, for every body)");
+  const bool clear = wrench.mode == client::WrenchMode::Clear ||
+                     wrench.mode == client::WrenchMode::ClearAllClients;
+  if (!hasBody && !clear)
+    throw UsageError("wrench: missing BODY (only --mode clear or clear-all may leave it out, for "
+                     "every body)");
+  if (clear && hasDuration)
+    throw UsageError("wrench: --duration goes with --mode duration, not " +
+                     std::string(wrench.mode == client::WrenchMode::Clear ? "clear" : "clear-all"));
 
-  // With no point the force acts through the centre of mass: as a world
-  // point, the one the latest state shows (the server checks the body
-  // exists); as a body point, the origin of the body frame, which is the
-  // centre of mass only for spheres, boxes, cylinders and capsules.
-  if (!wrench.pointFrame) wrench.pointFrame = wrench.frame;
-  if (*wrench.pointFrame == client::Frame::World && !hasPoint &&
-      wrench.mode != client::WrenchMode::Clear) {
-    if (!waitForState(context))
-      return noAnswer(context, "state on " + context.client.channel("STATE") +
-                                   " (needed for the default --point)");
-    if (const auto* body = client::findBody(*context.client.latestState(), wrench.body)) {
-      std::copy(std::begin(body->position), std::end(body->position), wrench.point.begin());
-      std::printf("point %.10g %.10g %.10g (centre of mass at step %lld)\n", wrench.point[0],
-                  wrench.point[1], wrench.point[2],
-                  static_cast<long long>(context.client.latestState()->step));
-    }
-  }
+  // With no --point the client library asks the server for the centre of
+  // mass (wrench_t::POINT_FRAME_CENTER_OF_MASS), exact whatever the body's shape.
   const auto request = context.client.applyWrench(wrench);
   return report(context, request, "wrench seq " + std::to_string(request.seq));
 }
@@ -258,18 +285,21 @@ int runRemove(Context& context, Arguments& arguments) {
 const std::vector<Verb>& verbs() {
   static const std::vector<Verb> kVerbs = {
       {"state", "print the latest complete state",
-       "usage: rbctl state [--body NAME]\n\n"
+       "usage: rbctl state [--body NAME]... [--json]\n\n"
        "Waits for a complete state on <prefix>STATE and prints it: a line\n"
        "\"step S sim_time T world_revision R bodies N\", then per body \"body NAME id I\n"
        "position X Y Z orientation W X Y Z linear_velocity ... angular_velocity ...\"\n"
        "(m, unit quaternion body->world, m/s and rad/s in the world frame).\n"
-       "  --body NAME   only that body (exit 1 if there is none)\n",
+       "(orientation components below 1e-12 are printed as 0).\n"
+       "  --body NAME   only that body (repeatable; exit 1 if there is none)\n"
+       "  --json        one JSON object: step, sim_time, world_revision, bodies\n",
        runState},
       {"status", "print the latest heartbeat",
-       "usage: rbctl status\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields.\n",
+       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields\n"
+       "(--json: as one JSON object).\n",
        runStatus},
       {"bodies", "print the world description (bodies, shapes, masses)",
-       "usage: rbctl bodies\n\n"
+       "usage: rbctl bodies [--json]\n\n"
        "Asks the server to publish the world description (PUBLISH_WORLD) and prints\n"
        "the world settings and every body's id, shape, mass (kg) and principal\n"
        "moments of inertia (kg m^2).\n",
@@ -277,27 +307,30 @@ const std::vector<Verb>& verbs() {
       {"wrench", "apply a force and torque to a body",
        "usage: rbctl wrench BODY [--force FX FY FZ] [--torque TX TY TZ] [--point X Y Z]\n"
        "                    [--frame world|body] [--point-frame world|body]\n"
-       "                    [--mode one-step|duration|persistent|clear]\n"
+       "                    [--mode one-step|duration|persistent|clear|clear-all]\n"
        "                    [--duration S] [--at-step K]\n"
-       "       rbctl wrench --mode clear      (clear this client's wrenches on every body)\n\n"
+       "       rbctl wrench [BODY] --mode clear|clear-all   (no BODY: every body)\n\n"
        "  --force       N, in --frame (default 0 0 0)\n"
        "  --torque      N m, in --frame: a pure couple (default 0 0 0)\n"
        "  --frame       of force and torque: world (default; keeps its world direction)\n"
        "                or body (turns with the body)\n"
        "  --point       m, in --point-frame: where the force acts, a point of the body.\n"
-       "                Default: the centre of mass (world: from the latest state;\n"
-       "                body: 0 0 0, the centre for spheres, boxes, cylinders, capsules)\n"
+       "                Default: the centre of mass, exactly (placed by the server)\n"
        "  --point-frame world (a world position when the wrench first acts, carried\n"
        "                with the body from then on) or body (fixed in the body).\n"
        "                Default: the same as --frame\n"
-       "  --mode        one-step (default), duration, persistent or clear\n"
+       "  --mode        one-step (default), duration, persistent, clear (this client's\n"
+       "                duration and persistent wrenches) or clear-all (every client's);\n"
+       "                a clear's ack says how many it cleared\n"
        "  --duration    s of simulated time (implies --mode duration)\n"
        "  --at-step K   the step during which it first acts (default: the next)\n"
        "The body frame is the frame the body is given in (its config frame).\n\n"
-       "Note: CLEAR and persistent replacement work per client id, and every rbctl run\n"
-       "is a new client unless --client-id names one: to clear a persistent wrench later,\n"
-       "  rbctl --client-id me wrench ball --force 0 0 5 --mode persistent\n"
-       "  rbctl --client-id me wrench ball --mode clear\n",
+       "Note: clear and persistent replacement work per client id, and every rbctl run\n"
+       "is a new client unless --client-id (or $RBSIM_CLIENT_ID) names one: to clear a\n"
+       "persistent wrench later,\n"
+       "  rbctl --client-id me wrench bouncy_ball --force 0 0 5 --mode persistent\n"
+       "  rbctl --client-id me wrench bouncy_ball --mode clear\n"
+       "or clear whoever's it is with --mode clear-all.\n",
        runWrench},
       {"pause", "stop stepping", "usage: rbctl pause\n\nSends PAUSE and waits for its ack.\n",
        runPause},
@@ -311,7 +344,8 @@ const std::vector<Verb>& verbs() {
       {"reset", "go back to the initial world, step 0",
        "usage: rbctl reset\n\nSends RESET and waits for its ack.\n", runReset},
       {"rtf", "set the real-time factor",
-       "usage: rbctl rtf X\n\nSimulated s per wall-clock s, > 0; 0 = as fast as possible.\n",
+       "usage: rbctl rtf X\n\nSimulated s per wall-clock s: X > 0 paces the simulation,\n"
+       "0 runs it as fast as possible.\n",
        runRealTimeFactor},
       {"spawn", "add a body",
        "usage: rbctl spawn FILE | - | --yaml TEXT\n\n"

@@ -22,9 +22,11 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
+#include <set>
 #include <optional>
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
+#include <rbsim/contacts_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -41,7 +43,7 @@ namespace rbsim::client {
 struct ClientOptions {
   std::string url;  // empty: $LCM_DEFAULT_URL, else kDefaultUrl
   std::string channelPrefix = kDefaultChannelPrefix;
-  std::string clientId;  // empty: makeDefaultClientId()
+  std::string clientId;  // empty: $RBSIM_CLIENT_ID, else makeDefaultClientId()
 };
 
 // Which channel a request went on, as ack_t::kind says.
@@ -63,6 +65,7 @@ class Client {
   using WorldCallback = std::function<void(const rbsim::world_t&)>;
   using StatusCallback = std::function<void(const rbsim::status_t&)>;
   using AckCallback = std::function<void(const rbsim::ack_t&)>;
+  using ContactsCallback = std::function<void(const rbsim::contacts_t&)>;
 
   explicit Client(ClientOptions options = {});
   ~Client();
@@ -100,6 +103,18 @@ class Client {
   // on publishWorld()).
   const std::optional<rbsim::world_t>& world() const { return m_world; }
   uint64_t worldCount() const { return m_worldCount; }
+  // The newest complete contacts of a step (published on <prefix>CONTACTS
+  // when the server's lcm.contacts_rate is above 0; contact_t has the
+  // fields: body ids, point, normal, depth, impulses), pages merged.
+  const std::optional<rbsim::contacts_t>& latestContacts() const { return m_contacts; }
+
+  // The server instance ids seen in statuses and acks (status_t.instance_id).
+  const std::set<std::string>& serverInstances() const { return m_instances; }
+  // Non-empty when two servers publish on this URL and prefix (two instance
+  // ids seen, or a server's status reports another): a sentence saying so,
+  // for the user. Their states interleave and a request gets two answers.
+  std::string instanceConflict() const;
+  uint64_t contactsCount() const { return m_contactsCount; }
 
   // Callbacks run inside handle() for every complete state / world
   // description, every status, and every ack (of any client). They may call
@@ -108,14 +123,18 @@ class Client {
   CallbackId onWorld(WorldCallback callback);
   CallbackId onStatus(StatusCallback callback);
   CallbackId onAck(AckCallback callback);
+  CallbackId onContacts(ContactsCallback callback);
   void removeCallback(CallbackId id);
 
   // --- requests (each returns at once; wait with waitForAck) ---------------
 
   Request applyWrench(const Wrench& wrench);
   // MODE_CLEAR: this client's duration and persistent wrenches on `body`
-  // (every body if empty), from `applyAtStep` (−1: the next step).
-  Request clearWrenches(const std::string& body = "", int64_t applyAtStep = -1);
+  // (every body if empty), from `applyAtStep` (−1: the next step); with
+  // `allClients`, MODE_CLEAR_ALL_CLIENTS: every client's. The ack's
+  // wrenches_cleared says how many.
+  Request clearWrenches(const std::string& body = "", int64_t applyAtStep = -1,
+                        bool allClients = false);
 
   Request pause();
   Request resume();
@@ -149,6 +168,8 @@ class Client {
   void onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
                        const rbsim::status_t* status);
   void onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack);
+  void onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
+                         const rbsim::contacts_t* page);
   Request sendCommand(int8_t command, const std::function<void(rbsim::command_t&)>& fill);
   template <class Message>
   bool publish(const std::string& suffix, const Message& message);
@@ -161,6 +182,11 @@ class Client {
 
   PageAssembler<rbsim::world_state_t> m_statePages;
   PageAssembler<rbsim::world_t> m_worldPages;
+  PageAssembler<rbsim::contacts_t> m_contactsPages;
+  std::optional<rbsim::contacts_t> m_contacts;
+  uint64_t m_contactsCount = 0;
+  std::set<std::string> m_instances;
+  std::string m_reportedOther;  // status_t.other_instance_id of the latest status
   std::optional<rbsim::world_state_t> m_state;
   std::optional<rbsim::status_t> m_status;
   std::optional<rbsim::world_t> m_world;
@@ -177,6 +203,7 @@ class Client {
   std::vector<Registered<WorldCallback>> m_worldCallbacks;
   std::vector<Registered<StatusCallback>> m_statusCallbacks;
   std::vector<Registered<AckCallback>> m_ackCallbacks;
+  std::vector<Registered<ContactsCallback>> m_contactsCallbacks;
 };
 
 }  // namespace rbsim::client

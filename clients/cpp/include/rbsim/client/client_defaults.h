@@ -21,4 +21,10 @@ std::string resolveLcmUrl(const std::string& url);
 // client id on the server) never mix two of them up.
 std::string makeDefaultClientId();
 
+// The client id a Client takes when ClientOptions::clientId is empty:
+// $RBSIM_CLIENT_ID if set and not empty (a name that persists across runs,
+// so that a later run may CLEAR or replace an earlier run's persistent
+// wrenches), else makeDefaultClientId().
+std::string resolveClientId(const std::string& clientId);
+
 }  // namespace rbsim::client

@@ -1,36 +1,68 @@
 #pragma once
-// Reassembles a paged message (world_state_t or world_t) from its pages.
+// Reassembles a paged message (world_state_t, world_t or contacts_t) from its
+// pages.
 //
-// The server splits one step's state (or one world description) into pages
-// that each fit a UDP datagram; all pages of one publication share utime,
-// step, world_revision, num_pages and total_bodies. A publication is complete
+// The server splits one step's state (or world description, or contacts)
+// into pages that each fit a UDP datagram; all pages of one publication
+// share utime, step, world_revision (none for contacts), num_pages and the
+// item total. A publication is complete
 // when pages 0 .. num_pages−1 have arrived. A page of another publication
 // abandons an incomplete one: state is latest-value and never resent, so
 // waiting for a lost page would only delay the next complete step.
 
 #include <cstdint>
 #include <optional>
+#include <rbsim/contacts_t.hpp>
 #include <utility>
 #include <vector>
 
 namespace rbsim::client {
 
+// How a page type names its items: the bodies of world_state_t and world_t.
+template <class Page>
+struct PageItems {
+  static auto& items(Page& p) { return p.bodies; }
+  static const auto& items(const Page& p) { return p.bodies; }
+  static int32_t& first(Page& p) { return p.first_body_index; }
+  static int32_t& count(Page& p) { return p.num_bodies; }
+  static int32_t total(const Page& p) { return p.total_bodies; }
+  static int32_t first(const Page& p) { return p.first_body_index; }
+  static int32_t count(const Page& p) { return p.num_bodies; }
+  static int64_t revision(const Page& p) { return p.world_revision; }
+};
+
+// The contacts of contacts_t, which carries no world revision.
+template <>
+struct PageItems<rbsim::contacts_t> {
+  using Page = rbsim::contacts_t;
+  static auto& items(Page& p) { return p.contacts; }
+  static const auto& items(const Page& p) { return p.contacts; }
+  static int32_t& first(Page& p) { return p.first_contact_index; }
+  static int32_t& count(Page& p) { return p.num_contacts; }
+  static int32_t total(const Page& p) { return p.total_contacts; }
+  static int32_t first(const Page& p) { return p.first_contact_index; }
+  static int32_t count(const Page& p) { return p.num_contacts; }
+  static int64_t revision(const Page&) { return 0; }
+};
+
 template <class Page>
 class PageAssembler {
+  using Items = PageItems<Page>;
  public:
   // Takes one page; returns the whole message (as one page: page 0 of 1 with
   // every body) when this page completes its publication. Inconsistent pages
   // (bad indices, body counts that do not add up) are dropped.
   std::optional<Page> add(const Page& page) {
     if (page.num_pages < 1 || page.num_pages > kMaxPages || page.page < 0 ||
-        page.page >= page.num_pages || page.num_bodies != static_cast<int32_t>(page.bodies.size()))
+        page.page >= page.num_pages ||
+        Items::count(page) != static_cast<int32_t>(Items::items(page).size()))
       return std::nullopt;
     if (page.num_pages == 1) {
-      if (page.first_body_index != 0 || page.num_bodies != page.total_bodies) return std::nullopt;
+      if (Items::first(page) != 0 || Items::count(page) != Items::total(page)) return std::nullopt;
       m_pages.clear();
       return page;
     }
-    const Key key{page.utime, page.step, page.world_revision, page.num_pages, page.total_bodies};
+    const Key key{page.utime, page.step, Items::revision(page), page.num_pages, Items::total(page)};
     if (!m_key || !(*m_key == key)) {
       m_key = key;
       m_pages.assign(static_cast<std::size_t>(page.num_pages), std::nullopt);
@@ -57,19 +89,20 @@ class PageAssembler {
 
   std::optional<Page> merge() {
     Page whole = std::move(*m_pages.front());
-    int32_t next = whole.num_bodies;
+    int32_t next = Items::count(static_cast<const Page&>(whole));
     for (std::size_t i = 1; i < m_pages.size(); ++i) {
       Page& part = *m_pages[i];
-      if (part.first_body_index != next) break;
-      next += part.num_bodies;
-      for (auto& body : part.bodies) whole.bodies.push_back(std::move(body));
+      if (Items::first(static_cast<const Page&>(part)) != next) break;
+      next += Items::count(static_cast<const Page&>(part));
+      for (auto& item : Items::items(part)) Items::items(whole).push_back(std::move(item));
     }
     m_pages.clear();
     m_key.reset();
-    if (whole.first_body_index != 0 || next != whole.total_bodies) return std::nullopt;
+    const Page& merged = whole;
+    if (Items::first(merged) != 0 || next != Items::total(merged)) return std::nullopt;
     whole.page = 0;
     whole.num_pages = 1;
-    whole.num_bodies = whole.total_bodies;
+    Items::count(whole) = Items::total(merged);
     return whole;
   }
 

@@ -26,21 +26,22 @@ enum class WrenchMode : int8_t {
   Duration = 1,    // during `duration` s of simulated time
   Persistent = 2,  // until cleared; replaces this client's previous persistent wrench on the body
   Clear = 3,       // removes this client's duration and persistent wrenches on the body
+  ClearAllClients = 4,  // removes every client's duration and persistent wrenches on the body
 };
 
 struct Wrench {
-  std::string body;            // name; may be empty only for Clear, meaning every body
+  std::string body;            // name; may be empty only for the clears, meaning every body
   Vec3 force{0.0, 0.0, 0.0};   // N, in `frame`
   Vec3 torque{0.0, 0.0, 0.0};  // N·m, in `frame`: a pure couple added to the moment of the force
   // m, in `pointFrame`: where the force acts, a point of the body either way.
   // A world point is a world position (not an offset) at the moment the
-  // wrench first acts; the body carries it from then on. Leaving it at the
-  // origin for a body elsewhere also applies the moment of the force about
-  // the centre of mass. A body point is fixed in the body frame.
-  Vec3 point{0.0, 0.0, 0.0};
+  // wrench first acts; the body carries it from then on. A body point is
+  // fixed in the body frame. Unset: the centre of mass, exactly (the server
+  // places it: wrench_t::POINT_FRAME_CENTER_OF_MASS), so no moment.
+  std::optional<Vec3> point;
   Frame frame = Frame::World;  // of force and torque
   // Of point; unset: the same as `frame` (a world force at a world point, a
-  // body force at a body point).
+  // body force at a body point). Ignored without a point.
   std::optional<Frame> pointFrame;
   WrenchMode mode = WrenchMode::OneStep;
   double duration = 0.0;     // s of simulated time, Duration only, > 0

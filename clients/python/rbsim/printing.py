@@ -1,0 +1,124 @@
+"""What ``python3 -m rbsim state|status|bodies`` print: the very lines and
+JSON of ``rbctl`` (clients/cpp/tools/rbctl/printing.cpp), so that one script
+reads either CLI (docs/cli.md). Text: one record per line, "key value"
+pairs, numbers with 10 significant digits; JSON: the wire field names.
+"""
+
+import json
+from typing import Collection, Iterable, List
+
+__all__ = ["state_lines", "status_lines", "world_lines", "state_json", "status_json", "world_json",
+           "number", "orientation_values"]
+
+# Below this a quaternion component is rounding noise of a unit quaternion,
+# beyond what 10 significant digits of the others can show: printed as 0.
+QUATERNION_NOISE = 1e-12
+
+STATUS_FIELDS = (
+    "step", "sim_time", "world_revision", "dt", "paused", "target_real_time_factor",
+    "measured_real_time_factor", "window", "step_time_mean", "step_time_worst", "overruns",
+    "commands_accepted", "commands_rejected", "num_bodies", "num_frozen_bodies",
+    "num_active_wrenches", "num_contacts", "instance_id", "other_instance_id",
+)
+
+
+def number(value: float) -> str:
+    """C's %.10g."""
+    return "%.10g" % value
+
+
+def _vector(key: str, values: Iterable[float]) -> str:
+    return " " + key + "".join(" " + number(v) for v in values)
+
+
+def orientation_values(q: Iterable[float]) -> List[float]:
+    return [0.0 if abs(v) < QUATERNION_NOISE else float(v) for v in q]
+
+
+def state_lines(state, bodies: Collection[str] = ()) -> List[str]:
+    """``state``: an rbsim.client.WorldState; ``bodies``: only those (empty: all)."""
+    lines = ["step %d sim_time %s world_revision %d bodies %d"
+             % (state.step, number(state.sim_time), state.world_revision, len(state.bodies))]
+    for b in state.bodies:
+        if bodies and b.name not in bodies:
+            continue
+        lines.append("body %s id %d%s%s%s%s" % (
+            b.name, b.id, _vector("position", b.position),
+            _vector("orientation", orientation_values(b.orientation)),
+            _vector("linear_velocity", b.linear_velocity),
+            _vector("angular_velocity", b.angular_velocity)) + (" frozen " + b.frozen if b.frozen else ""))
+    return lines
+
+
+def _status_value(status, name):
+    value = getattr(status, name)
+    if name == "paused":
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return value or "none"  # every line keeps two fields
+    return number(value) if isinstance(value, float) else str(value)
+
+
+def status_lines(status) -> List[str]:
+    """``status``: a status_t."""
+    return ["%s %s" % (name, _status_value(status, name)) for name in STATUS_FIELDS]
+
+
+def world_lines(world) -> List[str]:
+    """``world``: an rbsim.client.WorldDescription."""
+    lines = ["world_revision %d step %d dt %s integrator %s bodies %d%s" % (
+        world.world_revision, world.step, number(world.dt), world.integrator, len(world.bodies),
+        _vector("gravity", world.gravity))]
+    for b in world.bodies:
+        line = "body %s id %d shape %s static %s mass %s%s" % (
+            b.name, b.id, b.shape_type, "true" if b.is_static else "false", number(b.mass),
+            _vector("inertia", b.inertia))
+        if b.shape_type == "sphere":
+            line += " radius %s" % number(b.radius)
+        if b.shape_type == "box":
+            line += _vector("half_extents", b.half_extents)
+        if b.shape_type in ("cylinder", "capsule"):
+            line += " radius %s half_length %s" % (number(b.radius), number(b.half_length))
+        if b.shape_type == "plane":
+            line += _vector("normal", b.plane_normal) + " offset %s" % number(b.plane_offset)
+        if b.shape_type == "mesh":
+            line += " file %s vertices %d triangles %d" % (b.mesh_file, b.num_vertices, b.num_triangles)
+        if b.shape_type == "compound":
+            line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
+        if b.frozen:
+            line += " frozen " + b.frozen
+        lines.append(line)
+    return lines
+
+
+def _dumps(value) -> str:
+    return json.dumps(value, separators=(",", ":"))
+
+
+def state_json(state, bodies: Collection[str] = ()) -> str:
+    return _dumps({
+        "step": state.step, "sim_time": state.sim_time, "world_revision": state.world_revision,
+        "bodies": [{"id": b.id, "name": b.name, "position": b.position.tolist(),
+                    "orientation": orientation_values(b.orientation),
+                    "linear_velocity": b.linear_velocity.tolist(),
+                    "angular_velocity": b.angular_velocity.tolist(), "frozen": b.frozen}
+                   for b in state.bodies if not bodies or b.name in bodies],
+    })
+
+
+def status_json(status) -> str:
+    out = {}
+    for name in STATUS_FIELDS:
+        value = getattr(status, name)
+        out[name] = bool(value) if name == "paused" else value
+    return _dumps(out)
+
+
+def world_json(world) -> str:
+    return _dumps({
+        "world_revision": world.world_revision, "step": world.step, "dt": world.dt,
+        "integrator": world.integrator, "gravity": [float(g) for g in world.gravity],
+        "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
+                    "mass": b.mass, "inertia": [float(v) for v in b.inertia], "frozen": b.frozen}
+                   for b in world.bodies],
+    })
