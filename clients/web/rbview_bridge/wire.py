@@ -12,7 +12,8 @@ Wire layout (LCM type specification, big-endian): world_state_t is an 8-byte
 fingerprint, then utime q, step q, sim_time d, world_revision q, page i,
 num_pages i, total_bodies i, first_body_index i, num_bodies i; then each
 body_state_t: id i, name (int32 length including the NUL, bytes, NUL),
-position 3d, orientation 4d, linear_velocity 3d, angular_velocity 3d.
+position 3d, orientation 4d, linear_velocity 3d, angular_velocity 3d, frozen
+(a string as the name: empty, or why the numerical guard froze the body).
 """
 
 import math
@@ -48,7 +49,8 @@ class StatePage:
     (position 3, orientation w x y z, linear velocity 3, angular velocity 3), and ids."""
 
     __slots__ = ("utime", "step", "sim_time", "world_revision", "page", "num_pages",
-                 "total_bodies", "first_body_index", "num_bodies", "ids", "numbers", "names")
+                 "total_bodies", "first_body_index", "num_bodies", "ids", "numbers", "names",
+                 "frozen")
 
     def key(self):
         return (self.utime, self.step, self.world_revision)
@@ -58,7 +60,7 @@ class StatePageDecoder:
     """Decodes world_state_t pages, remembering each page layout's body offsets."""
 
     def __init__(self, max_layouts=64):
-        self._layouts = {}  # (len, revision, page, first, n) -> (offsets, ids, names)
+        self._layouts = {}  # (len, revision, page, first, n) -> Layout
         self._max_layouts = max_layouts
 
     def decode(self, data):
@@ -78,7 +80,7 @@ class StatePageDecoder:
             if len(self._layouts) >= self._max_layouts:
                 self._layouts.pop(next(iter(self._layouts)))
             self._layouts[key] = layout
-        offsets, page.ids, page.names = layout
+        offsets, page.ids, page.names, _, _, page.frozen = layout
         raw = np.frombuffer(data, dtype=np.uint8)
         gathered = raw[offsets[:, None] + np.arange(_BODY_NUMBERS)]
         page.numbers = gathered.view(">f8").reshape(page.num_bodies, 13).astype(np.float64)
@@ -86,22 +88,29 @@ class StatePageDecoder:
 
     @staticmethod
     def _layout_fits(data, layout):
-        """Cheap check that a cached layout still applies: the ids at their offsets."""
-        offsets, ids, _ = layout
+        """Cheap check that a cached layout still applies: the ids at their
+        offsets, and every body's frozen-string length where it was (a body that
+        freezes changes it; gathered with numpy, not body by body)."""
+        offsets, ids, names, frozen_at, frozen_lengths, _ = layout
         if len(offsets) == 0:
             return True
         for i in (0, len(offsets) // 2, len(offsets) - 1):
-            name_len = len(layout[2][i]) + 1
+            name_len = len(names[i].encode("utf-8")) + 1
             at = offsets[i] - 8 - name_len
             if struct.unpack_from(">i", data, at)[0] != ids[i]:
                 return False
-        return True
+        raw = np.frombuffer(data, dtype=np.uint8)
+        lengths = raw[frozen_at[:, None] + np.arange(4)].view(">i4").reshape(-1)
+        return bool(np.array_equal(lengths, frozen_lengths))
 
     @staticmethod
     def _find_layout(data, count):
         offsets = np.empty(count, dtype=np.int64)
         ids = np.empty(count, dtype=np.int32)
+        frozen_at = np.empty(count, dtype=np.int64)
+        frozen_lengths = np.empty(count, dtype=np.int32)
         names = []
+        frozen = []
         at = 8 + _STATE_HEADER.size
         end = len(data)
         for i in range(count):
@@ -115,9 +124,17 @@ class StatePageDecoder:
             at += name_len
             offsets[i] = at
             at += _BODY_NUMBERS
+            if at + 4 > end:
+                raise WireError("world_state_t truncated in body %d" % i)
+            (frozen_len,) = struct.unpack_from(">i", data, at)
+            if frozen_len < 1 or at + 4 + frozen_len > end or data[at + 4 + frozen_len - 1] != 0:
+                raise WireError("world_state_t body %d: bad frozen length %d" % (i, frozen_len))
+            frozen_at[i], frozen_lengths[i] = at, frozen_len
+            frozen.append(bytes(data[at + 4:at + 3 + frozen_len]).decode("utf-8", "replace"))
+            at += 4 + frozen_len
         if at != end:
             raise WireError("world_state_t has %d trailing bytes" % (end - at))
-        return offsets, ids, names
+        return offsets, ids, names, frozen_at, frozen_lengths, frozen
 
 
 class ContactsPage:
