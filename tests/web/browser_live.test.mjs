@@ -4,7 +4,7 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import {
-  rbserver, rbview, launchBrowser, openPage, screenshot, foreground, act, waitForAck, hudStep, sleep,
+  rbserver, rbview, launchBrowser, openPage, screenshot, foreground, act, waitForAck, hudStep, hudStepOnceShown, sleep,
   stopAll, logs, runPython,
 } from "./browser_support.mjs";
 
@@ -81,7 +81,15 @@ test("pause stops the step counter and resume starts it", async () => {
   await sleep(1000);
   assert.equal(await hudStep(page), s1, "the step counter moved while paused");
   assert.match(await act(page, "btn-resume"), /resume: accepted/);
+  // While states arrive at 60 Hz the HUD's step text changes at most ~10 times a second.
+  await page.evaluate(() => {
+    window.hudStepWrites = 0;
+    new MutationObserver((records) => { window.hudStepWrites += records.length; })
+      .observe(document.getElementById("hud-step"), { childList: true, characterData: true, subtree: true });
+  });
   await sleep(1000);
+  const writes = await page.evaluate(() => window.hudStepWrites);
+  assert.ok(writes >= 3 && writes <= 12, `the HUD's step was written ${writes} times in 1 s (10 Hz expected)`);
   const s2 = await hudStep(page);
   assert.ok(s2 > s1 + 300, `after 1 s running the step went from ${s1} to ${s2} only`);
   assert.match(await act(page, "btn-pause"), /pause: accepted/);
@@ -184,7 +192,7 @@ test("the real-time factor is set and reset returns to the initial world", async
     && rbview.viewer.frameDrawn.revision === rbview.state.world.revision, revision, { timeout: 30000 });
   const z = (await page.evaluate(() => rbview.drawnPosition("drop_box")))[2];
   assert.ok(Math.abs(z - 30) < 1e-3, `after reset drop_box is drawn at z=${z}, not 30`);
-  assert.equal(await hudStep(page), 0);
+  assert.equal(await hudStepOnceShown(page, 0), 0);
   assert.equal(await page.locator("#hud-bodies").textContent(), "8");
   noConsoleErrors();
 });

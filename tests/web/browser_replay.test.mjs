@@ -6,7 +6,7 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import path from "node:path";
 import {
-  rbserver, rbview, launchBrowser, openPage, screenshot, sleep, stopAll, logs, artifacts,
+  rbserver, rbview, launchBrowser, openPage, screenshot, sleep, stopAll, logs, artifacts, hudStepOnceShown,
 } from "./browser_support.mjs";
 
 let browser, page;
@@ -65,7 +65,7 @@ test("scrubbing to a step shows that step's poses, and seeking keeps the pause s
   const step = after.step;
   const drawn = await page.evaluate(() => rbview.drawnPosition("drop_box"));
   assert.ok(Math.abs(drawn[2] - dropZ(step)) < 1e-3, `drop_box drawn at z=${drawn[2]}, at step ${step} it was at ${dropZ(step)}`);
-  assert.equal(Number(await page.locator("#hud-step").textContent()), step);
+  assert.equal(await hudStepOnceShown(page, step), step);
   await page.evaluate(() => rbview.lookAt([0, 0, 20], [0, -25, 15]));
   await sleep(500);
   assert.equal((await replay()).index, index, "a paused replay moved on");

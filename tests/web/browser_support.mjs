@@ -166,3 +166,11 @@ export async function waitForAck(page) {
 export async function hudStep(page) {
   return Number(await page.locator("#hud-step").textContent());
 }
+
+// The HUD writes a state's step at most every 100 ms (clients/web/src/main.js):
+// waits up to 1 s for it to show `step`, then returns what it shows.
+export async function hudStepOnceShown(page, step) {
+  await page.waitForFunction((s) => Number(document.getElementById("hud-step").textContent) === s, step,
+    { timeout: 1000 }).catch(() => {});
+  return hudStep(page);
+}

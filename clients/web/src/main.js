@@ -7,6 +7,10 @@ import { Viewer } from "./scene.js";
 import { Hud } from "./hud.js";
 import { Plots } from "./plots.js";
 
+// The HUD's per-state text (sim time, step, at rest) is written at most this
+// often: faster than 10 Hz it cannot be read, and every change costs the page a
+// style, layout and paint and the compositor a raster of the panel.
+const HUD_INTERVAL_MS = 100;
 const PUSH_GAIN = 10; // N per kg per m of drag: a 1 m drag accelerates the body at 10 m/s^2
 const PUSH_DURATION = 0.25; // s of simulated time a drag's wrench acts
 const CLICK_SLOP = 4; // px: a press that moves less is a click (select), not a drag
@@ -61,7 +65,7 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
     state.frame = frame;
     state.framesReceived++;
     viewer.setFrame(frame);
-    hud.frame(frame);
+    frameToHud();
     if (state.world && frame.revision === state.world.revision) {
       plots.add(frame, state.world.bodies[plots.body], state.world.gravity);
     }
@@ -80,6 +84,22 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
     hud.connection("disconnected (retrying)");
   },
 });
+
+// The newest frame to the HUD now if it was last written HUD_INTERVAL_MS ago,
+// else once that much time has passed (so the last frame is always shown).
+let hudWritten = -Infinity;
+let hudTimer = 0;
+function writeFrameToHud() {
+  hudTimer = 0;
+  hudWritten = performance.now();
+  hud.frame(state.frame);
+}
+function frameToHud() {
+  if (hudTimer) return;
+  const wait = HUD_INTERVAL_MS - (performance.now() - hudWritten);
+  if (wait <= 0) writeFrameToHud();
+  else hudTimer = setTimeout(writeFrameToHud, wait);
+}
 
 // -- controls -----------------------------------------------------------------------------
 $("btn-pause").onclick = () => act("pause", { type: "command", command: "pause" });

@@ -20,7 +20,7 @@ function bodyColor(body, index) {
 export class Viewer {
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, alpha: false, preserveDrawingBuffer: false });
     this.renderer.setPixelRatio(1);
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
