@@ -22,6 +22,8 @@ packages=(
   python3 python3-numpy python3-pytest python3-matplotlib
   # hermetic multi-process tests (network namespaces)
   iproute2 util-linux
+  # systemd-analyze, which scores the service units' hardening (tests/python/test_systemd_units.py)
+  systemd
   # rbview, the browser viewer (clients/web): its bridge, and the browser its tests drive
   python3-websockets chromium
 )

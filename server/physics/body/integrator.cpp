@@ -2,22 +2,6 @@
 
 namespace rbsim {
 
-namespace {
-
-// dq/dt = ½ [0, ω] q, ω in the world frame (quaternion kinematics as in
-// Baraff's rigid-body notes).
-[[gnu::always_inline]] inline Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
-  const Quaternion w{0.0, omega.x(), omega.y(), omega.z()};
-  const Quaternion product = w * q;
-  return {0.5 * product.w, 0.5 * product.x, 0.5 * product.y, 0.5 * product.z};
-}
-
-Quaternion addScaled(const Quaternion& q, const Quaternion& rate, double h) {
-  return {q.w + h * rate.w, q.x + h * rate.x, q.y + h * rate.y, q.z + h * rate.z};
-}
-
-}  // namespace
-
 StateRate stateRate(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                     const ForceInputs& inputs) {
   const NetWrench wrench = evaluateWrench(state, rotation, dynamics, inputs, true);
@@ -88,30 +72,11 @@ namespace {
   return next;
 }
 
-struct Pose {
-  Vec3 position;
-  Quaternion orientation;
-};
-
-[[gnu::always_inline]] inline Pose advancedPose(const Vec3& position, const Quaternion& orientation,
-                                                const Vec3& linearVelocity, const Vec3& angularVelocity,
-                                                double dt) {
-  return {position + dt * linearVelocity,
-          addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized()};
-}
-
 }  // namespace
 
 Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                          const ForceInputs& inputs, double dt) {
   return momentaAfterForces(state, rotation, dynamics, inputs, dt);
-}
-
-void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
-                   const Vec3& angularVelocity, double dt) {
-  const Pose next = advancedPose(position, orientation, linearVelocity, angularVelocity, dt);
-  position = next.position;
-  orientation = next.orientation;
 }
 
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
@@ -120,7 +85,7 @@ RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,
   const Momenta momenta = momentaAfterForces(state, rotation, dynamics, inputs, dt);
   const Vec3 velocity = momenta.linear * dynamics.inverseMass;
   const Vec3 omega = angularVelocityFrom(rotation, dynamics.inverseInertiaBody, momenta.angular);
-  const Pose pose = advancedPose(state.position, state.orientation, velocity, omega, dt);
+  const IntegratedPose pose = advancedPose(state.position, state.orientation, velocity, omega, dt);
   return {pose.position, pose.orientation, momenta.linear, momenta.angular};
 }
 

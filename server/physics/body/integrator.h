@@ -71,9 +71,35 @@ struct Momenta {
 Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                          const ForceInputs& inputs, double dt);
 
-// The second half: x += v dt, q += ½ [0, ω] q dt, then q normalised.
-void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
-                   const Vec3& angularVelocity, double dt);
+// dq/dt = ½ [0, ω] q, ω in the world frame (quaternion kinematics as in
+// Baraff's rigid-body notes).
+inline Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {
+  const Quaternion w{0.0, omega.x(), omega.y(), omega.z()};
+  const Quaternion product = w * q;
+  return {0.5 * product.w, 0.5 * product.x, 0.5 * product.y, 0.5 * product.z};
+}
+
+inline Quaternion addScaled(const Quaternion& q, const Quaternion& rate, double h) {
+  return {q.w + h * rate.w, q.x + h * rate.x, q.y + h * rate.y, q.z + h * rate.z};
+}
+
+// The second half: x += v dt, q += ½ [0, ω] q dt, then q normalised. Inline:
+// the free loop and the solved bodies run it for every body.
+struct IntegratedPose {
+  Vec3 position;
+  Quaternion orientation;
+};
+inline IntegratedPose advancedPose(const Vec3& position, const Quaternion& orientation, const Vec3& linearVelocity,
+                         const Vec3& angularVelocity, double dt) {
+  return {position + dt * linearVelocity,
+          addScaled(orientation, orientationRate(orientation, angularVelocity), dt).normalized()};
+}
+inline void integratePose(Vec3& position, Quaternion& orientation, const Vec3& linearVelocity,
+                          const Vec3& angularVelocity, double dt) {
+  const IntegratedPose next = advancedPose(position, orientation, linearVelocity, angularVelocity, dt);
+  position = next.position;
+  orientation = next.orientation;
+}
 
 // Classical RK4: forces, torques, velocities re-evaluated at each stage.
 RigidState rk4Step(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,

@@ -32,9 +32,10 @@ void World::applyContinuousCollision(const std::vector<RigidState>& starts) {
                              m_bodies[static_cast<std::size_t>(c.bodyB)].serial());
   }
   const auto touched = [&](const Body& a, const Body& b) {
-    const auto key = std::minmax(a.serial(), b.serial());
-    return std::binary_search(inContact.begin(), inContact.end(),
-                              std::make_pair(key.first, key.second));
+    // By value: minmax of two values returns references to them.
+    const int32_t low = std::min(a.serial(), b.serial());
+    const int32_t high = std::max(a.serial(), b.serial());
+    return std::binary_search(inContact.begin(), inContact.end(), std::make_pair(low, high));
   };
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
