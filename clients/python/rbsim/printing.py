@@ -73,6 +73,7 @@ def world_lines(world) -> List[str]:
         line = "body %s id %d shape %s static %s mass %s%s" % (
             b.name, b.id, b.shape_type, "true" if b.is_static else "false", number(b.mass),
             _vector("inertia", b.inertia))
+        line += " mass_properties " + ("given" if b.mass_properties_given else "computed")
         if b.shape_type == "sphere":
             line += " radius %s" % number(b.radius)
         if b.shape_type == "box":
@@ -119,6 +120,7 @@ def world_json(world) -> str:
         "world_revision": world.world_revision, "step": world.step, "dt": world.dt,
         "integrator": world.integrator, "gravity": [float(g) for g in world.gravity],
         "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
-                    "mass": b.mass, "inertia": [float(v) for v in b.inertia], "frozen": b.frozen}
+                    "mass": b.mass, "inertia": [float(v) for v in b.inertia],
+                    "mass_properties_given": bool(b.mass_properties_given), "frozen": b.frozen}
                    for b in world.bodies],
     })

@@ -87,6 +87,7 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
     std::fprintf(out, "body %s id %d shape %s static %s mass %.10g", b.name.c_str(), b.id,
                  b.shape_type.c_str(), b.is_static ? "true" : "false", b.mass);
     printVector(out, "inertia", b.inertia, 3);
+    std::fprintf(out, " mass_properties %s", b.mass_properties_given ? "given" : "computed");
     if (b.shape_type == "sphere") std::fprintf(out, " radius %.10g", b.radius);
     if (b.shape_type == "box") printVector(out, "half_extents", b.half_extents, 3);
     if (b.shape_type == "cylinder" || b.shape_type == "capsule")
@@ -159,6 +160,7 @@ void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
                     {"static", b.is_static},
                     {"mass", b.mass},
                     {"inertia", array(b.inertia)},
+                    {"mass_properties_given", b.mass_properties_given},
                     {"frozen", b.frozen}});
   const json document = {{"world_revision", world.world_revision},
                          {"step", world.step},
