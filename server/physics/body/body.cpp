@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "physics/math/rotation_matrix.h"
+
 namespace rbsim {
 
 Body::Body(std::shared_ptr<const BodyDescription> description, const BodyDynamics& dynamics,
@@ -14,7 +16,7 @@ Body::Body(std::shared_ptr<const BodyDescription> description, const BodyDynamic
 }
 
 Mat3 Body::inertiaWorld() const {
-  return m_rotation * m_dynamics.inertiaBody.asDiagonal() * m_rotation.transpose();
+  return rotatedDiagonal(m_rotation, m_dynamics.inertiaBody);
 }
 
 Vec3 Body::velocityAtPoint(const Vec3& worldPoint) const {
@@ -60,8 +62,7 @@ void Body::holdAtLastGoodPose() {
 
 void Body::updateDerived() {
   m_rotation = m_state.orientation.toRotationMatrix();
-  m_invInertiaWorld =
-      m_rotation * m_dynamics.inverseInertiaBody.asDiagonal() * m_rotation.transpose();
+  m_invInertiaWorld = rotatedDiagonal(m_rotation, m_dynamics.inverseInertiaBody);
   m_linearVelocity = m_state.linearMomentum * m_dynamics.inverseMass;
   m_angularVelocity = m_invInertiaWorld * m_state.angularMomentum;
 }

@@ -8,6 +8,7 @@
 #include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collider.h"
+#include "physics/math/rotation_matrix.h"
 #include "physics/world/contact_detection.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/world/impacts.h"
@@ -49,7 +50,7 @@ void World::stepImpulse() {
   } else {
     ContactStep step = selectContacts(detected);
     integrateFree(dt, step.inContact);  // bodies touching nothing
-    loadSolverBodies(step.solving, dt);
+    loadSolverBodies(step, dt);
     findImpacts(step);
     std::vector<SolvedManifold> solved;
     solveContacts(*step.contacts, m_settings.contact.solver, dt, solved);
@@ -87,14 +88,20 @@ World::ContactStep World::selectContacts(const std::vector<BodyContact>& detecte
   return step;
 }
 
-void World::loadSolverBodies(const std::vector<char>& solving, double h) {
+void World::loadSolverBodies(ContactStep& step, double h) {
+  // Per body also whether any of its points may move faster than half the
+  // restitution threshold (findImpacts: a pair of slower bodies cannot
+  // collide). |v| + |ω| r <= sqrt(2 (|v|² + |ω|² r²)), r the collider's radius.
+  const double threshold = m_settings.contact.solver.restitutionThreshold;
+  const double slow2 = 0.125 * threshold * threshold;  // (threshold / 2)² / 2
   const std::size_t n = m_bodies.size();
   m_solverBodies.assign(n, SolverBody{});
+  step.fast.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Body& body = m_bodies[i];
     SolverBody& sb = m_solverBodies[i];
     sb.position = body.state().position;
-    if (!solving[i]) continue;
+    if (!step.solving[i]) continue;
     const ForceInputs inputs = forcesOn(i);
     const Momenta momenta =
         integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
@@ -104,10 +111,19 @@ void World::loadSolverBodies(const std::vector<char>& solving, double h) {
     sb.startAngularVelocity = body.angularVelocity();
     sb.linearVelocity = momenta.linear * sb.inverseMass;
     sb.angularVelocity = sb.inverseInertia * momenta.angular;
+    double speed2 = sb.linearVelocity.squaredNorm();
+    const double spin2 = sb.angularVelocity.squaredNorm();
+    if (spin2 > 0.0) {
+      const double radius = colliderRadius(*body.description().collider);
+      speed2 += spin2 * radius * radius;
+    }
+    step.fast[i] = speed2 >= slow2;
+    step.anyFast = step.anyFast || step.fast[i];
   }
 }
 
 void World::findImpacts(ContactStep& step) {
+  if (!step.anyFast) return;  // a pile at rest: nothing can collide
   const double dt = m_settings.dt;
   const ContactConfig& config = m_settings.contact;
   const double threshold = config.solver.restitutionThreshold;
@@ -119,28 +135,10 @@ void World::findImpacts(ContactStep& step) {
   search.gravity = m_settings.gravity;
   search.detection = config.detection;
 
-  // Per body: whether any of its points may move faster than half the
-  // threshold; a pair of bodies that are both slower cannot collide. (|v| +
-  // |ω| r <= sqrt(2 (|v|² + |ω|² r²)), r the collider's radius.)
-  const std::size_t n = m_bodies.size();
-  std::vector<char> fast(n, 0);
-  const double slow2 = 0.125 * threshold * threshold;  // (threshold / 2)² / 2
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!step.solving[i]) continue;
-    const SolverBody& sb = m_solverBodies[i];
-    double speed2 = sb.linearVelocity.squaredNorm();
-    const double spin2 = sb.angularVelocity.squaredNorm();
-    if (spin2 > 0.0) {
-      const double radius = colliderRadius(*m_bodies[i].description().collider);
-      speed2 += spin2 * radius * radius;
-    }
-    fast[i] = speed2 >= slow2;
-  }
-
   const std::vector<BodyContact>& contacts = *step.contacts;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
-    if (!fast[static_cast<std::size_t>(c.bodyA)] && !fast[static_cast<std::size_t>(c.bodyB)])
+    if (!step.fast[static_cast<std::size_t>(c.bodyA)] && !step.fast[static_cast<std::size_t>(c.bodyB)])
       continue;
     // Cheap test first: a point approaching faster than the threshold (with
     // the velocities after the step's forces) whose gap closes within the step.
@@ -188,8 +186,7 @@ void World::findImpacts(ContactStep& step) {
     const Mat3 rotation = flight.orientation.toRotationMatrix();
     SolverBody& sb = m_solverBodies[i];
     sb.position = flight.position;
-    sb.inverseInertia =
-        rotation * body.dynamics().inverseInertiaBody.asDiagonal() * rotation.transpose();
+    sb.inverseInertia = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
     sb.linearVelocity = flight.linearMomentum * sb.inverseMass;
     sb.angularVelocity = sb.inverseInertia * flight.angularMomentum;
     sb.startLinearVelocity = sb.linearVelocity;
@@ -279,8 +276,8 @@ void World::integrateSolvedBodies(const ContactStep& step,
       RigidState state = freeFlight(flying(i), integrator, m_settings.gravity, impactTime);
       const Mat3 rotation = state.orientation.toRotationMatrix();
       state.linearMomentum = body.dynamics().mass * sb.linearVelocity;
-      state.angularMomentum = rotation * body.dynamics().inertiaBody.asDiagonal() *
-                              rotation.transpose() * sb.angularVelocity;
+      state.angularMomentum =
+          rotatedDiagonal(rotation, body.dynamics().inertiaBody) * sb.angularVelocity;
       if (h > impactTime)
         state = integrateStep(integrator, state, rotation, body.dynamics(), inputs, h - impactTime);
       if (pseudo)

@@ -221,13 +221,16 @@ class World {
     std::vector<BodyContact> own;  // when some contacts sleep, or impacts moved a manifold
     std::vector<char> inContact;   // per dense index: in one of `contacts`
     std::vector<char> solving;     // in contact and awake: the solver moves it
+    std::vector<char> fast;        // solving, and fast enough to collide (loadSolverBodies)
+    bool anyFast = false;
     // Per dense index: the time of impact (s into the step) of the body's
     // first collision this step, or < 0 for none; empty when nothing collides.
     std::vector<double> impactTime;
   };
   ContactStep selectContacts(const std::vector<BodyContact>& detected) const;
-  // The solver's bodies: velocities after the forces of h (semi-implicit Euler's first half).
-  void loadSolverBodies(const std::vector<char>& solving, double h);
+  // The solver's bodies: velocities after the forces of h (semi-implicit
+  // Euler's first half); marks the fast ones.
+  void loadSolverBodies(ContactStep& step, double h);
   // Colliding contacts (world/impacts.h): each is moved to its time of
   // impact, with the manifold there, and its bodies' solver data with it.
   void findImpacts(ContactStep& step);
