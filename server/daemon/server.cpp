@@ -351,6 +351,7 @@ void Server::publishStatus(Nanoseconds now) {
   status.commands_rejected = m_counters.rejected;
   status.num_bodies = world().bodyCount();
   status.num_frozen_bodies = world().frozenBodyCount();
+  status.num_sleeping_bodies = world().sleepingBodyCount();
   status.num_active_wrenches = m_session.wrenches().activeCount();
   status.num_contacts = world().contactPointCount();
   status.instance_id = m_instances.ownId();

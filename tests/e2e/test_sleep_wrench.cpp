@@ -61,5 +61,30 @@ TEST_F(Sleeping, NeverEatsAWrenchScheduledAroundTheSleepTime) {
   }
 }
 
+// The status counts the sleeping bodies: none before the sleep time, all 31
+// after it, one less once a push wakes a box.
+TEST_F(Sleeping, StatusCountsTheSleepingBodies) {
+  startServer("sleepy_boxes.yaml", {"--paused"});
+  const auto statusAt = [&](int64_t step, int32_t sleeping) {
+    waitFor("a status of step " + std::to_string(step) + " with " + std::to_string(sleeping) +
+                " bodies asleep",
+            [&] {
+              const auto& status = client().latestStatus();
+              return status && status->step == step && status->num_sleeping_bodies == sleeping;
+            });
+  };
+  expectAccepted(client().step(400));
+  statusAt(400, 0);
+  expectAccepted(client().step(200));  // past the sleep time (0.5 s at rest)
+  statusAt(600, 31);
+  client::Wrench push;
+  push.body = "box7";
+  push.force = {1.0, 0.0, 0.0};
+  push.mode = client::WrenchMode::OneStep;
+  expectAccepted(client().applyWrench(push));
+  expectAccepted(client().step(1));
+  statusAt(601, 30);
+}
+
 }  // namespace
 }  // namespace rbsim::e2e

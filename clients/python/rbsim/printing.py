@@ -18,7 +18,7 @@ STATUS_FIELDS = (
     "step", "sim_time", "world_revision", "dt", "paused", "target_real_time_factor",
     "measured_real_time_factor", "window", "step_time_mean", "step_time_worst", "overruns",
     "commands_accepted", "commands_rejected", "num_bodies", "num_frozen_bodies",
-    "num_active_wrenches", "num_contacts", "instance_id", "other_instance_id",
+    "num_active_wrenches", "num_contacts", "instance_id", "other_instance_id", "num_sleeping_bodies",
 )
 
 

@@ -214,6 +214,7 @@ def status_to_dict(s):
         "target_rtf": s.target_real_time_factor, "measured_rtf": s.measured_real_time_factor,
         "overruns": s.overruns, "num_bodies": s.num_bodies, "num_frozen_bodies": s.num_frozen_bodies,
         "num_active_wrenches": s.num_active_wrenches, "num_contacts": s.num_contacts,
+        "num_sleeping_bodies": s.num_sleeping_bodies,
         "step_time_mean": s.step_time_mean, "step_time_worst": s.step_time_worst,
     }
 

@@ -26,7 +26,8 @@ export class Hud {
   frame(frame) {
     this.set("sim-time", `${fixed(frame.simTime, 3)} s`);
     this.set("step", String(frame.step));
-    this.set("asleep", String(frame.atRest));
+    // A replayed log may hold no status: count the bodies at rest instead.
+    if (!this.sleepingFromStatus) this.set("asleep", String(frame.atRest));
   }
 
   status(status) {
@@ -34,6 +35,8 @@ export class Hud {
     this.set("rtf", `${fixed(status.measured_rtf, 2)} (target ${target})`);
     this.set("overruns", String(status.overruns));
     this.set("contacts", String(status.num_contacts));
+    this.sleepingFromStatus = true;
+    this.set("asleep", String(status.num_sleeping_bodies));
     this.set("paused", status.paused ? "paused" : "running");
   }
 

@@ -67,14 +67,14 @@ void printStatus(std::FILE* out, const rbsim::status_t& s) {
                "step_time_mean %.10g\nstep_time_worst %.10g\noverruns %lld\n"
                "commands_accepted %lld\ncommands_rejected %lld\nnum_bodies %d\n"
                "num_frozen_bodies %d\nnum_active_wrenches %d\nnum_contacts %d\n"
-               "instance_id %s\nother_instance_id %s\n",
+               "instance_id %s\nother_instance_id %s\nnum_sleeping_bodies %d\n",
                static_cast<long long>(s.step), s.sim_time, static_cast<long long>(s.world_revision),
                s.dt, s.paused ? "true" : "false", s.target_real_time_factor,
                s.measured_real_time_factor, s.window, s.step_time_mean, s.step_time_worst,
                static_cast<long long>(s.overruns), static_cast<long long>(s.commands_accepted),
                static_cast<long long>(s.commands_rejected), s.num_bodies, s.num_frozen_bodies,
                s.num_active_wrenches, s.num_contacts, orNone(s.instance_id),
-               orNone(s.other_instance_id));
+               orNone(s.other_instance_id), s.num_sleeping_bodies);
 }
 
 void printWorld(std::FILE* out, const rbsim::world_t& world) {
@@ -147,7 +147,8 @@ void printStatusJson(std::FILE* out, const rbsim::status_t& s) {
                          {"num_active_wrenches", s.num_active_wrenches},
                          {"num_contacts", s.num_contacts},
                          {"instance_id", s.instance_id},
-                         {"other_instance_id", s.other_instance_id}};
+                         {"other_instance_id", s.other_instance_id},
+                         {"num_sleeping_bodies", s.num_sleeping_bodies}};
   std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
