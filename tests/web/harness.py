@@ -6,7 +6,6 @@ import signal
 import subprocess
 import sys
 import time
-import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -15,6 +14,8 @@ RBSERVER = os.path.join(BUILD, "server", "daemon", "rbserver")
 RBVIEW = os.path.join(REPO, "clients", "web", "rbview")
 WORLD = os.path.join(HERE, "worlds", "viewer.yaml")
 os.environ["RBSIM_BUILD_DIR"] = BUILD
+sys.path.insert(0, os.path.join(REPO, "tests", "tools"))
+import scenario_main  # noqa: E402
 
 
 class Processes:
@@ -79,22 +80,12 @@ class Processes:
                 print("---- %s (%s)\n%s" % (name, path, f.read()), file=sys.stderr)
 
 
+def _print_logs(workdir):
+    for log in sorted(os.listdir(workdir)):
+        if log.endswith(".log"):
+            with open(os.path.join(workdir, log)) as f:
+                print("---- %s\n%s" % (log, f.read()[-5000:]), file=sys.stderr)
+
+
 def run_scenario(scenarios):
-    if os.environ.get("RBSIM_PRIVATE_NETWORK") != "1":
-        sys.exit("these tests start servers on the LCM bus: run them through tests/tools/in_private_network.sh "
-                 "with RBSIM_PRIVATE_NETWORK=1 (ctest does)")
-    if len(sys.argv) != 3 or sys.argv[1] not in scenarios:
-        sys.exit("usage: %s {%s} WORKDIR" % (sys.argv[0], ",".join(sorted(scenarios))))
-    name, workdir = sys.argv[1], sys.argv[2]
-    os.makedirs(workdir, exist_ok=True)
-    started = time.monotonic()
-    try:
-        scenarios[name](workdir)
-    except BaseException:
-        traceback.print_exc()
-        for log in sorted(os.listdir(workdir)):
-            if log.endswith(".log"):
-                with open(os.path.join(workdir, log)) as f:
-                    print("---- %s\n%s" % (log, f.read()[-5000:]), file=sys.stderr)
-        sys.exit(1)
-    print("scenario %s passed in %.2f s" % (name, time.monotonic() - started))
+    scenario_main.run_scenario(scenarios, _print_logs)

@@ -15,7 +15,6 @@ import signal
 import subprocess
 import sys
 import time
-import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TESTS = os.path.dirname(HERE)
@@ -30,10 +29,12 @@ CLIENT_TIMEOUT = 10.0
 
 if CLIENTS not in sys.path:
     sys.path.insert(0, CLIENTS)
+sys.path.insert(0, os.path.join(REPO, "tests", "tools"))
 
 import numpy as np  # noqa: E402
 
 from rbsim.client import Client  # noqa: E402
+import scenario_main  # noqa: E402
 
 _servers = []  # every Server started, for the failure report
 
@@ -162,24 +163,14 @@ def angular_momentum(world, state, name):
     return world.inertia_world(name, body.orientation) @ body.angular_velocity
 
 
+def _print_server_output(_workdir):
+    for server in _servers:
+        print("---- %s\n%s" % (" ".join(server.command), server.output()), file=sys.stderr)
+
+
 def run(scenarios):
     """Entry point of a scenario script: ``script.py NAME WORKDIR``."""
-    if os.environ.get("RBSIM_PRIVATE_NETWORK") != "1":
-        sys.exit("scenarios start servers on the LCM bus: run them through "
-                 "tests/tools/in_private_network.sh (conftest.netns_run), never on the host network")
-    if len(sys.argv) != 3 or sys.argv[1] not in scenarios:
-        sys.exit("usage: %s {%s} WORKDIR" % (sys.argv[0], ",".join(sorted(scenarios))))
-    name, workdir = sys.argv[1], sys.argv[2]
-    os.makedirs(workdir, exist_ok=True)
-    started = time.monotonic()
-    try:
-        scenarios[name](workdir)
-    except BaseException:
-        traceback.print_exc()
-        for server in _servers:
-            print("---- %s\n%s" % (" ".join(server.command), server.output()), file=sys.stderr)
-        sys.exit(1)
-    print("scenario %s passed in %.2f s" % (name, time.monotonic() - started))
+    scenario_main.run_scenario(scenarios, _print_server_output)
 
 
 __all__ = [
