@@ -96,7 +96,9 @@ export async function launchBrowser() {
   return chromium.launch({
     executablePath: process.env.RBVIEW_CHROMIUM || "/usr/bin/chromium",
     // No GPU here: WebGL through SwiftShader. No sandbox: CI runs as root.
-    args: ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox", "--disable-dev-shm-usage"],
+    // RBVIEW_CHROMIUM_ARGS adds flags (space-separated), e.g. for the benchmark.
+    args: ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox", "--disable-dev-shm-usage",
+      ...(process.env.RBVIEW_CHROMIUM_ARGS || "").split(" ").filter(Boolean)],
   });
 }
 
