@@ -15,7 +15,7 @@ import sys
 
 # Lowest first. common/ holds plain utilities (Expected, DeepCopyPtr) that
 # know nothing of physics; world/ sits on top and ties the others together.
-LAYERS = ["common", "math", "geometry", "mass", "body", "collision", "solver", "world"]
+LAYERS = ["common", "math", "geometry", "mass", "body", "collision", "solver", "joint", "world"]
 
 # The public headers (include/rbsim/physics/, the library's API) sit in the
 # layers of what they declare.
@@ -27,6 +27,7 @@ PUBLIC_HEADERS = {
     "body_definition.h": "body",
     "body_view.h": "body",
     "contacts.h": "solver",
+    "joint_definition.h": "joint",
     "world_settings.h": "world",
     "world.h": "world",
     "rotation_drift.h": "world",

@@ -12,6 +12,7 @@
 #include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/collision_detector.h"
+#include "physics/joint/joint_constraint.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/world/impacts.h"
 
@@ -266,6 +267,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
 
 Expected<bool> World::removeBody(BodyId id) {
   if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot remove: " + why};
+  removeJointsOf(id);
   Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
   const auto dense = static_cast<size_t>(slot.denseIndex);
   m_idByName.erase(m_bodies[dense].name());
@@ -389,7 +391,9 @@ void World::step() {
     for (const Body& body : m_bodies) starts.push_back(body.state());
   }
   if (!anyContact) {
-    integrateFree(m_settings.dt, {});
+    const std::vector<char> jointed = findJointedBodies();
+    integrateFree(m_settings.dt, jointed);
+    stepJointedBodies(jointed, {}, m_settings.dt);
     m_contacts.clear();
   } else if (m_settings.contact.model == ContactModel::Penalty) {
     stepPenalty();

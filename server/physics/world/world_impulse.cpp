@@ -41,20 +41,30 @@ void World::findContacts() {
 void World::stepImpulse() {
   const double dt = m_settings.dt;
   findContacts();
-  const std::vector<BodyContact>& detected = m_detector->contacts();
+  std::vector<BodyContact> unjoined;  // when joints filter some pairs out
+  const std::vector<BodyContact>& detected = contactsBetweenUnjoinedBodies(m_detector->contacts(), unjoined);
   const std::vector<int> islandOf = findIslands(detected);
   wakeIslands(islandOf);
+  const std::vector<char> jointed = findJointedBodies();  // empty: no joint to enforce
   if (detected.empty()) {
-    integrateFree(dt, {});  // nothing touches: every body flies free
+    integrateFree(dt, jointed);  // nothing touches: every unjointed body flies free
+    stepJointedBodies(jointed, {}, dt);
     m_contacts.clear();
   } else {
     ContactStep step = selectContacts(detected);
-    integrateFree(dt, step.inContact);  // bodies touching nothing
-    loadSolverBodies(step, dt);
+    if (jointed.empty()) {
+      integrateFree(dt, step.inContact);  // bodies touching nothing
+    } else {
+      std::vector<char> skip = step.inContact;
+      for (std::size_t i = 0; i < skip.size(); ++i) skip[i] = skip[i] || jointed[i];
+      integrateFree(dt, skip);
+    }
+    loadSolverBodies(step, dt, jointed);
     findImpacts(step);
     std::vector<SolvedManifold> solved;
     solveContacts(*step.contacts, m_settings.contact.solver, dt, solved);
-    integrateSolvedBodies(step, solved, dt);
+    integrateSolvedBodies(step, solved, dt, jointed);
+    stepJointedBodies(jointed, step.solving, dt);
     keepSleepingContacts(detected, solved);
     m_contacts = std::move(solved);
   }
@@ -88,7 +98,7 @@ World::ContactStep World::selectContacts(const std::vector<BodyContact>& detecte
   return step;
 }
 
-void World::loadSolverBodies(ContactStep& step, double h) {
+void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char>& jointed) {
   // Per body also whether any of its points may move faster than half the
   // restitution threshold (findImpacts: a pair of slower bodies cannot
   // collide). |v| + |ω| r <= sqrt(2 (|v|² + |ω|² r²)), r the collider's radius.
@@ -103,8 +113,11 @@ void World::loadSolverBodies(ContactStep& step, double h) {
     sb.position = body.state().position;
     if (!step.solving[i]) continue;
     const ForceInputs inputs = forcesOn(i);
+    // A jointed body takes the joint step's first half kick (the contact
+    // impulses then act on the velocity its drift uses, as for the others).
+    const bool isJointed = !jointed.empty() && jointed[i];
     const Momenta momenta =
-        integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
+        integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, isJointed ? 0.5 * h : h);
     sb.inverseMass = body.dynamics().inverseMass;
     sb.inverseInertia = body.inverseInertiaWorld();
     sb.startLinearVelocity = body.linearVelocity();
@@ -117,7 +130,8 @@ void World::loadSolverBodies(ContactStep& step, double h) {
       const double radius = colliderRadius(*body.description().collider);
       speed2 += spin2 * radius * radius;
     }
-    step.fast[i] = speed2 >= slow2;
+    // No time of impact for a jointed body: its free flight is not free.
+    step.fast[i] = !isJointed && speed2 >= slow2;
     step.anyFast = step.anyFast || step.fast[i];
   }
 }
@@ -249,8 +263,8 @@ std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) co
   return levels;
 }
 
-void World::integrateSolvedBodies(const ContactStep& step,
-                                  const std::vector<SolvedManifold>& solved, double h) {
+void World::integrateSolvedBodies(const ContactStep& step, const std::vector<SolvedManifold>& solved,
+                                  double h, const std::vector<char>& jointed) {
   const IntegratorKind integrator = m_settings.integrator;
   // Bodies that some contact pushed: a contact ending the solve with no
   // impulse at all pushed nothing (its warm start was taken back).
@@ -263,7 +277,7 @@ void World::integrateSolvedBodies(const ContactStep& step,
     pushed[static_cast<std::size_t>(m.bodyB)] = 1;
   }
   for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-    if (!step.solving[i]) continue;
+    if (!step.solving[i] || (!jointed.empty() && jointed[i])) continue;  // jointed: stepJointedBodies
     Body& body = m_bodies[i];
     const SolverBody& sb = m_solverBodies[i];
     const ForceInputs inputs = forcesOn(i);

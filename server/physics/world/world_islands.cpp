@@ -1,4 +1,4 @@
-// Islands and sleeping: bodies joined by contacts move as one island, wake
+// Islands and sleeping: bodies joined by contacts or joints move as one island, wake
 // together and fall asleep together.
 #include <algorithm>
 #include <limits>
@@ -7,6 +7,7 @@
 #include "physics/body/body.h"
 #include "physics/body/external_load.h"
 #include "physics/collision/body_contact.h"
+#include "physics/joint/joint_constraint.h"
 #include "rbsim/physics/world.h"
 
 namespace rbsim {
@@ -53,7 +54,7 @@ Expected<bool> World::wakeUp(BodyId id) {
 std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) const {
   const std::size_t n = m_bodies.size();
   std::vector<int> islandOf(n);
-  if (contacts.empty()) {  // every body its own island
+  if (contacts.empty() && m_joints.empty()) {  // every body its own island
     std::iota(islandOf.begin(), islandOf.end(), 0);
     return islandOf;
   }
@@ -63,6 +64,13 @@ std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) co
     if (!m_bodies[static_cast<std::size_t>(c.bodyA)].isStatic() &&
         !m_bodies[static_cast<std::size_t>(c.bodyB)].isStatic())
       islands.unite(c.bodyA, c.bodyB);
+  }
+  for (const JointConstraint& joint : m_joints) {
+    const BodyId a = joint.def.bodyA, b = joint.def.bodyB;
+    if (a.isNull() || b.isNull()) continue;
+    const std::size_t ia = denseIndexOf(a), ib = denseIndexOf(b);
+    if (!m_bodies[ia].isStatic() && !m_bodies[ib].isStatic())
+      islands.unite(static_cast<int>(ia), static_cast<int>(ib));
   }
   for (std::size_t i = 0; i < n; ++i) islandOf[i] = islands.find(static_cast<int>(i));
   return islandOf;

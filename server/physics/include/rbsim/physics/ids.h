@@ -1,5 +1,5 @@
 #pragma once
-// Handle to a body in a World. Index 0 is null; the generation makes a handle
+// Handles to bodies and joints in a World. Index 0 is null; the generation makes a handle
 // to a removed body fail loudly instead of reaching whatever reused its slot,
 // and the world tag makes a handle from another world fail the same way.
 //
@@ -19,6 +19,16 @@ struct BodyId {
 
   bool isNull() const { return index == 0; }
   friend bool operator==(const BodyId&, const BodyId&) = default;
+};
+
+// Handle to a joint, on the same scheme (slot + 1, generation, world tag).
+struct JointId {
+  int32_t index = 0;
+  uint32_t generation = 0;
+  uint32_t world = 0;
+
+  bool isNull() const { return index == 0; }
+  friend bool operator==(const JointId&, const JointId&) = default;
 };
 
 }  // namespace rbsim

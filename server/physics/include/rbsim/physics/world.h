@@ -21,6 +21,7 @@
 #include "rbsim/physics/body_view.h"
 #include "rbsim/physics/contacts.h"
 #include "rbsim/physics/ids.h"
+#include "rbsim/physics/joint_definition.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world_settings.h"
 
@@ -36,6 +37,7 @@ struct BodyContact;
 struct ExternalLoad;
 struct FlyingBody;
 struct ForceInputs;
+struct JointConstraint;
 struct SolverBody;
 
 // A force and a couple on a body for the coming step. The force acts at a
@@ -123,6 +125,28 @@ class World {
   // those whose state went non-finite or too fast (see state_guard.h).
   void step();
 
+  // Joints (rbsim/physics/joint_definition.h, docs/joints_design.md). A
+  // jointed body takes the joint step (RATTLE, position-level) whatever the
+  // world's integrator; bodies without joints keep the world's integrator.
+  //  - createJoint: errors name the joint: an empty or duplicate name, an
+  //    invalid body id, a body joined to itself, two sides of which neither
+  //    moves, a bad anchor, axis or length (joint/joint_constraint.h), and a
+  //    world on the penalty contact model (joints are impulse rows). The
+  //    bodies wake.
+  //  - removeJoint: an error for an invalid id; its bodies wake.
+  //  - removeBody also removes the body's joints.
+  // A joint with a body frozen by the numerical guard is not enforced.
+  Expected<JointId> createJoint(const JointDef& def);
+  Expected<bool> removeJoint(JointId id);
+  JointId findJoint(std::string_view name) const;  // null id when absent
+  bool isValid(JointId id) const;
+  int jointCount() const;
+  JointId jointIdAt(int denseIndex) const;  // joints in creation order
+  // What the joint is doing now (its coordinate, error, last reaction); an
+  // invalid id throws std::invalid_argument, as body() does.
+  JointState jointState(JointId id) const;
+  JointState jointStateAt(int denseIndex) const;
+
   // Bodies frozen during the last step, in body order (empty most of the time).
   const std::vector<FreezeEvent>& freezeEvents() const { return m_freezeEvents; }
   int frozenBodyCount() const { return m_frozenBodies; }
@@ -207,8 +231,8 @@ class World {
   // islands → wake → integrate velocities → impacts → solve → integrate
   // positions → sleep.
   void stepImpulse();
-  // Per dense index: the root of the island (bodies joined by contacts
-  // between dynamic bodies) it belongs to.
+  // Per dense index: the root of the island (bodies joined by contacts or
+  // joints between dynamic bodies) it belongs to.
   std::vector<int> findIslands(const std::vector<BodyContact>& contacts) const;
   // A sleeping body wakes when its island holds an awake or a pushed body.
   void wakeIslands(const std::vector<int>& islandOf);
@@ -230,7 +254,9 @@ class World {
   ContactStep selectContacts(const std::vector<BodyContact>& detected) const;
   // The solver's bodies: velocities after the forces of h (semi-implicit
   // Euler's first half); marks the fast ones.
-  void loadSolverBodies(ContactStep& step, double h);
+  // Jointed bodies (`jointed`, empty: none) get half the kick: the joint
+  // step's first half.
+  void loadSolverBodies(ContactStep& step, double h, const std::vector<char>& jointed);
   // Colliding contacts (world/impacts.h): each is moved to its time of
   // impact, with the manifold there, and its bodies' solver data with it.
   void findImpacts(ContactStep& step);
@@ -242,10 +268,30 @@ class World {
   // Euler's second half, with the split-impulse pseudo-velocities; free
   // flight over the rest of the step after a collision; the world's
   // integrator for a body that no impulse reached.
-  void integrateSolvedBodies(const ContactStep& step, const std::vector<SolvedManifold>& solved, double h);
+  // Jointed bodies are left to stepJointedBodies.
+  void integrateSolvedBodies(const ContactStep& step, const std::vector<SolvedManifold>& solved, double h,
+                             const std::vector<char>& jointed);
   // Keeps, in key order, the last results of contacts between sleeping bodies.
   void keepSleepingContacts(const std::vector<BodyContact>& detected,
                             std::vector<SolvedManifold>& solved) const;
+
+  // Joints (world_joints.cpp). Per dense index: 1 for an awake dynamic body
+  // with an enforced joint (empty when there is none): the joint step moves
+  // it instead of the free integration and the contact path.
+  std::vector<char> findJointedBodies() const;
+  // The joint step of the jointed bodies over h: half kick, the contact
+  // impulses of m_solverBodies for the `solving` ones (empty: none), drift
+  // and projection (joint/joint_solver.h), half kick, velocity projection.
+  void stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving, double h);
+  std::string invalidJointReason(JointId id) const;
+  // `detected` without the contacts of bodies that a joint joins (unless it
+  // lets them collide): `detected` itself when no joint filters, else
+  // `storage` filled.
+  const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const std::vector<BodyContact>& detected,
+                                                                std::vector<BodyContact>& storage) const;
+  // Removes the joints of a body about to be removed (its dense index).
+  void removeJointsOf(BodyId body);
+  bool jointIsEnforced(const JointConstraint& joint) const;
 
   void stepPenalty();
   // Continuous collision for bodies flagged `continuousCollision`: a body
@@ -268,6 +314,11 @@ class World {
   std::vector<BodyId> m_denseIds;  // parallel to m_bodies
   std::vector<Slot> m_slots;
   std::vector<int32_t> m_freeSlots;  // reused lowest-first, for determinism
+  // Joints, dense in creation order, with their ids and slots (as bodies).
+  std::vector<JointConstraint> m_joints;
+  std::vector<JointId> m_jointIds;
+  std::vector<Slot> m_jointSlots;
+  std::vector<int32_t> m_freeJointSlots;
   // Name lookup only; never iterated, so its order cannot leak into a step.
   std::unordered_map<std::string, BodyId> m_idByName;
   int64_t m_stepCount = 0;

@@ -1,0 +1,74 @@
+#pragma once
+// Joints: what a user gives to join two bodies (JointDef), and what the world
+// reports of a joint (JointState). A joint joins two bodies, or a body and
+// the world (a null BodyId, or a static body).
+//
+// Every point and direction is given in the world frame, in the initial
+// configuration: the world turns them into each body's frame when the joint
+// is created, so "the hinge is here, along this axis, now" is all a user has
+// to know. Units are SI; angles in rad.
+//
+// The joints are solved at the position level (docs/joints_design.md): each
+// step ends with the joints closed to rounding (about 1e-12 m and rad) and
+// the velocities tangent to them, whatever the mass ratios.
+
+#include <string>
+
+#include "physics/math/types.h"
+#include "rbsim/physics/ids.h"
+
+namespace rbsim {
+
+enum class JointType {
+  Fixed,      // a weld: no relative motion
+  Revolute,   // a hinge: rotation about `axis` through `anchor`
+  Prismatic,  // a slider: translation along `axis`, no relative rotation
+  Spherical,  // a ball joint: rotation about `anchor`
+  Distance,   // a rod: `anchor` on A and `anchorB` on B kept `length` apart
+};
+
+// "fixed", "revolute", ... as written in config files and messages.
+const char* jointTypeName(JointType type);
+
+struct JointDef {
+  std::string name;  // unique among the world's joints
+  JointType type = JointType::Revolute;
+  BodyId bodyA;  // null: the world
+  BodyId bodyB;  // null: the world (one of the two must move)
+  Vec3 anchor = Vec3::Zero();     // m, world: the joint's point (on A, for a distance joint)
+  Vec3 axis = Vec3::UnitZ();      // revolute and prismatic: the joint axis (normalised here)
+  Vec3 anchorB = Vec3::Zero();    // m, world: distance joints only, the point on B
+  // Distance joints: the rod's length; negative: the anchors' distance at
+  // creation.
+  double length = -1.0;  // m
+  // Whether the two bodies still collide with each other (by default they
+  // do not: the links of a chain overlap at their joints).
+  bool collideConnected = false;
+};
+
+// What a joint is doing after the last step.
+struct JointState {
+  std::string name;
+  JointType type = JointType::Revolute;
+  BodyId bodyA, bodyB;  // null: the world
+  // The joint coordinate from the initial configuration: the angle of B
+  // about the axis relative to A (revolute, rad, right-handed about the
+  // axis), B's displacement along the axis (prismatic, m), the anchors'
+  // distance (distance, m); 0 for the others.
+  double position = 0.0;
+  double rate = 0.0;  // its time derivative: rad/s or m/s
+  Vec3 anchorA = Vec3::Zero();  // m, world: the anchor on A now
+  Vec3 anchorB = Vec3::Zero();  // m, world: on B now (equal to anchorA but for rounding, or a rod's length away)
+  Vec3 axis = Vec3::UnitZ();    // world: the axis as A carries it
+  // The largest violation of the joint's position constraints now (m or rad).
+  double error = 0.0;
+  // Force and couple the joint applied to B over the last step (N, N·m,
+  // world; the couple about B's anchor): the constraint impulses / dt.
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+  // False while one of its bodies is frozen by the numerical guard: the
+  // joint is then not enforced.
+  bool active = true;
+};
+
+}  // namespace rbsim

@@ -1,0 +1,240 @@
+#include "physics/joint/joint_constraint.h"
+
+#include <cmath>
+
+namespace rbsim {
+
+namespace {
+
+bool finite(const Vec3& v) { return v.allFinite(); }
+
+// Two unit vectors perpendicular to the unit `axis` and to each other, with
+// (n1, n2, axis) right-handed.
+void perpendiculars(const Vec3& axis, Vec3& n1, Vec3& n2) {
+  const Vec3 helper = std::abs(axis.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  n1 = helper.cross(axis).normalized();
+  n2 = axis.cross(n1);
+}
+
+// The point-coincidence rows (spherical, revolute, fixed): C = p_B − p_A.
+void pointRows(const Vec3& armA, const Vec3& armB, JointRow* out) {
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = Vec3::Unit(k);
+    out[k].linearA = -e;
+    out[k].angularA = -armA.cross(e);
+    out[k].linearB = e;
+    out[k].angularB = armB.cross(e);
+  }
+}
+
+// The no-relative-rotation rows (fixed, prismatic): rate ω_B − ω_A.
+void rotationRows(JointRow* out) {
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = Vec3::Unit(k);
+    out[k].linearA = Vec3::Zero();
+    out[k].angularA = -e;
+    out[k].linearB = Vec3::Zero();
+    out[k].angularB = e;
+  }
+}
+
+// 2·vec(q_B r₀⁻¹ q_A⁻¹), the error rotation on the short way round.
+Vec3 rotationError(const JointSidePose& a, const JointSidePose& b, const Quaternion& restRelative) {
+  const Quaternion e = b.orientation * restRelative.conjugate() * a.orientation.conjugate();
+  const double sign = e.w < 0.0 ? -2.0 : 2.0;
+  return sign * e.vec();
+}
+
+}  // namespace
+
+const char* jointTypeName(JointType type) {
+  switch (type) {
+    case JointType::Fixed: return "fixed";
+    case JointType::Revolute: return "revolute";
+    case JointType::Prismatic: return "prismatic";
+    case JointType::Spherical: return "spherical";
+    case JointType::Distance: return "distance";
+  }
+  return "unknown";
+}
+
+int JointConstraint::rowCount() const {
+  switch (def.type) {
+    case JointType::Spherical: return 3;
+    case JointType::Revolute: return 5;
+    case JointType::Prismatic: return 5;
+    case JointType::Fixed: return 6;
+    case JointType::Distance: return 1;
+  }
+  return 0;
+}
+
+Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSidePose& a,
+                                              const JointSidePose& b) {
+  const std::string where = "joint '" + def.name + "'";
+  if (!finite(def.anchor)) return Error{where + ": the anchor is not finite"};
+  JointConstraint joint;
+  joint.def = def;
+  const auto toA = [&](const Vec3& world) { return Vec3(a.rotation.transpose() * (world - a.position)); };
+  const auto toB = [&](const Vec3& world) { return Vec3(b.rotation.transpose() * (world - b.position)); };
+  joint.anchorA = toA(def.anchor);
+  joint.anchorB = toB(def.anchor);
+  joint.restRelative = (a.orientation.conjugate() * b.orientation).normalized();
+  if (def.type == JointType::Revolute || def.type == JointType::Prismatic) {
+    const double norm = def.axis.norm();
+    if (!std::isfinite(norm) || norm < 1e-9)
+      return Error{where + ": the axis must be a finite, non-zero vector"};
+    const Vec3 axis = def.axis / norm;
+    joint.def.axis = axis;
+    joint.axisA = a.rotation.transpose() * axis;
+    joint.axisB = b.rotation.transpose() * axis;
+    perpendiculars(joint.axisA, joint.normalA1, joint.normalA2);
+  }
+  if (def.type == JointType::Distance) {
+    if (!finite(def.anchorB)) return Error{where + ": anchor_b is not finite"};
+    joint.anchorB = toB(def.anchorB);
+    const double initial = (def.anchorB - def.anchor).norm();
+    joint.length = def.length < 0.0 ? initial : def.length;
+    if (!std::isfinite(joint.length) || joint.length < 1e-9)
+      return Error{where + ": the length must be positive and finite (the anchors are " +
+                   std::to_string(initial) + " m apart)"};
+    joint.def.length = joint.length;
+  }
+  return joint;
+}
+
+JointConstraint::Basis JointConstraint::basisAt(const JointSidePose& a) const {
+  Basis basis;
+  if (def.type == JointType::Revolute) {
+    basis.normal1 = a.rotation * normalA1;
+    basis.normal2 = a.rotation * normalA2;
+  }
+  return basis;
+}
+
+void JointConstraint::errors(const JointSidePose& a, const JointSidePose& b, const Basis& basis,
+                             double* out) const {
+  const Vec3 pA = a.position + a.rotation * anchorA;
+  const Vec3 pB = b.position + b.rotation * anchorB;
+  const Vec3 separation = pB - pA;
+  switch (def.type) {
+    case JointType::Spherical:
+      for (int k = 0; k < 3; ++k) out[k] = separation[k];
+      return;
+    case JointType::Revolute: {
+      for (int k = 0; k < 3; ++k) out[k] = separation[k];
+      const Vec3 misalignment = (a.rotation * axisA).cross(b.rotation * axisB);
+      out[3] = misalignment.dot(basis.normal1);
+      out[4] = misalignment.dot(basis.normal2);
+      return;
+    }
+    case JointType::Fixed: {
+      for (int k = 0; k < 3; ++k) out[k] = separation[k];
+      const Vec3 turn = rotationError(a, b, restRelative);
+      for (int k = 0; k < 3; ++k) out[3 + k] = turn[k];
+      return;
+    }
+    case JointType::Prismatic: {
+      const Vec3 turn = rotationError(a, b, restRelative);
+      for (int k = 0; k < 3; ++k) out[k] = turn[k];
+      out[3] = separation.dot(a.rotation * normalA1);
+      out[4] = separation.dot(a.rotation * normalA2);
+      return;
+    }
+    case JointType::Distance:
+      out[0] = separation.norm() - length;
+      return;
+  }
+}
+
+void JointConstraint::rows(const JointSidePose& a, const JointSidePose& b, const Basis& basis,
+                           JointRow* out) const {
+  const Vec3 armA = a.rotation * anchorA;  // from A's centre of mass to its anchor
+  const Vec3 armB = b.rotation * anchorB;
+  const Vec3 pA = a.position + armA;
+  const Vec3 pB = b.position + armB;
+  switch (def.type) {
+    case JointType::Spherical:
+      pointRows(armA, armB, out);
+      return;
+    case JointType::Revolute:
+      pointRows(armA, armB, out);
+      // d/dt (a_A × a_B)·n = n·(ω_B − ω_A) on the constraint (a_A = a_B).
+      for (int k = 0; k < 2; ++k) {
+        const Vec3& n = k == 0 ? basis.normal1 : basis.normal2;
+        out[3 + k] = {Vec3::Zero(), -n, Vec3::Zero(), n};
+      }
+      return;
+    case JointType::Fixed:
+      pointRows(armA, armB, out);
+      rotationRows(out + 3);
+      return;
+    case JointType::Prismatic: {
+      rotationRows(out);
+      // d/dt (p_B − p_A)·t with t carried by A: t·(v at p_B of B − v at p_B
+      // of A), so A's lever arm reaches to B's anchor.
+      const Vec3 armAToB = pB - a.position;
+      for (int k = 0; k < 2; ++k) {
+        const Vec3 t = a.rotation * (k == 0 ? normalA1 : normalA2);
+        out[3 + k] = {-t, -armAToB.cross(t), t, armB.cross(t)};
+      }
+      return;
+    }
+    case JointType::Distance: {
+      const Vec3 separation = pB - pA;
+      const double distance = separation.norm();
+      // A rod whose anchors meet has no direction; any will do (the error
+      // then is −length and the step pushes them apart along it).
+      const Vec3 n = distance > 0.0 ? Vec3(separation / distance) : Vec3::UnitZ();
+      out[0] = {-n, -armA.cross(n), n, armB.cross(n)};
+      return;
+    }
+  }
+}
+
+double JointConstraint::coordinate(const JointSidePose& a, const JointSidePose& b) const {
+  const Vec3 pA = a.position + a.rotation * anchorA;
+  const Vec3 pB = b.position + b.rotation * anchorB;
+  switch (def.type) {
+    case JointType::Revolute: {
+      // B's rotation relative to A, from the rest relative orientation, in
+      // A's frame; its angle about A's axis.
+      const Quaternion turn = a.orientation.conjugate() * b.orientation * restRelative.conjugate();
+      return 2.0 * std::atan2(turn.vec().dot(axisA), turn.w);
+    }
+    case JointType::Prismatic:
+      return (pB - pA).dot(a.rotation * axisA);
+    case JointType::Distance:
+      return (pB - pA).norm();
+    case JointType::Fixed:
+    case JointType::Spherical:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+double JointConstraint::coordinateRate(const JointSidePose& a, const JointSidePose& b, const Vec3& vA,
+                                       const Vec3& wA, const Vec3& vB, const Vec3& wB) const {
+  const Vec3 pB = b.position + b.rotation * anchorB;
+  const Vec3 pA = a.position + a.rotation * anchorA;
+  const Vec3 relative = vB + wB.cross(pB - b.position) - vA - wA.cross(pB - a.position);
+  switch (def.type) {
+    case JointType::Revolute:
+      return (wB - wA).dot(a.rotation * axisA);
+    case JointType::Prismatic:
+      return relative.dot(a.rotation * axisA);
+    case JointType::Distance: {
+      const Vec3 separation = pB - pA;
+      const double distance = separation.norm();
+      const Vec3 atA = vA + wA.cross(pA - a.position);
+      const Vec3 atB = vB + wB.cross(pB - b.position);
+      return distance > 0.0 ? (atB - atA).dot(separation) / distance : 0.0;
+    }
+    case JointType::Fixed:
+    case JointType::Spherical:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,102 @@
+#pragma once
+// The position-level joint step (docs/joints_design.md): RATTLE in maximal
+// coordinates (Andersen 1983; Leimkuhler and Reich, "Simulating Hamiltonian
+// Dynamics", 2004, ch. 7), with every joint of the step solved together.
+//
+// The world gives each jointed body its momenta after the first half kick
+// (and after the contact impulses, when it touches something). Then:
+//  1. drift: x = x₀ + h P/m, q turned by h I₀⁻¹ L (the pose update of the
+//     semi-implicit integrator, body/integrator.h);
+//  2. SHAKE: constraint impulses along the rows of J at the step's start
+//     change P and L until C(x) = C(x₀) at the drifted poses. Each
+//     iteration solves J₀ M₀⁻¹ J₀ᵀ Δλ = −ΔC / h exactly (a sparse LDLᵀ
+//     factorisation made once per step, as in Baraff, "Linear-Time Dynamics
+//     using Lagrange Multipliers", SIGGRAPH 1996), so a heavy tip on a long
+//     chain costs no more iterations than a pendulum; the iteration is a
+//     quasi-Newton one that converges in a few steps;
+//  3. positions only: the contacts' split-impulse pseudo-velocities and any
+//     error C(x₀) that came from outside (a state set by a client, a joint
+//     created open) are removed by moving positions along the joints' rows,
+//     without touching the momenta, so correcting an error adds no energy;
+//  4. the world's second half kick, then projectVelocities: J(x₁) v = 0
+//     exactly, so the velocities leave tangent to the joints.
+// Projecting along the start's rows (not the current iterate's, as
+// position-based dynamics does) is what makes it second order and
+// symplectic: a frictionless pendulum keeps its energy, its period is
+// right to O(h²).
+
+#include <vector>
+
+#include "physics/joint/joint_constraint.h"
+#include "physics/math/quaternion.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+// A body the joint step moves.
+struct JointBody {
+  // At the step's start.
+  Vec3 startPosition = Vec3::Zero();
+  Quaternion startOrientation = Quaternion::identity();
+  Mat3 startInverseInertia = Mat3::Zero();  // world, 1/(kg·m²)
+  double inverseMass = 0.0;                 // 1/kg
+  // Solved for.
+  Vec3 linearMomentum = Vec3::Zero();   // kg·m/s
+  Vec3 angularMomentum = Vec3::Zero();  // kg·m²/s
+  // Split-impulse pseudo-velocities from the contact solver (positions only).
+  Vec3 pseudoLinear = Vec3::Zero();   // m/s
+  Vec3 pseudoAngular = Vec3::Zero();  // rad/s
+  // The result of solvePositions.
+  Vec3 position = Vec3::Zero();
+  Quaternion orientation = Quaternion::identity();
+};
+
+// One joint of the step: its constraint and its sides, each a JointBody
+// (index) or a fixed pose (-1: the world or a static body).
+struct JointLink {
+  const JointConstraint* joint = nullptr;
+  int bodyA = -1;
+  int bodyB = -1;
+  JointSidePose fixedA;
+  JointSidePose fixedB;
+};
+
+struct JointSolverSettings {
+  double tolerance = 1e-12;  // m and rad: largest |C| left
+  int maxIterations = 30;
+};
+
+// What the step did, per link: the impulses on side B (for JointState) and
+// the error left.
+struct JointLinkResult {
+  Vec3 linearImpulse = Vec3::Zero();   // N·s, on B
+  Vec3 angularImpulse = Vec3::Zero();  // N·m·s, on B about its anchor
+  double error = 0.0;                  // largest |C| at the end poses
+};
+
+class JointSolver {
+ public:
+  // Steps 1–3: the bodies' end poses (position, orientation) and the
+  // momenta with the constraint impulses of the step.
+  void solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                      const JointSolverSettings& settings, std::vector<JointLinkResult>& results);
+  // Step 4: with the bodies at their end poses (`inverseInertia` there, one
+  // per body) and their momenta after the second half kick, removes every
+  // velocity along the joints' rows.
+  void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                         const std::vector<Mat3>& inverseInertia, std::vector<JointLinkResult>& results);
+
+ private:
+  struct Row {
+    int bodyA = -1, bodyB = -1;
+    int link = 0;
+    JointRow jacobian;
+  };
+  std::vector<Row> m_rows;
+};
+
+// The side poses of a link from the bodies' current poses (or start poses).
+JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB,
+                       bool atStart);
+
+}  // namespace rbsim

@@ -1,0 +1,287 @@
+// Joints in the world: creation and removal, what a joint reports, and the
+// joint step of the jointed bodies (joint/joint_solver.h).
+#include <algorithm>
+#include <stdexcept>
+
+#include "physics/body/body.h"
+#include "physics/body/external_load.h"
+#include "physics/body/integrator.h"
+#include "physics/collision/body_contact.h"
+#include "physics/joint/joint_constraint.h"
+#include "physics/joint/joint_solver.h"
+#include "physics/math/rotation_matrix.h"
+#include "physics/solver/contact_solver.h"
+#include "rbsim/physics/world.h"
+
+namespace rbsim {
+
+namespace {
+
+JointSidePose poseOfBody(const Body& body) {
+  return {body.position(), body.orientation(), body.rotation()};
+}
+
+}  // namespace
+
+Expected<JointId> World::createJoint(const JointDef& def) {
+  const std::string where = "joint '" + def.name + "'";
+  if (def.name.empty()) return Error{"a joint needs a name"};
+  if (!findJoint(def.name).isNull()) return Error{where + ": the name is taken by another joint"};
+  if (m_settings.contact.model == ContactModel::Penalty)
+    return Error{where + ": joints need the impulse contact model (contact.model: impulse)"};
+  JointSidePose poses[2];
+  bool moves[2] = {false, false};
+  const BodyId ids[2] = {def.bodyA, def.bodyB};
+  for (int side = 0; side < 2; ++side) {
+    if (ids[side].isNull()) continue;  // the world
+    if (const std::string why = invalidIdReason(ids[side]); !why.empty())
+      return Error{where + ": body_" + (side == 0 ? "a" : "b") + ": " + why};
+    const Body& body = m_bodies[denseIndexOf(ids[side])];
+    poses[side] = poseOfBody(body);
+    moves[side] = !body.isStatic();
+  }
+  if (!ids[0].isNull() && ids[0] == ids[1]) return Error{where + ": joins a body to itself"};
+  if (!moves[0] && !moves[1]) return Error{where + ": neither side moves (both are the world or static)"};
+  Expected<JointConstraint> made = makeJointConstraint(def, poses[0], poses[1]);
+  if (!made.ok()) return made.error();
+
+  int32_t slot;
+  if (!m_freeJointSlots.empty()) {
+    const auto lowest = std::min_element(m_freeJointSlots.begin(), m_freeJointSlots.end());
+    slot = *lowest;
+    m_freeJointSlots.erase(lowest);
+  } else {
+    slot = static_cast<int32_t>(m_jointSlots.size());
+    m_jointSlots.push_back({});
+  }
+  m_jointSlots[static_cast<std::size_t>(slot)].denseIndex = static_cast<int32_t>(m_joints.size());
+  const JointId id{slot + 1, m_jointSlots[static_cast<std::size_t>(slot)].generation, m_tag};
+  m_joints.push_back(std::move(made.value()));
+  m_jointIds.push_back(id);
+  for (const BodyId body : ids)
+    if (!body.isNull()) bodyRef(body).wake();
+  m_maybeAsleep = true;
+  return id;
+}
+
+Expected<bool> World::removeJoint(JointId id) {
+  if (const std::string why = invalidJointReason(id); !why.empty()) return Error{"cannot remove: " + why};
+  Slot& slot = m_jointSlots[static_cast<std::size_t>(id.index - 1)];
+  const auto dense = static_cast<std::size_t>(slot.denseIndex);
+  for (const BodyId body : {m_joints[dense].def.bodyA, m_joints[dense].def.bodyB})
+    if (!body.isNull() && isValid(body)) bodyRef(body).wake();
+  m_joints.erase(m_joints.begin() + static_cast<std::ptrdiff_t>(dense));
+  m_jointIds.erase(m_jointIds.begin() + static_cast<std::ptrdiff_t>(dense));
+  for (std::size_t i = dense; i < m_jointIds.size(); ++i)
+    m_jointSlots[static_cast<std::size_t>(m_jointIds[i].index - 1)].denseIndex = static_cast<int32_t>(i);
+  slot.denseIndex = -1;
+  ++slot.generation;
+  m_freeJointSlots.push_back(id.index - 1);
+  return true;
+}
+
+void World::removeJointsOf(BodyId body) {
+  for (std::size_t i = m_joints.size(); i-- > 0;) {
+    const JointDef& def = m_joints[i].def;
+    if (def.bodyA == body || def.bodyB == body) (void)removeJoint(m_jointIds[i]);
+  }
+}
+
+JointId World::findJoint(std::string_view name) const {
+  for (std::size_t i = 0; i < m_joints.size(); ++i)
+    if (m_joints[i].def.name == name) return m_jointIds[i];
+  return {};
+}
+
+bool World::isValid(JointId id) const { return invalidJointReason(id).empty(); }
+
+int World::jointCount() const { return static_cast<int>(m_joints.size()); }
+
+JointId World::jointIdAt(int denseIndex) const { return m_jointIds[static_cast<std::size_t>(denseIndex)]; }
+
+std::string World::invalidJointReason(JointId id) const {
+  const std::string named = "joint id (index " + std::to_string(id.index) + ", generation " +
+                            std::to_string(id.generation) + ", world " + std::to_string(id.world) + ")";
+  if (id.isNull()) return "a null joint id";
+  if (id.world != m_tag) return named + " is of another world";
+  if (id.index < 0 || static_cast<std::size_t>(id.index) > m_jointSlots.size())
+    return named + " names no slot of this world";
+  const Slot& slot = m_jointSlots[static_cast<std::size_t>(id.index - 1)];
+  if (slot.denseIndex < 0 || slot.generation != id.generation) return named + " is stale: its joint was removed";
+  return {};
+}
+
+bool World::jointIsEnforced(const JointConstraint& joint) const {
+  for (const BodyId body : {joint.def.bodyA, joint.def.bodyB})
+    if (!body.isNull() && m_bodies[denseIndexOf(body)].isFrozen()) return false;
+  return true;
+}
+
+JointState World::jointState(JointId id) const {
+  if (const std::string why = invalidJointReason(id); !why.empty()) throw std::invalid_argument(why);
+  return jointStateAt(m_jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex);
+}
+
+JointState World::jointStateAt(int denseIndex) const {
+  const JointConstraint& joint = m_joints[static_cast<std::size_t>(denseIndex)];
+  JointState out;
+  out.name = joint.def.name;
+  out.type = joint.def.type;
+  out.bodyA = joint.def.bodyA;
+  out.bodyB = joint.def.bodyB;
+  JointSidePose poses[2];
+  Vec3 linear[2] = {Vec3::Zero(), Vec3::Zero()};
+  Vec3 angular[2] = {Vec3::Zero(), Vec3::Zero()};
+  const BodyId ids[2] = {joint.def.bodyA, joint.def.bodyB};
+  for (int side = 0; side < 2; ++side) {
+    if (ids[side].isNull()) continue;
+    const Body& body = m_bodies[denseIndexOf(ids[side])];
+    poses[side] = poseOfBody(body);
+    linear[side] = body.linearVelocity();
+    angular[side] = body.angularVelocity();
+  }
+  out.position = joint.coordinate(poses[0], poses[1]);
+  out.rate = joint.coordinateRate(poses[0], poses[1], linear[0], angular[0], linear[1], angular[1]);
+  out.anchorA = poses[0].position + poses[0].rotation * joint.anchorA;
+  out.anchorB = poses[1].position + poses[1].rotation * joint.anchorB;
+  out.axis = poses[0].rotation * joint.axisA;
+  double errors[kMaxJointRows];
+  joint.errors(poses[0], poses[1], joint.basisAt(poses[0]), errors);
+  for (int r = 0; r < joint.rowCount(); ++r) out.error = std::max(out.error, std::abs(errors[r]));
+  out.force = joint.lastForce;
+  out.torque = joint.lastTorque;
+  out.active = jointIsEnforced(joint);
+  return out;
+}
+
+const std::vector<BodyContact>& World::contactsBetweenUnjoinedBodies(const std::vector<BodyContact>& detected,
+                                                                     std::vector<BodyContact>& storage) const {
+  if (m_joints.empty() || detected.empty()) return detected;
+  std::vector<std::pair<int, int>> joined;  // dense (lower, higher)
+  for (const JointConstraint& joint : m_joints) {
+    if (joint.def.collideConnected || joint.def.bodyA.isNull() || joint.def.bodyB.isNull()) continue;
+    const int a = static_cast<int>(denseIndexOf(joint.def.bodyA));
+    const int b = static_cast<int>(denseIndexOf(joint.def.bodyB));
+    joined.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  if (joined.empty()) return detected;
+  std::sort(joined.begin(), joined.end());
+  const auto isJoined = [&](const BodyContact& c) {
+    return std::binary_search(joined.begin(), joined.end(),
+                              std::make_pair(std::min(c.bodyA, c.bodyB), std::max(c.bodyA, c.bodyB)));
+  };
+  if (std::none_of(detected.begin(), detected.end(), isJoined)) return detected;
+  storage.clear();
+  for (const BodyContact& c : detected)
+    if (!isJoined(c)) storage.push_back(c);
+  return storage;
+}
+
+std::vector<char> World::findJointedBodies() const {
+  std::vector<char> jointed;
+  for (const JointConstraint& joint : m_joints) {
+    if (!jointIsEnforced(joint)) continue;
+    for (const BodyId id : {joint.def.bodyA, joint.def.bodyB}) {
+      if (id.isNull()) continue;
+      const std::size_t i = denseIndexOf(id);
+      const Body& body = m_bodies[i];
+      if (body.isStatic() || body.isSleeping()) continue;
+      if (jointed.empty()) jointed.assign(m_bodies.size(), 0);
+      jointed[i] = 1;
+    }
+  }
+  return jointed;
+}
+
+void World::stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving, double h) {
+  if (jointed.empty()) return;
+  const std::size_t n = m_bodies.size();
+  // The jointed bodies as the joint solver sees them, after the first half
+  // kick (and the contact impulses, for those the contact solver moved).
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> dense;
+  std::vector<JointBody> bodies;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i]) continue;
+    const Body& body = m_bodies[i];
+    local[i] = static_cast<int>(bodies.size());
+    dense.push_back(i);
+    JointBody jb;
+    jb.startPosition = body.position();
+    jb.startOrientation = body.orientation();
+    jb.startInverseInertia = body.inverseInertiaWorld();
+    jb.inverseMass = body.inverseMass();
+    if (!solving.empty() && solving[i]) {
+      const SolverBody& sb = m_solverBodies[i];
+      jb.linearMomentum = body.mass() * sb.linearVelocity;
+      jb.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
+      jb.pseudoLinear = sb.pseudoLinear;
+      jb.pseudoAngular = sb.pseudoAngular;
+    } else {
+      const Momenta kicked = integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(i), 0.5 * h);
+      jb.linearMomentum = kicked.linear;
+      jb.angularMomentum = kicked.angular;
+    }
+    bodies.push_back(jb);
+  }
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  for (std::size_t j = 0; j < m_joints.size(); ++j) {
+    const JointConstraint& joint = m_joints[j];
+    if (!jointIsEnforced(joint)) continue;
+    JointLink link;
+    link.joint = &joint;
+    bool anyMoving = false;
+    for (const bool sideB : {false, true}) {
+      const BodyId id = sideB ? joint.def.bodyB : joint.def.bodyA;
+      int& index = sideB ? link.bodyB : link.bodyA;
+      JointSidePose& fixed = sideB ? link.fixedB : link.fixedA;
+      if (id.isNull()) continue;
+      const std::size_t i = denseIndexOf(id);
+      index = local[i];
+      if (index < 0) fixed = poseOfBody(m_bodies[i]);  // static (or at rest in the same pose)
+      anyMoving = anyMoving || index >= 0;
+    }
+    if (!anyMoving) continue;
+    links.push_back(link);
+    linkJoint.push_back(j);
+  }
+
+  JointSolver solver;
+  std::vector<JointLinkResult> results;
+  solver.solvePositions(links, bodies, h, JointSolverSettings{}, results);
+
+  // The second half kick at the end poses, then the velocities tangent to
+  // the joints there.
+  std::vector<RigidState> ends(bodies.size());
+  std::vector<Mat3> endInverseInertia(bodies.size());
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const std::size_t i = dense[k];
+    const Body& body = m_bodies[i];
+    JointBody& jb = bodies[k];
+    RigidState state{jb.position, jb.orientation, jb.linearMomentum, jb.angularMomentum};
+    const Mat3 rotation = state.orientation.toRotationMatrix();
+    const Momenta kicked = integrateMomenta(state, rotation, body.dynamics(), forcesOn(i), 0.5 * h);
+    jb.linearMomentum = kicked.linear;
+    jb.angularMomentum = kicked.angular;
+    ends[k] = state;
+    endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+  }
+  solver.projectVelocities(links, bodies, endInverseInertia, results);
+
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    Body& body = m_bodies[dense[k]];
+    RigidState state = ends[k];
+    state.linearMomentum = bodies[k].linearMomentum;
+    state.angularMomentum = bodies[k].angularMomentum;
+    body.moveTo(state);
+    noteSpeeds(body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
+  }
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    JointConstraint& joint = m_joints[linkJoint[l]];
+    joint.lastForce = results[l].linearImpulse / h;
+    joint.lastTorque = results[l].angularImpulse / h;
+  }
+}
+
+}  // namespace rbsim
