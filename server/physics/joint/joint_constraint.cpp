@@ -27,22 +27,31 @@ void pointRows(const Vec3& armA, const Vec3& armB, JointRow* out) {
   }
 }
 
-// The no-relative-rotation rows (fixed, prismatic): rate ω_B − ω_A.
-void rotationRows(JointRow* out) {
-  for (int k = 0; k < 3; ++k) {
-    const Vec3 e = Vec3::Unit(k);
-    out[k].linearA = Vec3::Zero();
-    out[k].angularA = -e;
-    out[k].linearB = Vec3::Zero();
-    out[k].angularB = e;
-  }
+// The error rotation q_B r₀⁻¹ q_A⁻¹, on the short way round (w >= 0).
+Quaternion errorRotation(const JointSidePose& a, const JointSidePose& b, const Quaternion& restRelative) {
+  const Quaternion e = b.orientation * restRelative.conjugate() * a.orientation.conjugate();
+  return e.w < 0.0 ? Quaternion{-e.w, -e.x, -e.y, -e.z} : e;
 }
 
-// 2·vec(q_B r₀⁻¹ q_A⁻¹), the error rotation on the short way round.
+// 2·vec(e), the rotation error as three numbers.
 Vec3 rotationError(const JointSidePose& a, const JointSidePose& b, const Quaternion& restRelative) {
-  const Quaternion e = b.orientation * restRelative.conjugate() * a.orientation.conjugate();
-  const double sign = e.w < 0.0 ? -2.0 : 2.0;
-  return sign * e.vec();
+  return 2.0 * errorRotation(a, b, restRelative).vec();
+}
+
+// The no-relative-rotation rows (fixed, prismatic): the exact derivatives of
+// 2·vec(e) for turns δθ of the sides (q → (1 + ½δθ) q, world frame):
+// δ(2 vec e) = (e_w 1 − [e_v]×) δθ_B − (e_w 1 + [e_v]×) δθ_A, which is
+// δθ_B − δθ_A on the constraint (e = 1).
+void rotationRows(const JointSidePose& a, const JointSidePose& b, const Quaternion& restRelative, JointRow* out) {
+  const Quaternion e = errorRotation(a, b, restRelative);
+  const Vec3 v = e.vec();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 axis = Vec3::Unit(k);
+    out[k].linearA = Vec3::Zero();
+    out[k].angularA = -(e.w * axis - v.cross(axis));  // row k of −(e_w 1 + [e_v]×)
+    out[k].linearB = Vec3::Zero();
+    out[k].angularB = e.w * axis + v.cross(axis);     // row k of (e_w 1 − [e_v]×)
+  }
 }
 
 }  // namespace
@@ -159,18 +168,22 @@ void JointConstraint::rows(const JointSidePose& a, const JointSidePose& b, const
       return;
     case JointType::Revolute:
       pointRows(armA, armB, out);
-      // d/dt (a_A × a_B)·n = n·(ω_B − ω_A) on the constraint (a_A = a_B).
-      for (int k = 0; k < 2; ++k) {
-        const Vec3& n = k == 0 ? basis.normal1 : basis.normal2;
-        out[3 + k] = {Vec3::Zero(), -n, Vec3::Zero(), n};
+      // The exact derivative of (a_A × a_B)·n: δθ_A·(a_A × (a_B × n)) +
+      // δθ_B·(a_B × (n × a_A)), which is n·(δθ_B − δθ_A) on the constraint.
+      {
+        const Vec3 axisOfA = a.rotation * axisA, axisOfB = b.rotation * axisB;
+        for (int k = 0; k < 2; ++k) {
+          const Vec3& n = k == 0 ? basis.normal1 : basis.normal2;
+          out[3 + k] = {Vec3::Zero(), axisOfA.cross(axisOfB.cross(n)), Vec3::Zero(), axisOfB.cross(n.cross(axisOfA))};
+        }
       }
       return;
     case JointType::Fixed:
       pointRows(armA, armB, out);
-      rotationRows(out + 3);
+      rotationRows(a, b, restRelative, out + 3);
       return;
     case JointType::Prismatic: {
-      rotationRows(out);
+      rotationRows(a, b, restRelative, out);
       // d/dt (p_B − p_A)·t with t carried by A: t·(v at p_B of B − v at p_B
       // of A), so A's lever arm reaches to B's anchor.
       const Vec3 armAToB = pB - a.position;

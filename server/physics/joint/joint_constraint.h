@@ -73,7 +73,9 @@ struct JointConstraint {
 
   // C(x) at the poses, rowCount() values.
   void errors(const JointSidePose& a, const JointSidePose& b, const Basis& basis, double* out) const;
-  // The rows of J at the poses, rowCount() of them.
+  // The rows of J at the poses, rowCount() of them: the exact derivatives of
+  // errors() for velocities and turns of the sides (at any poses, on the
+  // constraint or off it), so a Newton iteration on C can use them.
   void rows(const JointSidePose& a, const JointSidePose& b, const Basis& basis, JointRow* out) const;
 
   // The joint coordinate and its rate (JointState::position, rate) from the

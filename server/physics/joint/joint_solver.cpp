@@ -2,11 +2,13 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "physics/body/integrator.h"
+#include "physics/math/rotation_matrix.h"
 
 namespace rbsim {
 
@@ -16,70 +18,104 @@ JointSidePose poseOf(const Vec3& position, const Quaternion& orientation) {
   return {position, orientation, orientation.toRotationMatrix()};
 }
 
-// K = J M⁻¹ Jᵀ over the rows, factorised (sparse LDLᵀ with a fill-reducing
-// ordering): two rows couple only through a body they share, so a chain's K
-// is block tridiagonal and its factorisation costs O(rows).
-class RowSystem {
+// Newton's matrix for the drifted errors: dC(x')/dλ, the rows at the current
+// poses (exact derivatives) times the drift's response to an impulse along
+// the start's rows: h m⁻¹ for the linear part, D I₀⁻¹ for the angular one,
+// D the derivative of the pose update's turn (body/integrator.h: q' =
+// normalise(q + ½h [0, ω] q)) with respect to ω. Not symmetric, so LU.
+class NewtonSystem {
  public:
-  template <class RowList>
-  void factor(const RowList& rows, const std::vector<JointBody>& bodies,
-              const std::vector<Mat3>& inverseInertia) {
-    const auto count = static_cast<Eigen::Index>(rows.size());
-    // The rows touching each body, in row order.
+  void factor(const std::vector<JointSolverRow>& startRows, const std::vector<JointRow>& currentRows,
+              const std::vector<JointBody>& bodies, const std::vector<Mat3>& turnResponse, double h) {
+    const auto count = static_cast<Eigen::Index>(startRows.size());
     std::vector<std::vector<std::pair<int, bool>>> touching(bodies.size());
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      if (rows[r].bodyA >= 0) touching[static_cast<std::size_t>(rows[r].bodyA)].push_back({static_cast<int>(r), false});
-      if (rows[r].bodyB >= 0) touching[static_cast<std::size_t>(rows[r].bodyB)].push_back({static_cast<int>(r), true});
+    for (std::size_t r = 0; r < startRows.size(); ++r) {
+      if (startRows[r].bodyA >= 0) touching[static_cast<std::size_t>(startRows[r].bodyA)].push_back({static_cast<int>(r), false});
+      if (startRows[r].bodyB >= 0) touching[static_cast<std::size_t>(startRows[r].bodyB)].push_back({static_cast<int>(r), true});
     }
     std::vector<Eigen::Triplet<double>> entries;
     for (std::size_t body = 0; body < bodies.size(); ++body) {
-      const double inverseMass = bodies[body].inverseMass;
-      const Mat3& inverseI = inverseInertia[body];
-      const auto& list = touching[body];
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        const JointRow& ri = rows[static_cast<std::size_t>(list[i].first)].jacobian;
-        const Vec3& linI = list[i].second ? ri.linearB : ri.linearA;
-        const Vec3 responseI = inverseI * (list[i].second ? ri.angularB : ri.angularA);
-        for (std::size_t j = 0; j <= i; ++j) {
-          const JointRow& rj = rows[static_cast<std::size_t>(list[j].first)].jacobian;
-          const Vec3& linJ = list[j].second ? rj.linearB : rj.linearA;
-          const Vec3& angJ = list[j].second ? rj.angularB : rj.angularA;
-          const double k = inverseMass * linI.dot(linJ) + angJ.dot(responseI);
-          // Lower triangle: row index >= column index.
-          const int a = std::max(list[i].first, list[j].first);
-          const int b = std::min(list[i].first, list[j].first);
-          entries.emplace_back(a, b, k);
+      const double linearResponse = h * bodies[body].inverseMass;
+      const Mat3 angularResponse = turnResponse[body] * bodies[body].startInverseInertia;
+      for (const auto& [r, rSideB] : touching[body]) {
+        const JointRow& now = currentRows[static_cast<std::size_t>(r)];
+        const Vec3& linNow = rSideB ? now.linearB : now.linearA;
+        const Vec3& angNow = rSideB ? now.angularB : now.angularA;
+        for (const auto& [c, cSideB] : touching[body]) {
+          const JointRow& start = startRows[static_cast<std::size_t>(c)].jacobian;
+          const Vec3& linStart = cSideB ? start.linearB : start.linearA;
+          const Vec3& angStart = cSideB ? start.angularB : start.angularA;
+          entries.emplace_back(r, c, linearResponse * linNow.dot(linStart) + angNow.dot(angularResponse * angStart));
         }
       }
     }
-    Eigen::SparseMatrix<double> k(count, count);
-    k.setFromTriplets(entries.begin(), entries.end());
-    // A tiny relative regularisation keeps K definite when joints are
-    // redundant (a four-bar's hinges constrain one motion twice). It only
-    // changes how fast the iteration converges, not what it converges to:
-    // the iteration stops on the constraint errors themselves.
-    for (Eigen::Index r = 0; r < count; ++r) k.coeffRef(r, r) *= 1.0 + 1e-10;
-    m_ldlt.compute(k);
-    m_ok = m_ldlt.info() == Eigen::Success;
+    Eigen::SparseMatrix<double> a(count, count);
+    a.setFromTriplets(entries.begin(), entries.end());
+    for (Eigen::Index r = 0; r < count; ++r) a.coeffRef(r, r) *= 1.0 + 1e-10;
+    a.makeCompressed();
+    m_lu.compute(a);
+    m_ok = m_lu.info() == Eigen::Success;
   }
   bool ok() const { return m_ok; }
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return m_ldlt.solve(rhs); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) { return m_lu.solve(rhs); }
 
  private:
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> m_ldlt;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
   bool m_ok = false;
 };
 
-// The pose after a drift over h from `fromPosition`/`fromOrientation` with
-// the given velocities: the semi-implicit integrator's pose update.
-void drift(const Vec3& fromPosition, const Quaternion& fromOrientation, const Vec3& linearVelocity,
-           const Vec3& angularVelocity, double h, Vec3& position, Quaternion& orientation) {
-  const IntegratedPose pose = advancedPose(fromPosition, fromOrientation, linearVelocity, angularVelocity, h);
-  position = pose.position;
-  orientation = pose.orientation;
+// d(turn)/dω of the pose update q' = u / |u|, u = q + ½h [0, ω] q: a change
+// δω turns q' by (h / |u|)(r_w 1 − [r_v]×) δω with r = q q'⁻¹ (h 1 for a
+// small turn).
+Mat3 turnResponse(const Quaternion& from, const Vec3& omega, double h) {
+  const Quaternion u = addScaled(from, orientationRate(from, omega), h);
+  const double norm = u.norm();
+  const Quaternion r = from * Quaternion{u.w / norm, -u.x / norm, -u.y / norm, -u.z / norm};
+  return (h / norm) * (r.w * Mat3::Identity() - crossMatrix(r.vec()));
 }
 
 }  // namespace
+
+void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
+                     const std::vector<Mat3>& inverseInertia) {
+  const auto count = static_cast<Eigen::Index>(rows.size());
+  // The rows touching each body, in row order.
+  std::vector<std::vector<std::pair<int, bool>>> touching(bodies.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (rows[r].bodyA >= 0) touching[static_cast<std::size_t>(rows[r].bodyA)].push_back({static_cast<int>(r), false});
+    if (rows[r].bodyB >= 0) touching[static_cast<std::size_t>(rows[r].bodyB)].push_back({static_cast<int>(r), true});
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t body = 0; body < bodies.size(); ++body) {
+    const double inverseMass = bodies[body].inverseMass;
+    const Mat3& inverseI = inverseInertia[body];
+    const auto& list = touching[body];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const JointRow& ri = rows[static_cast<std::size_t>(list[i].first)].jacobian;
+      const Vec3& linI = list[i].second ? ri.linearB : ri.linearA;
+      const Vec3 responseI = inverseI * (list[i].second ? ri.angularB : ri.angularA);
+      for (std::size_t j = 0; j <= i; ++j) {
+        const JointRow& rj = rows[static_cast<std::size_t>(list[j].first)].jacobian;
+        const Vec3& linJ = list[j].second ? rj.linearB : rj.linearA;
+        const Vec3& angJ = list[j].second ? rj.angularB : rj.angularA;
+        const double k = inverseMass * linI.dot(linJ) + angJ.dot(responseI);
+        // Lower triangle: row index >= column index.
+        const int a = std::max(list[i].first, list[j].first);
+        const int b = std::min(list[i].first, list[j].first);
+        entries.emplace_back(a, b, k);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> k(count, count);
+  k.setFromTriplets(entries.begin(), entries.end());
+  // A tiny relative regularisation keeps K definite when joints are
+  // redundant (a four-bar's hinges constrain one motion twice). It only
+  // changes how fast the iteration converges, not what it converges to:
+  // the iteration stops on the constraint errors themselves.
+  for (Eigen::Index r = 0; r < count; ++r) k.coeffRef(r, r) *= 1.0 + 1e-10;
+  m_ldlt.compute(k);
+  m_ok = m_ldlt.info() == Eigen::Success;
+}
 
 JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB, bool atStart) {
   const int index = sideB ? link.bodyB : link.bodyA;
@@ -88,15 +124,115 @@ JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodi
   return atStart ? poseOf(body.startPosition, body.startOrientation) : poseOf(body.position, body.orientation);
 }
 
-void JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                                     const std::vector<JointConstraint::Basis>& bases,
+                                     const std::vector<double>* targets, Drift& drift, double h,
+                                     const JointSolverSettings& settings, double& largest) {
+  const auto count = static_cast<Eigen::Index>(m_rows.size());
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(count);
+  Eigen::VectorXd residual(count);
+  // The errors at the current poses less the targets; returns the largest.
+  const auto measure = [&] {
+    double largest = 0.0;
+    Eigen::Index r = 0;
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      const JointLink& link = links[l];
+      double errors[kMaxJointRows];
+      link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
+      for (int k = 0; k < link.joint->rowCount(); ++k, ++r) {
+        residual[r] = errors[k] - (targets ? (*targets)[static_cast<std::size_t>(r)] : 0.0);
+        largest = std::max(largest, std::abs(residual[r]));
+      }
+    }
+    return largest;
+  };
+  const auto omegaOf = [&](std::size_t i) {
+    return Vec3(drift.angularVelocity[i] + bodies[i].startInverseInertia * drift.angularImpulse[i]);
+  };
+  const auto moveAll = [&] {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const IntegratedPose pose =
+          advancedPose(drift.fromPosition[i], drift.fromOrientation[i],
+                       drift.linearVelocity[i] + bodies[i].inverseMass * drift.linearImpulse[i], omegaOf(i), h);
+      bodies[i].position = pose.position;
+      bodies[i].orientation = pose.orientation;
+    }
+  };
+  const auto applyImpulse = [&](const Eigen::VectorXd& impulse, double scale) {
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Row& row = m_rows[static_cast<std::size_t>(r)];
+      const double lambda = scale * impulse[r];
+      if (row.bodyA >= 0) {
+        drift.linearImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.linearA;
+        drift.angularImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.angularA;
+      }
+      if (row.bodyB >= 0) {
+        drift.linearImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.linearB;
+        drift.angularImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.angularB;
+      }
+    }
+  };
+
+  moveAll();
+  largest = measure();
+  // Quasi-Newton with the start's K while it converges fast (the usual
+  // case: a few iterations); Newton with the exact derivative once it does
+  // not (fast turns, where the start's rows are too far from the current
+  // ones); an iterate that makes the error larger is halved back.
+  bool newton = false;
+  NewtonSystem exact;
+  std::vector<JointRow> currentRows(m_rows.size());
+  std::vector<Mat3> turns(bodies.size());
+  for (int iteration = 0; m_system.ok() && iteration < settings.maxIterations; ++iteration) {
+    if (largest <= settings.tolerance) break;
+    Eigen::VectorXd impulse;
+    if (newton) {
+      std::size_t r = 0;
+      for (std::size_t l = 0; l < links.size(); ++l) {
+        const JointLink& link = links[l];
+        link.joint->rows(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l],
+                         currentRows.data() + r);
+        r += static_cast<std::size_t>(link.joint->rowCount());
+      }
+      for (std::size_t i = 0; i < bodies.size(); ++i) turns[i] = turnResponse(drift.fromOrientation[i], omegaOf(i), h);
+      exact.factor(m_rows, currentRows, bodies, turns, h);
+      if (!exact.ok()) break;
+      impulse = exact.solve(-residual);
+    } else {
+      impulse = m_system.solve(-residual / h);
+    }
+    double scale = 1.0, next = largest;
+    for (int halving = 0; halving < 8; ++halving) {
+      applyImpulse(impulse, scale);
+      moveAll();
+      next = measure();
+      if (next < largest) break;
+      applyImpulse(impulse, -scale);  // back, and try half of it
+      scale *= 0.5;
+      moveAll();
+      measure();
+    }
+    if (next >= largest) break;  // no step along it helps: keep the best poses
+    total += scale * impulse;
+    if (next > 0.25 * largest) newton = true;
+    largest = next;
+  }
+  return total;
+}
+
+bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                  double h, const JointSolverSettings& settings,
                                  std::vector<JointLinkResult>& results) {
   results.assign(links.size(), JointLinkResult{});
   m_rows.clear();
-  // The rows at the step's start, and the errors there (kept by the
-  // momentum projection; removed by the position-only one).
+  // The rows at the step's start, and the errors there. An error from the
+  // last step's rounding is closed with the rest; a larger one came from
+  // outside and is kept by the momentum projection, then removed by the
+  // positions-only one (so that it turns into no velocity).
+  constexpr double kOutsideError = 1e-9;  // m or rad
   std::vector<JointConstraint::Basis> bases(links.size());
-  std::vector<double> startErrors;
+  std::vector<double> targets;
+  bool outsideError = false;
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     const JointSidePose a = sidePose(link, bodies, false, true);
@@ -108,121 +244,77 @@ void JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     link.joint->errors(a, b, bases[l], errors);
     for (int r = 0; r < link.joint->rowCount(); ++r) {
       m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
-      startErrors.push_back(errors[r]);
+      const bool outside = std::abs(errors[r]) > kOutsideError;
+      targets.push_back(outside ? errors[r] : 0.0);
+      outsideError = outsideError || outside;
     }
   }
   for (JointBody& body : bodies) {
     body.position = body.startPosition;
     body.orientation = body.startOrientation;
   }
-  if (m_rows.empty()) return;
+  if (m_rows.empty()) return true;
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  RowSystem system;
-  system.factor(m_rows, bodies, startInverseInertia);
+  m_system.factor(m_rows, bodies, startInverseInertia);
 
-  const auto count = static_cast<Eigen::Index>(m_rows.size());
-  Eigen::VectorXd total = Eigen::VectorXd::Zero(count);  // the momentum impulses, N·s
-  // The errors at the current poses, less `target`; returns the largest.
-  Eigen::VectorXd residual(count);
-  const auto measure = [&](const std::vector<double>* target) {
-    double largest = 0.0;
-    Eigen::Index r = 0;
-    for (std::size_t l = 0; l < links.size(); ++l) {
-      const JointLink& link = links[l];
-      double errors[kMaxJointRows];
-      link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
-      for (int k = 0; k < link.joint->rowCount(); ++k, ++r) {
-        residual[r] = errors[k] - (target ? (*target)[static_cast<std::size_t>(r)] : 0.0);
-        largest = std::max(largest, std::abs(residual[r]));
-      }
-    }
-    return largest;
-  };
-
-  // Steps 1 and 2: drift, then impulses along the start's rows until the
-  // drifted poses have the start's errors.
-  const auto driftAll = [&] {
-    for (JointBody& body : bodies)
-      drift(body.startPosition, body.startOrientation, body.inverseMass * body.linearMomentum,
-            body.startInverseInertia * body.angularMomentum, h, body.position, body.orientation);
-  };
-  driftAll();
-  for (int iteration = 0; system.ok() && iteration < settings.maxIterations; ++iteration) {
-    if (measure(&startErrors) <= settings.tolerance) break;
-    const Eigen::VectorXd impulse = system.solve(-residual / h);
-    for (Eigen::Index r = 0; r < count; ++r) {
-      const Row& row = m_rows[static_cast<std::size_t>(r)];
-      const double lambda = impulse[r];
-      if (row.bodyA >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-        body.linearMomentum += lambda * row.jacobian.linearA;
-        body.angularMomentum += lambda * row.jacobian.angularA;
-      }
-      if (row.bodyB >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-        body.linearMomentum += lambda * row.jacobian.linearB;
-        body.angularMomentum += lambda * row.jacobian.angularB;
-      }
-    }
-    total += impulse;
-    driftAll();
+  // Steps 1 and 2: from the start with the momenta's velocities; the
+  // impulses change the momenta.
+  Drift momenta;
+  for (const JointBody& body : bodies) {
+    momenta.fromPosition.push_back(body.startPosition);
+    momenta.fromOrientation.push_back(body.startOrientation);
+    momenta.linearVelocity.push_back(body.inverseMass * body.linearMomentum);
+    momenta.angularVelocity.push_back(body.startInverseInertia * body.angularMomentum);
+  }
+  momenta.linearImpulse.assign(bodies.size(), Vec3::Zero());
+  momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
+  double left = 0.0;
+  const Eigen::VectorXd total = project(links, bodies, bases, &targets, momenta, h, settings, left);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].linearMomentum += momenta.linearImpulse[i];
+    bodies[i].angularMomentum += momenta.angularImpulse[i];
   }
 
-  // Step 3: the contacts' pseudo-velocities and the start's errors, by
-  // moving positions along the same rows (a velocity that only positions see).
+  // Step 3: the contacts' pseudo-velocities and the outside errors, by
+  // moving positions along the same rows (velocities only positions see).
   const bool anyPseudo = std::any_of(bodies.begin(), bodies.end(), [](const JointBody& b) {
     return !b.pseudoLinear.isZero(0.0) || !b.pseudoAngular.isZero(0.0);
   });
-  if (system.ok() && (anyPseudo || measure(nullptr) > settings.tolerance)) {
-    std::vector<Vec3> fromPosition, pseudoLinear, pseudoAngular;
-    std::vector<Quaternion> fromOrientation;
+  if (anyPseudo || outsideError) {
+    Drift pseudo;
     for (const JointBody& body : bodies) {
-      fromPosition.push_back(body.position);
-      fromOrientation.push_back(body.orientation);
-      pseudoLinear.push_back(body.pseudoLinear);
-      pseudoAngular.push_back(body.pseudoAngular);
+      pseudo.fromPosition.push_back(body.position);
+      pseudo.fromOrientation.push_back(body.orientation);
+      pseudo.linearVelocity.push_back(body.pseudoLinear);
+      pseudo.angularVelocity.push_back(body.pseudoAngular);
     }
-    const auto movePseudo = [&] {
-      for (std::size_t i = 0; i < bodies.size(); ++i)
-        drift(fromPosition[i], fromOrientation[i], pseudoLinear[i], pseudoAngular[i], h, bodies[i].position,
-              bodies[i].orientation);
-    };
-    movePseudo();
-    for (int iteration = 0; iteration < settings.maxIterations; ++iteration) {
-      if (measure(nullptr) <= settings.tolerance) break;
-      const Eigen::VectorXd impulse = system.solve(-residual / h);
-      for (Eigen::Index r = 0; r < count; ++r) {
-        const Row& row = m_rows[static_cast<std::size_t>(r)];
-        for (const bool sideB : {false, true}) {
-          const int index = sideB ? row.bodyB : row.bodyA;
-          if (index < 0) continue;
-          const JointBody& body = bodies[static_cast<std::size_t>(index)];
-          const auto i = static_cast<std::size_t>(index);
-          pseudoLinear[i] += impulse[r] * body.inverseMass * (sideB ? row.jacobian.linearB : row.jacobian.linearA);
-          pseudoAngular[i] += impulse[r] * (body.startInverseInertia * (sideB ? row.jacobian.angularB : row.jacobian.angularA));
-        }
-      }
-      movePseudo();
-    }
+    pseudo.linearImpulse.assign(bodies.size(), Vec3::Zero());
+    pseudo.angularImpulse.assign(bodies.size(), Vec3::Zero());
+    double pseudoLeft = 0.0;
+    project(links, bodies, bases, nullptr, pseudo, h, settings, pseudoLeft);
   }
 
   // What each joint did to B, and the error it leaves.
-  measure(nullptr);
+  const auto count = static_cast<Eigen::Index>(m_rows.size());
   for (Eigen::Index r = 0; r < count; ++r) {
     const Row& row = m_rows[static_cast<std::size_t>(r)];
     JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
     result.linearImpulse += total[r] * row.jacobian.linearB;
     result.angularImpulse += total[r] * row.jacobian.angularB;
-    result.error = std::max(result.error, std::abs(residual[r]));
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
+    const JointLink& link = links[l];
     // The couple about B's anchor rather than about its centre of mass.
-    const JointSidePose b = sidePose(links[l], bodies, true, true);
-    const Vec3 arm = b.rotation * links[l].joint->anchorB;
+    const JointSidePose b = sidePose(link, bodies, true, true);
+    const Vec3 arm = b.rotation * link.joint->anchorB;
     results[l].angularImpulse -= arm.cross(results[l].linearImpulse);
+    double errors[kMaxJointRows];
+    link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
+    for (int k = 0; k < link.joint->rowCount(); ++k) results[l].error = std::max(results[l].error, std::abs(errors[k]));
   }
+  return left <= settings.tolerance;
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,

@@ -25,6 +25,8 @@
 // symplectic: a frictionless pendulum keeps its energy, its period is
 // right to O(h²).
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
@@ -74,11 +76,35 @@ struct JointLinkResult {
   double error = 0.0;                  // largest |C| at the end poses
 };
 
+// One scalar row of the step's system: the link it belongs to and its sides.
+struct JointSolverRow {
+  int bodyA = -1, bodyB = -1;  // JointBody indices, -1: a fixed side
+  int link = 0;
+  JointRow jacobian;
+};
+
+// K = J M⁻¹ Jᵀ over the rows, factorised (sparse LDLᵀ with a fill-reducing
+// ordering): two rows couple only through a body they share, so a chain's K
+// is block tridiagonal and its factorisation costs O(rows).
+class RowSystem {
+ public:
+  void factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
+              const std::vector<Mat3>& inverseInertia);
+  bool ok() const { return m_ok; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return m_ldlt.solve(rhs); }
+
+ private:
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> m_ldlt;
+  bool m_ok = false;
+};
+
 class JointSolver {
  public:
   // Steps 1–3: the bodies' end poses (position, orientation) and the
-  // momenta with the constraint impulses of the step.
-  void solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+  // momenta with the constraint impulses of the step. False when the
+  // momentum projection did not close the joints to the tolerance (the
+  // step is then too long for it: the caller sub-steps).
+  bool solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                       const JointSolverSettings& settings, std::vector<JointLinkResult>& results);
   // Step 4: with the bodies at their end poses (`inverseInertia` there, one
   // per body) and their momenta after the second half kick, removes every
@@ -87,12 +113,25 @@ class JointSolver {
                          const std::vector<Mat3>& inverseInertia, std::vector<JointLinkResult>& results);
 
  private:
-  struct Row {
-    int bodyA = -1, bodyB = -1;
-    int link = 0;
-    JointRow jacobian;
+  using Row = JointSolverRow;
+  // Where a projection drifts the bodies from, with which velocities, and
+  // the impulses it has added (per body, along the start's rows): the
+  // velocity drifted with is velocity + M₀⁻¹ impulse.
+  struct Drift {
+    std::vector<Vec3> fromPosition;
+    std::vector<Quaternion> fromOrientation;
+    std::vector<Vec3> linearVelocity, angularVelocity;
+    std::vector<Vec3> linearImpulse, angularImpulse;
   };
+  // Impulses along the start's rows until the drifted poses have the
+  // errors `targets` (null: none); returns them per row.
+  // The largest error left is in `largest`.
+  Eigen::VectorXd project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                          const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets,
+                          Drift& drift, double h, const JointSolverSettings& settings, double& largest);
+
   std::vector<Row> m_rows;
+  RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
 };
 
 // The side poses of a link from the bodies' current poses (or start poses).

@@ -1,4 +1,5 @@
 #include "physics/solver/contact_solver.h"
+#include "physics/solver/velocity_projection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,14 +79,17 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
                           std::vector<SolverBody>& bodies, const std::vector<int32_t>& serials,
                           const std::vector<SolvedManifold>& previous,
                           const ContactSolverSettings& settings, double dt,
-                          std::vector<SolvedManifold>& result, const std::vector<int>& levels) {
+                          std::vector<SolvedManifold>& result, const std::vector<int>& levels,
+                          const VelocityProjection* equalities) {
   prepare(contacts, materials, bodies, serials, previous, settings, dt, levels);
   if (settings.warmStarting) warmStart(bodies);
+  if (equalities) equalities->project(bodies);
   const bool shock = settings.shockPropagation && !levels.empty();
   for (int i = 0; i < settings.velocityIterations; ++i) {
     const bool last = i == settings.velocityIterations - 1;
     if (!(shock && last)) {
       solveVelocities(bodies, false);
+      if (equalities) equalities->project(bodies);
       continue;
     }
     // The shock sweep corrects velocities only: its impulses belong to a
@@ -101,6 +105,7 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
       saved.twist = c.twistImpulse;
     }
     solveVelocities(bodies, true);
+    if (equalities) equalities->project(bodies);
     for (std::size_t m = 0; m < m_constraints.size(); ++m) {
       ManifoldConstraint& c = m_constraints[m];
       const AccumulatedImpulses& saved = m_saved[m];

@@ -75,11 +75,13 @@ class ContactSolver {
   // `previous` is last step's result, sorted as `contacts`: matching points
   // (same bodies, pieces and feature id) start from their old impulses.
   // `levels` (per body: contacts away from a static body; empty: none) turns
-  // on shock propagation in the last velocity sweep.
+  // on shock propagation in the last velocity sweep. `equalities` (may be
+  // null: none) are projected after the warm start and after every sweep.
   void solve(const std::vector<BodyContact>& contacts, const std::vector<PairMaterial>& materials,
              std::vector<SolverBody>& bodies, const std::vector<int32_t>& serials,
              const std::vector<SolvedManifold>& previous, const ContactSolverSettings& settings,
-             double dt, std::vector<SolvedManifold>& result, const std::vector<int>& levels = {});
+             double dt, std::vector<SolvedManifold>& result, const std::vector<int>& levels = {},
+             const class VelocityProjection* equalities = nullptr);
 
  private:
   // The normal impulses of a manifold's points are solved as one block, in

@@ -393,7 +393,7 @@ void World::step() {
   if (!anyContact) {
     const std::vector<char> jointed = findJointedBodies();
     integrateFree(m_settings.dt, jointed);
-    stepJointedBodies(jointed, {}, m_settings.dt);
+    stepJointedBodies(jointed, {}, {}, m_settings.dt);
     m_contacts.clear();
   } else if (m_settings.contact.model == ContactModel::Penalty) {
     stepPenalty();

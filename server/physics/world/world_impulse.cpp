@@ -2,6 +2,7 @@
 // woken, velocities after the forces, colliding contacts moved to their time
 // of impact, sequential impulses (solver/contact_solver.h), positions, sleep.
 #include <algorithm>
+#include <memory>
 #include <tuple>
 
 #include "physics/body/body.h"
@@ -11,6 +12,7 @@
 #include "physics/math/rotation_matrix.h"
 #include "physics/world/contact_detection.h"
 #include "physics/solver/contact_solver.h"
+#include "physics/solver/velocity_projection.h"
 #include "physics/world/impacts.h"
 #include "rbsim/physics/world.h"
 
@@ -48,10 +50,15 @@ void World::stepImpulse() {
   const std::vector<char> jointed = findJointedBodies();  // empty: no joint to enforce
   if (detected.empty()) {
     integrateFree(dt, jointed);  // nothing touches: every unjointed body flies free
-    stepJointedBodies(jointed, {}, dt);
+    stepJointedBodies(jointed, {}, {}, dt);
     m_contacts.clear();
   } else {
     ContactStep step = selectContacts(detected);
+    // A jointed island that touches something is solved with the contacts:
+    // all its bodies go to the solver, and its joints' velocity rows are
+    // projected between the contact sweeps.
+    std::unique_ptr<VelocityProjection> jointRows;
+    if (!jointed.empty()) jointRows = addJointedIslandsInContact(step, jointed, islandOf);
     if (jointed.empty()) {
       integrateFree(dt, step.inContact);  // bodies touching nothing
     } else {
@@ -62,9 +69,9 @@ void World::stepImpulse() {
     loadSolverBodies(step, dt, jointed);
     findImpacts(step);
     std::vector<SolvedManifold> solved;
-    solveContacts(*step.contacts, m_settings.contact.solver, dt, solved);
+    solveContacts(*step.contacts, m_settings.contact.solver, dt, solved, jointRows.get());
     integrateSolvedBodies(step, solved, dt, jointed);
-    stepJointedBodies(jointed, step.solving, dt);
+    stepJointedBodies(jointed, step.solving, islandOf, dt);
     keepSleepingContacts(detected, solved);
     m_contacts = std::move(solved);
   }
@@ -113,11 +120,8 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
     sb.position = body.state().position;
     if (!step.solving[i]) continue;
     const ForceInputs inputs = forcesOn(i);
-    // A jointed body takes the joint step's first half kick (the contact
-    // impulses then act on the velocity its drift uses, as for the others).
     const bool isJointed = !jointed.empty() && jointed[i];
-    const Momenta momenta =
-        integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, isJointed ? 0.5 * h : h);
+    const Momenta momenta = integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
     sb.inverseMass = body.dynamics().inverseMass;
     sb.inverseInertia = body.inverseInertiaWorld();
     sb.startLinearVelocity = body.linearVelocity();
@@ -210,7 +214,7 @@ void World::findImpacts(ContactStep& step) {
 
 void World::solveContacts(const std::vector<BodyContact>& active,
                           const ContactSolverSettings& settings, double h,
-                          std::vector<SolvedManifold>& solved) {
+                          std::vector<SolvedManifold>& solved, const VelocityProjection* equalities) {
   std::vector<int32_t> serials(m_bodies.size());
   for (std::size_t i = 0; i < m_bodies.size(); ++i) serials[i] = m_bodies[i].serial();
   std::vector<PairMaterial> materials;
@@ -220,7 +224,7 @@ void World::solveContacts(const std::vector<BodyContact>& active,
         combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
                          m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
   m_solver->solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
-                 contactLevels(active));
+                 contactLevels(active), equalities);
 }
 
 std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) const {

@@ -9,6 +9,7 @@
 #include "physics/collision/body_contact.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
+#include "physics/joint/joint_velocity_projection.h"
 #include "physics/math/rotation_matrix.h"
 #include "physics/solver/contact_solver.h"
 #include "rbsim/physics/world.h"
@@ -193,39 +194,8 @@ std::vector<char> World::findJointedBodies() const {
   return jointed;
 }
 
-void World::stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving, double h) {
-  if (jointed.empty()) return;
-  const std::size_t n = m_bodies.size();
-  // The jointed bodies as the joint solver sees them, after the first half
-  // kick (and the contact impulses, for those the contact solver moved).
-  std::vector<int> local(n, -1);
-  std::vector<std::size_t> dense;
-  std::vector<JointBody> bodies;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!jointed[i]) continue;
-    const Body& body = m_bodies[i];
-    local[i] = static_cast<int>(bodies.size());
-    dense.push_back(i);
-    JointBody jb;
-    jb.startPosition = body.position();
-    jb.startOrientation = body.orientation();
-    jb.startInverseInertia = body.inverseInertiaWorld();
-    jb.inverseMass = body.inverseMass();
-    if (!solving.empty() && solving[i]) {
-      const SolverBody& sb = m_solverBodies[i];
-      jb.linearMomentum = body.mass() * sb.linearVelocity;
-      jb.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
-      jb.pseudoLinear = sb.pseudoLinear;
-      jb.pseudoAngular = sb.pseudoAngular;
-    } else {
-      const Momenta kicked = integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(i), 0.5 * h);
-      jb.linearMomentum = kicked.linear;
-      jb.angularMomentum = kicked.angular;
-    }
-    bodies.push_back(jb);
-  }
-  std::vector<JointLink> links;
-  std::vector<std::size_t> linkJoint;
+void World::collectJointLinks(const std::vector<int>& local, std::vector<JointLink>& links,
+                              std::vector<std::size_t>& linkJoint) const {
   for (std::size_t j = 0; j < m_joints.size(); ++j) {
     const JointConstraint& joint = m_joints[j];
     if (!jointIsEnforced(joint)) continue;
@@ -239,48 +209,179 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
       if (id.isNull()) continue;
       const std::size_t i = denseIndexOf(id);
       index = local[i];
-      if (index < 0) fixed = poseOfBody(m_bodies[i]);  // static (or at rest in the same pose)
+      if (index < 0) fixed = poseOfBody(m_bodies[i]);  // static
       anyMoving = anyMoving || index >= 0;
     }
     if (!anyMoving) continue;
     links.push_back(link);
     linkJoint.push_back(j);
   }
+}
 
-  JointSolver solver;
-  std::vector<JointLinkResult> results;
-  solver.solvePositions(links, bodies, h, JointSolverSettings{}, results);
-
-  // The second half kick at the end poses, then the velocities tangent to
-  // the joints there.
-  std::vector<RigidState> ends(bodies.size());
-  std::vector<Mat3> endInverseInertia(bodies.size());
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
-    const std::size_t i = dense[k];
-    const Body& body = m_bodies[i];
-    JointBody& jb = bodies[k];
-    RigidState state{jb.position, jb.orientation, jb.linearMomentum, jb.angularMomentum};
-    const Mat3 rotation = state.orientation.toRotationMatrix();
-    const Momenta kicked = integrateMomenta(state, rotation, body.dynamics(), forcesOn(i), 0.5 * h);
-    jb.linearMomentum = kicked.linear;
-    jb.angularMomentum = kicked.angular;
-    ends[k] = state;
-    endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+std::unique_ptr<VelocityProjection> World::addJointedIslandsInContact(ContactStep& step,
+                                                                      const std::vector<char>& jointed,
+                                                                      const std::vector<int>& islandOf) const {
+  const std::size_t n = m_bodies.size();
+  std::vector<char> touching(n, 0);  // per island root
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i] || !step.solving[i]) continue;
+    touching[static_cast<std::size_t>(islandOf[i])] = 1;
+    any = true;
   }
-  solver.projectVelocities(links, bodies, endInverseInertia, results);
+  if (!any) return nullptr;
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> solverIndex;
+  std::vector<JointBody> bodies;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i] || !touching[static_cast<std::size_t>(islandOf[i])]) continue;
+    step.solving[i] = 1;
+    const Body& body = m_bodies[i];
+    local[i] = static_cast<int>(bodies.size());
+    solverIndex.push_back(i);
+    JointBody jb;
+    jb.startPosition = body.position();
+    jb.startOrientation = body.orientation();
+    jb.startInverseInertia = body.inverseInertiaWorld();
+    jb.inverseMass = body.inverseMass();
+    bodies.push_back(jb);
+  }
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  collectJointLinks(local, links, linkJoint);
+  // Joints of islands that touch nothing have no side here: leave them out.
+  std::vector<JointLink> inContact;
+  for (const JointLink& link : links)
+    if (link.bodyA >= 0 || link.bodyB >= 0) inContact.push_back(link);
+  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
+}
 
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
+void World::stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving,
+                              const std::vector<int>& islandOf, double h) {
+  if (jointed.empty()) return;
+  const std::size_t n = m_bodies.size();
+  // Islands with a jointed body in contact take the semi-implicit step.
+  std::vector<char> contactIsland;
+  if (!solving.empty()) {
+    contactIsland.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (jointed[i] && solving[i]) contactIsland[static_cast<std::size_t>(islandOf[i])] = 1;
+  }
+  // The jointed bodies: where they start, their momenta after the first
+  // half kick (and the contact impulses, for those the contact solver
+  // moved), the contact impulses alone, the split-impulse pseudo-velocities.
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> dense;
+  std::vector<Momenta> kicked, contactImpulse;
+  std::vector<Vec3> pseudoLinear, pseudoAngular;
+  std::vector<char> staggered;  // per jointed body: RATTLE's half kicks (else the whole kick first)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i]) continue;
+    const Body& body = m_bodies[i];
+    local[i] = static_cast<int>(dense.size());
+    dense.push_back(i);
+    const bool halves = contactIsland.empty() || !contactIsland[static_cast<std::size_t>(islandOf[i])];
+    staggered.push_back(halves ? 1 : 0);
+    const Momenta free =
+        integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(i), halves ? 0.5 * h : h);
+    Momenta withContacts = free;
+    Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+    if (!solving.empty() && solving[i]) {
+      const SolverBody& sb = m_solverBodies[i];
+      withContacts = {body.mass() * sb.linearVelocity, body.inertiaWorld() * sb.angularVelocity};
+      linear = sb.pseudoLinear;
+      angular = sb.pseudoAngular;
+    }
+    kicked.push_back(withContacts);
+    contactImpulse.push_back({withContacts.linear - free.linear, withContacts.angular - free.angular});
+    pseudoLinear.push_back(linear);
+    pseudoAngular.push_back(angular);
+  }
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  collectJointLinks(local, links, linkJoint);
+
+  // The step in `parts` equal sub-steps, each a whole RATTLE step (half
+  // kick, drift and projection, half kick, velocity projection); the
+  // contact impulses and the pseudo-velocities' displacement go into the
+  // first. Returns whether every projection converged.
+  JointSolver solver;
+  std::vector<RigidState> ends(dense.size());
+  std::vector<Vec3> reactionLinear(links.size()), reactionAngular(links.size());
+  const auto attempt = [&](int parts) {
+    const double s = h / parts;
+    bool converged = true;
+    std::fill(reactionLinear.begin(), reactionLinear.end(), Vec3::Zero());
+    std::fill(reactionAngular.begin(), reactionAngular.end(), Vec3::Zero());
+    for (std::size_t k = 0; k < dense.size(); ++k) ends[k] = m_bodies[dense[k]].state();
+    for (int part = 0; part < parts; ++part) {
+      std::vector<JointBody> bodies(dense.size());
+      for (std::size_t k = 0; k < dense.size(); ++k) {
+        const Body& body = m_bodies[dense[k]];
+        const RigidState& start = ends[k];
+        const Mat3 rotation = start.orientation.toRotationMatrix();
+        JointBody& jb = bodies[k];
+        jb.startPosition = start.position;
+        jb.startOrientation = start.orientation;
+        jb.startInverseInertia = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+        jb.inverseMass = body.inverseMass();
+        Momenta momenta = kicked[k];
+        if (parts > 1) {
+          momenta = integrateMomenta(start, rotation, body.dynamics(), forcesOn(dense[k]), staggered[k] ? 0.5 * s : s);
+          if (part == 0) {
+            momenta.linear += contactImpulse[k].linear;
+            momenta.angular += contactImpulse[k].angular;
+          }
+        }
+        jb.linearMomentum = momenta.linear;
+        jb.angularMomentum = momenta.angular;
+        if (part == 0) {
+          jb.pseudoLinear = static_cast<double>(parts) * pseudoLinear[k];
+          jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
+        }
+      }
+      std::vector<JointLinkResult> results;
+      converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
+      // The second half kick at the end poses, then the velocities tangent
+      // to the joints there.
+      std::vector<Mat3> endInverseInertia(bodies.size());
+      for (std::size_t k = 0; k < bodies.size(); ++k) {
+        const Body& body = m_bodies[dense[k]];
+        JointBody& jb = bodies[k];
+        const RigidState state{jb.position, jb.orientation, jb.linearMomentum, jb.angularMomentum};
+        const Mat3 rotation = state.orientation.toRotationMatrix();
+        if (staggered[k]) {
+          const Momenta end = integrateMomenta(state, rotation, body.dynamics(), forcesOn(dense[k]), 0.5 * s);
+          jb.linearMomentum = end.linear;
+          jb.angularMomentum = end.angular;
+        }
+        endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+      }
+      solver.projectVelocities(links, bodies, endInverseInertia, results);
+      for (std::size_t k = 0; k < bodies.size(); ++k)
+        ends[k] = {bodies[k].position, bodies[k].orientation, bodies[k].linearMomentum, bodies[k].angularMomentum};
+      for (std::size_t l = 0; l < links.size(); ++l) {
+        reactionLinear[l] += results[l].linearImpulse;
+        reactionAngular[l] += results[l].angularImpulse;
+      }
+    }
+    return converged;
+  };
+  // Sub-steps only where one step is too long for the projection to find
+  // the joints' closure (fast turns of light links: the start's rows no
+  // longer reach it): halve until it converges, up to 16 parts.
+  constexpr int kMaxParts = 16;
+  for (int parts = 1; !attempt(parts) && parts < kMaxParts;) parts *= 2;
+
+  for (std::size_t k = 0; k < dense.size(); ++k) {
     Body& body = m_bodies[dense[k]];
-    RigidState state = ends[k];
-    state.linearMomentum = bodies[k].linearMomentum;
-    state.angularMomentum = bodies[k].angularMomentum;
-    body.moveTo(state);
+    body.moveTo(ends[k]);
     noteSpeeds(body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
     JointConstraint& joint = m_joints[linkJoint[l]];
-    joint.lastForce = results[l].linearImpulse / h;
-    joint.lastTorque = results[l].angularImpulse / h;
+    joint.lastForce = reactionLinear[l] / h;
+    joint.lastTorque = reactionAngular[l] / h;
   }
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +39,8 @@ struct ExternalLoad;
 struct FlyingBody;
 struct ForceInputs;
 struct JointConstraint;
+struct JointLink;
+class VelocityProjection;
 struct SolverBody;
 
 // A force and a couple on a body for the coming step. The force acts at a
@@ -254,14 +257,23 @@ class World {
   ContactStep selectContacts(const std::vector<BodyContact>& detected) const;
   // The solver's bodies: velocities after the forces of h (semi-implicit
   // Euler's first half); marks the fast ones.
-  // Jointed bodies (`jointed`, empty: none) get half the kick: the joint
-  // step's first half.
+  // Jointed bodies (`jointed`, empty: none) are never fast (their flight is
+  // not free: no time of impact).
   void loadSolverBodies(ContactStep& step, double h, const std::vector<char>& jointed);
   // Colliding contacts (world/impacts.h): each is moved to its time of
   // impact, with the manifold there, and its bodies' solver data with it.
   void findImpacts(ContactStep& step);
   void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
-                     double h, std::vector<SolvedManifold>& solved);
+                     double h, std::vector<SolvedManifold>& solved, const VelocityProjection* equalities);
+  // Puts every jointed body of an island that touches something into
+  // step.solving (the contact path's kick and solve) and returns the joints'
+  // velocity rows for the contact solve (null when no such island).
+  std::unique_ptr<VelocityProjection> addJointedIslandsInContact(ContactStep& step, const std::vector<char>& jointed,
+                                                                 const std::vector<int>& islandOf) const;
+  // The enforced joints with a moving side as the joint solver takes them:
+  // sides by `local` index (-1: a fixed pose), with the joint's index.
+  void collectJointLinks(const std::vector<int>& local, std::vector<JointLink>& links,
+                         std::vector<std::size_t>& linkJoint) const;
   // Per body: how many contacts away from a static body (shock propagation).
   std::vector<int> contactLevels(const std::vector<BodyContact>& active) const;
   // Momenta from the solved velocities and positions over h: semi-implicit
@@ -279,10 +291,15 @@ class World {
   // with an enforced joint (empty when there is none): the joint step moves
   // it instead of the free integration and the contact path.
   std::vector<char> findJointedBodies() const;
-  // The joint step of the jointed bodies over h: half kick, the contact
-  // impulses of m_solverBodies for the `solving` ones (empty: none), drift
-  // and projection (joint/joint_solver.h), half kick, velocity projection.
-  void stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving, double h);
+  // The joint step of the jointed bodies over h (joint/joint_solver.h). An
+  // island (`islandOf`) that touches nothing takes RATTLE: half kick, drift
+  // and projection, half kick, velocity projection. An island in contact
+  // takes the contact path's semi-implicit step around the same projection:
+  // the whole kick and the contact impulses of m_solverBodies (for the
+  // `solving` bodies) before the drift, and no kick after it, so that a
+  // body resting on the ground leaves the step at rest.
+  void stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving,
+                         const std::vector<int>& islandOf, double h);
   std::string invalidJointReason(JointId id) const;
   // `detected` without the contacts of bodies that a joint joins (unless it
   // lets them collide): `detected` itself when no joint filters, else
