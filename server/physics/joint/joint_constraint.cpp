@@ -99,6 +99,22 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
     joint.axisB = b.rotation.transpose() * axis;
     perpendiculars(joint.axisA, joint.normalA1, joint.normalA2);
   }
+  const bool axial = def.type == JointType::Revolute || def.type == JointType::Prismatic;
+  if (def.limit.enabled) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints take a limit"};
+    if (!std::isfinite(def.limit.lower) || !std::isfinite(def.limit.upper) || def.limit.lower > def.limit.upper)
+      return Error{where + ": the limit needs finite lower <= upper (got " + std::to_string(def.limit.lower) +
+                   ", " + std::to_string(def.limit.upper) + ")"};
+  }
+  if (def.motor.enabled) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints take a motor"};
+    if (!std::isfinite(def.motor.targetRate) || !std::isfinite(def.motor.maxEffort) || def.motor.maxEffort < 0.0)
+      return Error{where + ": the motor needs a finite target rate and a finite, non-negative max effort"};
+  }
+  if (def.effort != 0.0) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints take an effort"};
+    if (!std::isfinite(def.effort)) return Error{where + ": the effort is not finite"};
+  }
   if (def.type == JointType::Distance) {
     if (!finite(def.anchorB)) return Error{where + ": anchor_b is not finite"};
     joint.anchorB = toB(def.anchorB);
@@ -203,6 +219,22 @@ void JointConstraint::rows(const JointSidePose& a, const JointSidePose& b, const
       return;
     }
   }
+}
+
+bool JointConstraint::axisRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const {
+  const Vec3 axis = a.rotation * axisA;
+  if (def.type == JointType::Revolute) {
+    out = {Vec3::Zero(), -axis, Vec3::Zero(), axis};
+    return true;
+  }
+  if (def.type == JointType::Prismatic) {
+    // d/dt (p_B − p_A)·a with a carried by A (as the prismatic's other rows).
+    const Vec3 armB = b.rotation * anchorB;
+    const Vec3 armAToB = b.position + armB - a.position;
+    out = {-axis, -armAToB.cross(axis), axis, armB.cross(axis)};
+    return true;
+  }
+  return false;
 }
 
 double JointConstraint::coordinate(const JointSidePose& a, const JointSidePose& b) const {

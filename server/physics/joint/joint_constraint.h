@@ -78,6 +78,17 @@ struct JointConstraint {
   // constraint or off it), so a Newton iteration on C can use them.
   void rows(const JointSidePose& a, const JointSidePose& b, const Basis& basis, JointRow* out) const;
 
+  // Revolute and prismatic: the row of the joint coordinate (its exact
+  // derivative on the joint: ω_B − ω_A along A's axis, or the relative
+  // velocity at B's anchor along it), through which limits, motors and
+  // efforts act. False for the other types.
+  bool axisRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const;
+  bool hasAxis() const { return def.type == JointType::Revolute || def.type == JointType::Prismatic; }
+
+  // Last step's actuation and limit, for JointState.
+  double lastAxisEffort = 0.0;
+  int lastAtLimit = 0;
+
   // The joint coordinate and its rate (JointState::position, rate) from the
   // poses and the sides' velocities.
   double coordinate(const JointSidePose& a, const JointSidePose& b) const;
@@ -88,7 +99,8 @@ struct JointConstraint {
 // Builds the joint's body-frame data from its definition (world frame,
 // initial configuration) and the sides' poses. Errors name the joint and the
 // field: a non-finite anchor, a zero or non-finite axis, a rod of zero or
-// negative length.
+// negative length, a limit, motor or effort on a joint without an axis or
+// with bad numbers (not finite, lower above upper, a negative effort cap).
 Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSidePose& a,
                                               const JointSidePose& b);
 

@@ -144,6 +144,13 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
         largest = std::max(largest, std::abs(residual[r]));
       }
     }
+    for (const LimitRow& limit : m_limits) {  // the coordinate at its bound
+      const JointLink& link = links[static_cast<std::size_t>(limit.link)];
+      residual[r] = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false)) -
+                    limit.bound;
+      largest = std::max(largest, std::abs(residual[r]));
+      ++r;
+    }
     return largest;
   };
   const auto omegaOf = [&](std::size_t i) {
@@ -194,6 +201,10 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
                          currentRows.data() + r);
         r += static_cast<std::size_t>(link.joint->rowCount());
       }
+      for (const LimitRow& limit : m_limits) {
+        const JointLink& link = links[static_cast<std::size_t>(limit.link)];
+        link.joint->axisRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), currentRows[r++]);
+      }
       for (std::size_t i = 0; i < bodies.size(); ++i) turns[i] = turnResponse(drift.fromOrientation[i], omegaOf(i), h);
       exact.factor(m_rows, currentRows, bodies, turns, h);
       if (!exact.ok()) break;
@@ -220,11 +231,120 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
   return total;
 }
 
+void JointSolver::driveMotors(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                              std::vector<JointLinkResult>& results) {
+  // The motors' rows (J_m v = target) solved exactly together with the
+  // joints' rows (J₀ v = 0), so that a motor moves what the joints let it
+  // move (an arm about its hinge, not the bob about its own centre). A motor
+  // whose impulse would pass its cap is held at the cap and the rest solved
+  // again: an active set, at most one round per motor.
+  struct Motor {
+    std::size_t link;
+    JointRow row;
+    double impulse = 0.0;  // N·s or N·m·s
+    bool capped = false;
+  };
+  std::vector<Motor> motors;
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const JointLink& link = links[l];
+    if (!link.joint->def.motor.enabled) continue;
+    Motor motor{l, {}, 0.0, false};
+    link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), motor.row);
+    motors.push_back(motor);
+  }
+  if (motors.empty()) return;
+  const auto rateOf = [&](const Row& row) {
+    double v = 0.0;
+    if (row.bodyA >= 0) {
+      const JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
+      v += row.jacobian.linearA.dot(body.inverseMass * body.linearMomentum) +
+           row.jacobian.angularA.dot(body.startInverseInertia * body.angularMomentum);
+    }
+    if (row.bodyB >= 0) {
+      const JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
+      v += row.jacobian.linearB.dot(body.inverseMass * body.linearMomentum) +
+           row.jacobian.angularB.dot(body.startInverseInertia * body.angularMomentum);
+    }
+    return v;
+  };
+  const auto push = [&](const Row& row, double lambda) {
+    if (row.bodyA >= 0) {
+      JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
+      body.linearMomentum += lambda * row.jacobian.linearA;
+      body.angularMomentum += lambda * row.jacobian.angularA;
+    }
+    if (row.bodyB >= 0) {
+      JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
+      body.linearMomentum += lambda * row.jacobian.linearB;
+      body.angularMomentum += lambda * row.jacobian.angularB;
+    }
+  };
+  std::vector<Vec3> linear, angular;  // the momenta before the motors, to start each round from
+  for (const JointBody& body : bodies) {
+    linear.push_back(body.linearMomentum);
+    angular.push_back(body.angularMomentum);
+  }
+  std::vector<Mat3> inverseInertia;
+  for (const JointBody& body : bodies) inverseInertia.push_back(body.startInverseInertia);
+  const auto motorRow = [&](const Motor& motor) {
+    const JointLink& link = links[motor.link];
+    return Row{link.bodyA, link.bodyB, static_cast<int>(motor.link), motor.row};
+  };
+  for (std::size_t round = 0; round <= motors.size(); ++round) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      bodies[i].linearMomentum = linear[i];
+      bodies[i].angularMomentum = angular[i];
+    }
+    // Capped motors give their cap; the others and the joints are solved.
+    std::vector<Row> rows = m_rows;
+    std::vector<std::size_t> free;
+    for (std::size_t m = 0; m < motors.size(); ++m) {
+      if (motors[m].capped) {
+        push(motorRow(motors[m]), motors[m].impulse);
+      } else {
+        free.push_back(m);
+        rows.push_back(motorRow(motors[m]));
+      }
+    }
+    RowSystem system;
+    system.factor(rows, bodies, inverseInertia);
+    if (!system.ok()) return;
+    const auto count = static_cast<Eigen::Index>(rows.size());
+    Eigen::VectorXd error(count);
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const std::size_t index = static_cast<std::size_t>(r);
+      const double target = index >= m_rows.size() ? links[static_cast<std::size_t>(rows[index].link)].joint->def.motor.targetRate : 0.0;
+      error[r] = rateOf(rows[index]) - target;
+    }
+    const Eigen::VectorXd impulse = system.solve(-error);
+    for (Eigen::Index r = 0; r < count; ++r) push(rows[static_cast<std::size_t>(r)], impulse[r]);
+    bool newlyCapped = false;
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      Motor& motor = motors[free[k]];
+      motor.impulse = impulse[static_cast<Eigen::Index>(m_rows.size() + k)];
+      const double cap = links[motor.link].joint->def.motor.maxEffort * h;
+      if (std::abs(motor.impulse) > cap) {
+        motor.impulse = std::copysign(cap, motor.impulse);
+        motor.capped = true;
+        newlyCapped = true;
+      }
+    }
+    if (!newlyCapped) break;
+  }
+  for (const Motor& motor : motors) {
+    JointLinkResult& result = results[motor.link];
+    result.axisImpulse += motor.impulse;
+    result.linearImpulse += motor.impulse * motor.row.linearB;
+    result.angularImpulse += motor.impulse * motor.row.angularB;
+  }
+}
+
 bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                  double h, const JointSolverSettings& settings,
                                  std::vector<JointLinkResult>& results) {
   results.assign(links.size(), JointLinkResult{});
   m_rows.clear();
+  m_limits.clear();
   // The rows at the step's start, and the errors there. An error from the
   // last step's rounding is closed with the rest; a larger one came from
   // outside and is kept by the momentum projection, then removed by the
@@ -254,27 +374,88 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     body.orientation = body.startOrientation;
   }
   if (m_rows.empty()) return true;
+  const std::size_t jointRows = m_rows.size();
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
   m_system.factor(m_rows, bodies, startInverseInertia);
 
+  // The motors act on the velocities the drift will use.
+  driveMotors(links, bodies, h, results);
+
   // Steps 1 and 2: from the start with the momenta's velocities; the
-  // impulses change the momenta.
+  // impulses change the momenta. Limits by active set: a coordinate that
+  // the drift carries beyond a bound gets a row holding it there, and a
+  // limit row that pulls is dropped; each change solves the step again.
+  const std::vector<Vec3> kickedLinear = [&] {
+    std::vector<Vec3> out;
+    for (const JointBody& body : bodies) out.push_back(body.linearMomentum);
+    return out;
+  }();
+  const std::vector<Vec3> kickedAngular = [&] {
+    std::vector<Vec3> out;
+    for (const JointBody& body : bodies) out.push_back(body.angularMomentum);
+    return out;
+  }();
   Drift momenta;
-  for (const JointBody& body : bodies) {
-    momenta.fromPosition.push_back(body.startPosition);
-    momenta.fromOrientation.push_back(body.startOrientation);
-    momenta.linearVelocity.push_back(body.inverseMass * body.linearMomentum);
-    momenta.angularVelocity.push_back(body.startInverseInertia * body.angularMomentum);
-  }
-  momenta.linearImpulse.assign(bodies.size(), Vec3::Zero());
-  momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
+  Eigen::VectorXd total;
   double left = 0.0;
-  const Eigen::VectorXd total = project(links, bodies, bases, &targets, momenta, h, settings, left);
+  constexpr int kLimitRounds = 6;
+  for (int round = 0; round < kLimitRounds; ++round) {
+    momenta = Drift{};
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const JointBody& body = bodies[i];
+      momenta.fromPosition.push_back(body.startPosition);
+      momenta.fromOrientation.push_back(body.startOrientation);
+      momenta.linearVelocity.push_back(body.inverseMass * kickedLinear[i]);
+      momenta.angularVelocity.push_back(body.startInverseInertia * kickedAngular[i]);
+    }
+    momenta.linearImpulse.assign(bodies.size(), Vec3::Zero());
+    momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
+    std::vector<double> allTargets = targets;
+    allTargets.resize(m_rows.size(), 0.0);
+    total = project(links, bodies, bases, &allTargets, momenta, h, settings, left);
+    // Which limits the end poses break, and which active ones pull.
+    bool changed = false;
+    std::vector<LimitRow> kept;
+    for (std::size_t k = 0; k < m_limits.size(); ++k) {
+      const double lambda = total[static_cast<Eigen::Index>(jointRows + k)];
+      // A lower bound pushes the coordinate up (λ >= 0), an upper one down.
+      if (lambda * m_limits[k].side > 0.0) {
+        changed = true;
+        continue;
+      }
+      kept.push_back(m_limits[k]);
+    }
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      const JointLink& link = links[l];
+      const JointLimit& limit = link.joint->def.limit;
+      if (!limit.enabled) continue;
+      const bool active = std::any_of(kept.begin(), kept.end(), [&](const LimitRow& r) { return r.link == static_cast<int>(l); });
+      if (active) continue;
+      const double q = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
+      if (q < limit.lower - settings.tolerance) {
+        kept.push_back({static_cast<int>(l), limit.lower, -1});
+        changed = true;
+      } else if (q > limit.upper + settings.tolerance) {
+        kept.push_back({static_cast<int>(l), limit.upper, +1});
+        changed = true;
+      }
+    }
+    if (!changed) break;
+    m_limits = kept;
+    m_rows.resize(jointRows);
+    for (const LimitRow& limit : m_limits) {
+      const JointLink& link = links[static_cast<std::size_t>(limit.link)];
+      JointRow row;
+      link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
+      m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
+    }
+    m_system.factor(m_rows, bodies, startInverseInertia);
+  }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    bodies[i].linearMomentum += momenta.linearImpulse[i];
-    bodies[i].angularMomentum += momenta.angularImpulse[i];
+    bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
+    bodies[i].angularMomentum = kickedAngular[i] + momenta.angularImpulse[i];
   }
 
   // Step 3: the contacts' pseudo-velocities and the outside errors, by
@@ -304,6 +485,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     result.linearImpulse += total[r] * row.jacobian.linearB;
     result.angularImpulse += total[r] * row.jacobian.angularB;
   }
+  for (const LimitRow& limit : m_limits) results[static_cast<std::size_t>(limit.link)].atLimit = limit.side;
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     // The couple about B's anchor rather than about its centre of mass.
@@ -330,26 +512,35 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     for (int r = 0; r < link.joint->rowCount(); ++r)
       m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
   }
-  if (m_rows.empty()) return;
-  RowSystem system;
-  system.factor(m_rows, bodies, inverseInertia);
-  if (!system.ok()) return;
-  const auto count = static_cast<Eigen::Index>(m_rows.size());
   const auto velocityOf = [&](int index, bool linear) -> Vec3 {
     const JointBody& body = bodies[static_cast<std::size_t>(index)];
     return linear ? Vec3(body.inverseMass * body.linearMomentum)
                   : Vec3(inverseInertia[static_cast<std::size_t>(index)] * body.angularMomentum);
   };
-  Eigen::VectorXd rate(count);
-  for (Eigen::Index r = 0; r < count; ++r) {
-    const Row& row = m_rows[static_cast<std::size_t>(r)];
+  const auto rateOf = [&](const Row& row) {
     double v = 0.0;
     if (row.bodyA >= 0)
       v += row.jacobian.linearA.dot(velocityOf(row.bodyA, true)) + row.jacobian.angularA.dot(velocityOf(row.bodyA, false));
     if (row.bodyB >= 0)
       v += row.jacobian.linearB.dot(velocityOf(row.bodyB, true)) + row.jacobian.angularB.dot(velocityOf(row.bodyB, false));
-    rate[r] = v;
+    return v;
+  };
+  // A joint held at a limit leaves with no rate into it.
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const int side = results[l].atLimit;
+    if (side == 0) continue;
+    const JointLink& link = links[l];
+    Row row{link.bodyA, link.bodyB, static_cast<int>(l), {}};
+    link.joint->axisRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
+    if (rateOf(row) * side > 0.0) m_rows.push_back(row);  // moving into it
   }
+  if (m_rows.empty()) return;
+  RowSystem system;
+  system.factor(m_rows, bodies, inverseInertia);
+  if (!system.ok()) return;
+  const auto count = static_cast<Eigen::Index>(m_rows.size());
+  Eigen::VectorXd rate(count);
+  for (Eigen::Index r = 0; r < count; ++r) rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
   const Eigen::VectorXd impulse = system.solve(-rate);
   for (Eigen::Index r = 0; r < count; ++r) {
     const Row& row = m_rows[static_cast<std::size_t>(r)];

@@ -74,6 +74,8 @@ struct JointLinkResult {
   Vec3 linearImpulse = Vec3::Zero();   // N·s, on B
   Vec3 angularImpulse = Vec3::Zero();  // N·m·s, on B about its anchor
   double error = 0.0;                  // largest |C| at the end poses
+  double axisImpulse = 0.0;            // the motor's, along the axis (N·s or N·m·s)
+  int atLimit = 0;                     // -1, +1: held at the lower or upper limit
 };
 
 // One scalar row of the step's system: the link it belongs to and its sides.
@@ -108,7 +110,8 @@ class JointSolver {
                       const JointSolverSettings& settings, std::vector<JointLinkResult>& results);
   // Step 4: with the bodies at their end poses (`inverseInertia` there, one
   // per body) and their momenta after the second half kick, removes every
-  // velocity along the joints' rows.
+  // velocity along the joints' rows, and into a limit that `results` (of
+  // solvePositions) says is held.
   void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                          const std::vector<Mat3>& inverseInertia, std::vector<JointLinkResult>& results);
 
@@ -130,7 +133,18 @@ class JointSolver {
                           const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets,
                           Drift& drift, double h, const JointSolverSettings& settings, double& largest);
 
+  // The motors' impulses (before the drift), with the joints' rows kept.
+  void driveMotors(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                   std::vector<JointLinkResult>& results);
+
+  // A limit held this step: its row follows the joints' rows in m_rows.
+  struct LimitRow {
+    int link = 0;
+    double bound = 0.0;  // rad or m
+    int side = 0;        // -1 lower, +1 upper
+  };
   std::vector<Row> m_rows;
+  std::vector<LimitRow> m_limits;
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
 };
 

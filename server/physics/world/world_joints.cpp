@@ -1,6 +1,7 @@
 // Joints in the world: creation and removal, what a joint reports, and the
 // joint step of the jointed bodies (joint/joint_solver.h).
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "physics/body/body.h"
@@ -81,6 +82,33 @@ Expected<bool> World::removeJoint(JointId id) {
   return true;
 }
 
+Expected<bool> World::setJointMotor(JointId id, const JointMotor& motor) {
+  if (const std::string why = invalidJointReason(id); !why.empty()) return Error{"cannot set the motor: " + why};
+  JointConstraint& joint = m_joints[static_cast<std::size_t>(m_jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
+  if (motor.enabled && !joint.hasAxis()) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take a motor"};
+  if (motor.enabled && (!std::isfinite(motor.targetRate) || !std::isfinite(motor.maxEffort) || motor.maxEffort < 0.0))
+    return Error{"joint '" + joint.def.name + "': the motor needs a finite target rate and a finite, non-negative max effort"};
+  joint.def.motor = motor;
+  wakeJointBodies(joint.def);
+  return true;
+}
+
+Expected<bool> World::setJointEffort(JointId id, double effort) {
+  if (const std::string why = invalidJointReason(id); !why.empty()) return Error{"cannot set the effort: " + why};
+  JointConstraint& joint = m_joints[static_cast<std::size_t>(m_jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
+  if (!joint.hasAxis() && effort != 0.0) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take an effort"};
+  if (!std::isfinite(effort)) return Error{"joint '" + joint.def.name + "': the effort is not finite"};
+  joint.def.effort = effort;
+  wakeJointBodies(joint.def);
+  return true;
+}
+
+void World::wakeJointBodies(const JointDef& def) {
+  for (const BodyId body : {def.bodyA, def.bodyB})
+    if (!body.isNull() && isValid(body)) bodyRef(body).wake();
+  m_maybeAsleep = true;
+}
+
 void World::removeJointsOf(BodyId body) {
   for (std::size_t i = m_joints.size(); i-- > 0;) {
     const JointDef& def = m_joints[i].def;
@@ -151,6 +179,8 @@ JointState World::jointStateAt(int denseIndex) const {
   for (int r = 0; r < joint.rowCount(); ++r) out.error = std::max(out.error, std::abs(errors[r]));
   out.force = joint.lastForce;
   out.torque = joint.lastTorque;
+  out.axisEffort = joint.lastAxisEffort;
+  out.atLimit = joint.lastAtLimit;
   out.active = jointIsEnforced(joint);
   return out;
 }
@@ -308,8 +338,34 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
   JointSolver solver;
   std::vector<RigidState> ends(dense.size());
   std::vector<Vec3> reactionLinear(links.size()), reactionAngular(links.size());
+  // The direct efforts, as impulses along each joint's axis row over
+  // `duration` at the current poses of `bodies` (start or end).
+  const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
+    for (const JointLink& link : links) {
+      const double effort = link.joint->def.effort;
+      if (effort == 0.0 || !link.joint->hasAxis()) continue;
+      const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
+      if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
+      JointRow row;
+      link.joint->axisRow(sidePose(link, bodies, false, atStart), sidePose(link, bodies, true, atStart), row);
+      const double lambda = effort * duration;
+      if (link.bodyA >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
+        body.linearMomentum += lambda * row.linearA;
+        body.angularMomentum += lambda * row.angularA;
+      }
+      if (link.bodyB >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
+        body.linearMomentum += lambda * row.linearB;
+        body.angularMomentum += lambda * row.angularB;
+      }
+    }
+  };
+  std::vector<double> axisImpulse(links.size(), 0.0);
+  std::vector<int> atLimit(links.size(), 0);
   const auto attempt = [&](int parts) {
     const double s = h / parts;
+    std::fill(axisImpulse.begin(), axisImpulse.end(), 0.0);
     bool converged = true;
     std::fill(reactionLinear.begin(), reactionLinear.end(), Vec3::Zero());
     std::fill(reactionAngular.begin(), reactionAngular.end(), Vec3::Zero());
@@ -340,6 +396,8 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
           jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
         }
       }
+      applyEfforts(bodies, true, 0.5 * s, true);  // RATTLE's first half kick
+      applyEfforts(bodies, true, s, false);       // the whole kick of an island in contact
       std::vector<JointLinkResult> results;
       converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
       // The second half kick at the end poses, then the velocities tangent
@@ -357,12 +415,15 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
         }
         endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
       }
+      applyEfforts(bodies, false, 0.5 * s, true);  // the second half kick
       solver.projectVelocities(links, bodies, endInverseInertia, results);
       for (std::size_t k = 0; k < bodies.size(); ++k)
         ends[k] = {bodies[k].position, bodies[k].orientation, bodies[k].linearMomentum, bodies[k].angularMomentum};
       for (std::size_t l = 0; l < links.size(); ++l) {
         reactionLinear[l] += results[l].linearImpulse;
         reactionAngular[l] += results[l].angularImpulse;
+        axisImpulse[l] += results[l].axisImpulse;
+        atLimit[l] = results[l].atLimit;
       }
     }
     return converged;
@@ -382,6 +443,8 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
     JointConstraint& joint = m_joints[linkJoint[l]];
     joint.lastForce = reactionLinear[l] / h;
     joint.lastTorque = reactionAngular[l] / h;
+    joint.lastAxisEffort = axisImpulse[l] / h + joint.def.effort;
+    joint.lastAtLimit = atLimit[l];
   }
 }
 

@@ -30,6 +30,24 @@ enum class JointType {
 // "fixed", "revolute", ... as written in config files and messages.
 const char* jointTypeName(JointType type);
 
+// Revolute and prismatic joints: bounds on the joint coordinate
+// (JointState::position), held at the position level: the joint stops at a
+// bound (inelastically) and pushes back only.
+struct JointLimit {
+  bool enabled = false;
+  double lower = 0.0;  // rad or m
+  double upper = 0.0;  // rad or m, >= lower
+};
+
+// Revolute and prismatic joints: a velocity motor drives the joint rate to
+// `targetRate` with a force or torque along the axis of at most
+// `maxEffort` (a wheel's motor, a conveyor).
+struct JointMotor {
+  bool enabled = false;
+  double targetRate = 0.0;  // rad/s or m/s
+  double maxEffort = 0.0;   // N·m or N, >= 0
+};
+
 struct JointDef {
   std::string name;  // unique among the world's joints
   JointType type = JointType::Revolute;
@@ -44,6 +62,12 @@ struct JointDef {
   // Whether the two bodies still collide with each other (by default they
   // do not: the links of a chain overlap at their joints).
   bool collideConnected = false;
+  // Revolute and prismatic only.
+  JointLimit limit;
+  JointMotor motor;
+  // A force or torque along the axis, on B (and its reaction on A), as a
+  // torque-controlled actuator commands it: N·m or N, until changed.
+  double effort = 0.0;
 };
 
 // What a joint is doing after the last step.
@@ -66,6 +90,11 @@ struct JointState {
   // world; the couple about B's anchor): the constraint impulses / dt.
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
+  // The actuation along the axis over the last step (the motor's and the
+  // direct effort): N·m or N on B.
+  double axisEffort = 0.0;
+  // At a limit after the last step: -1 at the lower one, +1 at the upper, 0 within.
+  int atLimit = 0;
   // False while one of its bodies is frozen by the numerical guard: the
   // joint is then not enforced.
   bool active = true;

@@ -140,6 +140,11 @@ class World {
   //  - removeBody also removes the body's joints.
   // A joint with a body frozen by the numerical guard is not enforced.
   Expected<JointId> createJoint(const JointDef& def);
+  // A joint's actuation, changed between steps (as commands do): the motor
+  // (off: enabled false) and the direct effort. Errors name the joint; the
+  // joint's bodies wake.
+  Expected<bool> setJointMotor(JointId id, const JointMotor& motor);
+  Expected<bool> setJointEffort(JointId id, double effort);
   Expected<bool> removeJoint(JointId id);
   JointId findJoint(std::string_view name) const;  // null id when absent
   bool isValid(JointId id) const;
@@ -309,6 +314,7 @@ class World {
   // Removes the joints of a body about to be removed (its dense index).
   void removeJointsOf(BodyId body);
   bool jointIsEnforced(const JointConstraint& joint) const;
+  void wakeJointBodies(const JointDef& def);
 
   void stepPenalty();
   // Continuous collision for bodies flagged `continuousCollision`: a body
