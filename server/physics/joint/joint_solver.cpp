@@ -113,7 +113,20 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
   // changes how fast the iteration converges, not what it converges to:
   // the iteration stops on the constraint errors themselves.
   for (Eigen::Index r = 0; r < count; ++r) k.coeffRef(r, r) *= 1.0 + 1e-10;
-  m_ldlt.compute(k);
+  k.makeCompressed();
+  const int* outer = k.outerIndexPtr();
+  const int* inner = k.innerIndexPtr();
+  const bool samePattern = m_ok && m_size == count &&
+                           std::equal(m_outer.begin(), m_outer.end(), outer, outer + count + 1) &&
+                           static_cast<Eigen::Index>(m_inner.size()) == k.nonZeros() &&
+                           std::equal(m_inner.begin(), m_inner.end(), inner);
+  if (!samePattern) {
+    m_ldlt.analyzePattern(k);
+    m_outer.assign(outer, outer + count + 1);
+    m_inner.assign(inner, inner + k.nonZeros());
+    m_size = count;
+  }
+  m_ldlt.factorize(k);
   m_ok = m_ldlt.info() == Eigen::Success;
 }
 
@@ -526,35 +539,58 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     return v;
   };
   // A joint held at a limit leaves with no rate into it.
+  std::vector<int> endLimits;  // the links whose limit rows follow the joints' rows
   for (std::size_t l = 0; l < links.size(); ++l) {
     const int side = results[l].atLimit;
     if (side == 0) continue;
     const JointLink& link = links[l];
     Row row{link.bodyA, link.bodyB, static_cast<int>(l), {}};
     link.joint->axisRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
-    if (rateOf(row) * side > 0.0) m_rows.push_back(row);  // moving into it
+    if (rateOf(row) * side > 0.0) {  // moving into it
+      m_rows.push_back(row);
+      endLimits.push_back(static_cast<int>(l));
+    }
   }
   if (m_rows.empty()) return;
-  RowSystem system;
-  system.factor(m_rows, bodies, inverseInertia);
-  if (!system.ok()) return;
   const auto count = static_cast<Eigen::Index>(m_rows.size());
+  // The step's K₀ when the rows are the ones it was made for (the usual
+  // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
+  // else K₁ made here.
+  bool reuse = m_system.ok() && m_system.size() == count && endLimits.size() == m_limits.size();
+  for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
+  if (!reuse) m_system.factor(m_rows, bodies, inverseInertia);
+  if (!m_system.ok()) return;
+  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
   Eigen::VectorXd rate(count);
-  for (Eigen::Index r = 0; r < count; ++r) rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
-  const Eigen::VectorXd impulse = system.solve(-rate);
+  double previous = INFINITY;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    double largest = 0.0;
+    for (Eigen::Index r = 0; r < count; ++r) {
+      rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
+      largest = std::max(largest, std::abs(rate[r]));
+    }
+    if (largest <= 1e-13 || largest >= previous) break;
+    previous = largest;
+    const Eigen::VectorXd step = m_system.solve(-rate);
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Row& row = m_rows[static_cast<std::size_t>(r)];
+      const double lambda = step[r];
+      if (row.bodyA >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
+        body.linearMomentum += lambda * row.jacobian.linearA;
+        body.angularMomentum += lambda * row.jacobian.angularA;
+      }
+      if (row.bodyB >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
+        body.linearMomentum += lambda * row.jacobian.linearB;
+        body.angularMomentum += lambda * row.jacobian.angularB;
+      }
+    }
+    impulse += step;
+  }
   for (Eigen::Index r = 0; r < count; ++r) {
     const Row& row = m_rows[static_cast<std::size_t>(r)];
     const double lambda = impulse[r];
-    if (row.bodyA >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-      body.linearMomentum += lambda * row.jacobian.linearA;
-      body.angularMomentum += lambda * row.jacobian.angularA;
-    }
-    if (row.bodyB >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-      body.linearMomentum += lambda * row.jacobian.linearB;
-      body.angularMomentum += lambda * row.jacobian.angularB;
-    }
     JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
     const JointSidePose b = sidePose(links[static_cast<std::size_t>(row.link)], bodies, true, false);
     const Vec3 arm = b.rotation * links[static_cast<std::size_t>(row.link)].joint->anchorB;

@@ -88,15 +88,32 @@ struct JointSolverRow {
 // K = J M⁻¹ Jᵀ over the rows, factorised (sparse LDLᵀ with a fill-reducing
 // ordering): two rows couple only through a body they share, so a chain's K
 // is block tridiagonal and its factorisation costs O(rows).
+//
+// The fill-reducing ordering and the symbolic factorisation depend only on
+// which rows share bodies, so they are kept and reused while that pattern
+// stays (a grid of joints step after step); they are a function of the
+// pattern, so results are the same bits whether they were kept or made
+// anew (a copy starts without them).
 class RowSystem {
  public:
+  RowSystem() = default;
+  RowSystem(const RowSystem&) {}
+  RowSystem& operator=(const RowSystem&) {
+    m_ok = false;
+    m_outer.clear();
+    m_inner.clear();
+    return *this;
+  }
   void factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
               const std::vector<Mat3>& inverseInertia);
   bool ok() const { return m_ok; }
+  Eigen::Index size() const { return m_size; }
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return m_ldlt.solve(rhs); }
 
  private:
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> m_ldlt;
+  std::vector<int> m_outer, m_inner;  // the pattern the kept analysis is of
+  Eigen::Index m_size = 0;
   bool m_ok = false;
 };
 

@@ -13,6 +13,7 @@
 #include "physics/body/integrator.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/joint/joint_constraint.h"
+#include "physics/joint/joint_solver.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/world/impacts.h"
 
@@ -117,7 +118,8 @@ World::World(const WorldSettings& settings)
     : m_settings(settings),
       m_detector(std::make_unique<CollisionDetector>(settings.contact.detection)),
       m_tag(newWorldTag()),
-      m_solver(std::make_unique<ContactSolver>()) {}
+      m_solver(std::make_unique<ContactSolver>()),
+      m_jointSolver(std::make_unique<JointSolver>()) {}
 
 World::World(const World& other) = default;
 World::World(World&& other) noexcept = default;

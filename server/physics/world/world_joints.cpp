@@ -335,7 +335,7 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
   // kick, drift and projection, half kick, velocity projection); the
   // contact impulses and the pseudo-velocities' displacement go into the
   // first. Returns whether every projection converged.
-  JointSolver solver;
+  JointSolver& solver = *m_jointSolver;
   std::vector<RigidState> ends(dense.size());
   std::vector<Vec3> reactionLinear(links.size()), reactionAngular(links.size());
   // The direct efforts, as impulses along each joint's axis row over

@@ -40,6 +40,7 @@ struct FlyingBody;
 struct ForceInputs;
 struct JointConstraint;
 struct JointLink;
+class JointSolver;
 class VelocityProjection;
 struct SolverBody;
 
@@ -327,6 +328,9 @@ class World {
   DeepCopyPtr<CollisionDetector> m_detector;
   uint32_t m_tag;  // stamped on the ids it hands out (ids.h); copies keep it
   DeepCopyPtr<ContactSolver> m_solver;
+  // The joint step's solver: it keeps the symbolic factorisation of the
+  // joints' system while their pattern stays (joint/joint_solver.h).
+  DeepCopyPtr<JointSolver> m_jointSolver;
   std::vector<SolvedManifold> m_contacts;
   std::vector<SolverBody> m_solverBodies;  // scratch, one per body
   std::vector<Body> m_bodies;      // dense, in creation order

@@ -1,0 +1,116 @@
+// rbsim on the joint scenes of joint_scenes.h, beside Bullet and ODE:
+//   build/bench/joints/bench_joints_rbsim --scene chain --reps 3
+// Joints solved at the position level (docs/joints_design.md): ball joints
+// are JointType::Spherical, hinges JointType::Revolute with the scene's
+// limits. The scene's iteration count is the contact solver's velocity
+// iterations; the joints are solved exactly whatever it is. No sleeping (as
+// the peers here: every engine simulates every body for the whole run).
+//
+// Not supported yet: cone/twist limits on ball joints (the ragdoll's
+// shoulders, hips, waist and neck are unlimited; the notes say so).
+#include <cstdio>
+#include <optional>
+
+#include "joint_scenes.h"
+#include "rbsim/physics/world.h"
+
+namespace {
+
+namespace jb = rbsim::bench::joints;
+
+rbsim::Vec3 vec(const jb::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+class RbsimEngine final : public jb::Engine {
+ public:
+  void configure(const jb::Scene& s) override {
+    rbsim::WorldSettings settings;
+    settings.dt = s.dt;
+    settings.gravity = vec(s.gravity);
+    settings.contact.enabled = s.contacts;
+    settings.contact.sleeping = false;
+    settings.contact.solver.velocityIterations = s.velocityIterations;
+    settings.contact.defaultMaterial.friction = jb::kFriction;
+    settings.contact.defaultMaterial.staticFriction = jb::kFriction;
+    settings.contact.defaultMaterial.restitution = 0.0;
+    m_world.emplace(settings);
+    if (s.ground) {
+      rbsim::BodyDef ground;
+      ground.name = "ground";
+      ground.shape = rbsim::PlaneShape{};
+      ground.isStatic = true;
+      m_world->createBody(ground).value();
+    }
+  }
+
+  void addBody(const jb::BodySpec& b) override {
+    rbsim::BodyDef def;
+    def.name = "body" + std::to_string(m_bodies.size());
+    if (b.shape == jb::ShapeKind::kSphere) def.shape = rbsim::SphereShape{b.radius};
+    else def.shape = rbsim::BoxShape{vec(b.halfExtents)};
+    def.mass = b.mass;
+    def.position = vec(b.pose.position);
+    def.orientation = {b.pose.orientation[0], b.pose.orientation[1], b.pose.orientation[2], b.pose.orientation[3]};
+    const rbsim::Expected<rbsim::BodyId> id = m_world->createBody(def);
+    if (!id.ok()) {
+      std::fprintf(stderr, "rbsim: %s\n", id.error().message.c_str());
+      std::exit(1);
+    }
+    m_bodies.push_back(id.value());
+  }
+
+  void addJoint(const jb::JointSpec& j) override {
+    rbsim::JointDef def;
+    def.name = "joint" + std::to_string(m_joints++);
+    def.type = j.kind == jb::JointKind::kHinge ? rbsim::JointType::Revolute : rbsim::JointType::Spherical;
+    def.bodyA = m_bodies[static_cast<size_t>(j.bodyA)];
+    def.bodyB = j.bodyB == jb::kWorld ? rbsim::BodyId{} : m_bodies[static_cast<size_t>(j.bodyB)];
+    def.anchor = vec(j.anchor);
+    def.axis = vec(j.axis);
+    // The scene's hinge limits are B's rotation relative to A about the
+    // axis, zero at the build pose: rbsim's joint coordinate exactly.
+    if (j.kind == jb::JointKind::kHinge && j.limited) def.limit = {true, j.lower, j.upper};
+    if (j.kind == jb::JointKind::kBall && j.limited) ++m_unlimitedBalls;
+    const rbsim::Expected<rbsim::JointId> id = m_world->createJoint(def);
+    if (!id.ok()) {
+      std::fprintf(stderr, "rbsim: %s\n", id.error().message.c_str());
+      std::exit(1);
+    }
+  }
+
+  void step(double) override { m_world->step(); }
+
+  jb::Pose pose(int body) const override {
+    const rbsim::BodyView b = m_world->body(m_bodies[static_cast<size_t>(body)]);
+    jb::Pose result;
+    result.position = {b.position().x(), b.position().y(), b.position().z()};
+    result.orientation = {b.orientation().w, b.orientation().x, b.orientation().y, b.orientation().z};
+    return result;
+  }
+
+  std::string settings() const override {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "joints at the position level (exact sparse solve, tolerance 1e-12); contact velocity "
+                  "iterations=%d; friction 0.5, restitution 0; no sleeping",
+                  m_world->settings().contact.solver.velocityIterations);
+    return text;
+  }
+
+  std::string notes() const override {
+    if (m_unlimitedBalls == 0) return "";
+    return std::to_string(m_unlimitedBalls) + " cone/twist-limited ball joints simulated without limits "
+           "(rbsim has no cone limit yet)";
+  }
+
+ private:
+  std::optional<rbsim::World> m_world;
+  std::vector<rbsim::BodyId> m_bodies;
+  int m_joints = 0;
+  int m_unlimitedBalls = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return jb::runMain(argc, argv, "rbsim", "this tree", [] { return std::unique_ptr<jb::Engine>(new RbsimEngine()); });
+}
