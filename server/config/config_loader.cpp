@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "config/contact_config.h"
+#include "config/joint_config.h"
 #include "config/contained_path.h"
 #include "config/mass_data_config.h"
 #include "config/server_sections.h"
@@ -41,8 +42,8 @@ constexpr double kMaxQuaternionComponent = 1e6;  // before normalisation
 constexpr double kMinNorm = 1e-9;            // below this a quaternion or normal has no direction
 constexpr std::size_t kMaxNameLength = 128;  // characters, body names
 
-constexpr std::array<std::string_view, 6> kTopLevelKeys = {
-    "world", "bodies", "contact",
+constexpr std::array<std::string_view, 7> kTopLevelKeys = {
+    "world", "bodies", "joints", "contact",
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
@@ -133,7 +134,11 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
   }
 
   const YamlMap::Entry* bodies = top->find("bodies");
-  if (bodies == nullptr) return world;
+  if (bodies == nullptr) {
+    if (const YamlMap::Entry* joints = top->find("joints"))
+      return m_reader.error(joints->value, "joints need bodies to join (there is no bodies: list)");
+    return world;
+  }
   Expected<std::vector<YamlNode>> items = m_reader.list(bodies->value);
   if (!items) return items.error();
   // name -> index of the body that has it, for the duplicate message
@@ -150,6 +155,9 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
                                 bodies->value.path + "[" + std::to_string(existing->second) + "])");
     }
     world.bodies.push_back(std::move(*body));
+  }
+  if (const YamlMap::Entry* joints = top->find("joints")) {
+    if (auto error = parseJoints(m_reader, joints->value, world.bodies, world.joints)) return *error;
   }
   return world;
 }

@@ -146,7 +146,7 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
   Eigen::VectorXd residual(count);
   // The errors at the current poses less the targets; returns the largest.
   const auto measure = [&] {
-    double largest = 0.0;
+    double worst = 0.0;
     Eigen::Index r = 0;
     for (std::size_t l = 0; l < links.size(); ++l) {
       const JointLink& link = links[l];
@@ -154,17 +154,17 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
       link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
       for (int k = 0; k < link.joint->rowCount(); ++k, ++r) {
         residual[r] = errors[k] - (targets ? (*targets)[static_cast<std::size_t>(r)] : 0.0);
-        largest = std::max(largest, std::abs(residual[r]));
+        worst = std::max(worst, std::abs(residual[r]));
       }
     }
     for (const LimitRow& limit : m_limits) {  // the coordinate at its bound
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
       residual[r] = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false)) -
                     limit.bound;
-      largest = std::max(largest, std::abs(residual[r]));
+      worst = std::max(worst, std::abs(residual[r]));
       ++r;
     }
-    return largest;
+    return worst;
   };
   const auto omegaOf = [&](std::size_t i) {
     return Vec3(drift.angularVelocity[i] + bodies[i].startInverseInertia * drift.angularImpulse[i]);

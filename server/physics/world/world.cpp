@@ -133,6 +133,19 @@ Expected<World> World::fromDef(const WorldDef& def) {
     const auto id = world.createBody(body);
     if (!id) return id.error();
   }
+  for (const NamedJointDef& named : def.joints) {
+    JointDef joint = named.def;
+    const std::string where = named.source.empty() ? "" : named.source + ": ";
+    for (const bool sideB : {false, true}) {
+      const std::string& name = sideB ? named.bodyB : named.bodyA;
+      if (name == "world") continue;
+      const BodyId id = world.findBody(name);
+      if (id.isNull()) return Error{where + (sideB ? "body_b" : "body_a") + ": no body named '" + name + "'"};
+      (sideB ? joint.bodyB : joint.bodyA) = id;
+    }
+    const auto id = world.createJoint(joint);
+    if (!id) return Error{where + id.error().message};
+  }
   return world;
 }
 

@@ -70,6 +70,15 @@ struct JointDef {
   double effort = 0.0;
 };
 
+// A joint as a world file gives it: its bodies by name. World::fromDef
+// resolves the names and prefixes any error with `source`.
+struct NamedJointDef {
+  JointDef def;       // bodyA and bodyB are left null: named below
+  std::string bodyA;  // a body's name, or "world"
+  std::string bodyB;
+  std::string source;  // where it was given, for messages ("world.yaml:12:5: joints[0]")
+};
+
 // What a joint is doing after the last step.
 struct JointState {
   std::string name;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/joint_definition.h"
 #include "physics/body/integrator_kind.h"
 #include "physics/collision/contact_generation.h"
 #include "physics/math/types.h"
@@ -71,6 +72,7 @@ struct WorldSettings {
 struct WorldDef {
   WorldSettings settings;
   std::vector<BodyDef> bodies;
+  std::vector<NamedJointDef> joints;  // after the bodies, which they name
 };
 
 }  // namespace rbsim

@@ -1,0 +1,203 @@
+#include "config/joint_config.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace rbsim {
+
+namespace {
+
+constexpr double kMaxLength = 1e6;  // m, the config's bound on positions
+constexpr double kMaxEffort = 1e12;  // N or N·m
+constexpr double kMaxRate = 1e6;     // rad/s or m/s
+constexpr std::size_t kMaxNameLength = 128;
+
+constexpr std::array<std::string_view, 15> kJointKeys = {
+    "name",  "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
+    "limits", "motor", "effort", "drive", "damping", "friction", "collide_connected"};
+constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
+constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
+
+struct TypeName {
+  std::string_view name;
+  JointType type;
+};
+constexpr std::array<TypeName, 5> kTypes = {{{"fixed", JointType::Fixed},
+                                             {"revolute", JointType::Revolute},
+                                             {"prismatic", JointType::Prismatic},
+                                             {"spherical", JointType::Spherical},
+                                             {"distance", JointType::Distance}}};
+
+class JointParser {
+ public:
+  JointParser(const YamlReader& reader, const std::vector<BodyDef>& bodies) : m_reader(reader), m_bodies(bodies) {}
+
+  Expected<NamedJointDef> parse(const YamlNode& node) const {
+    Expected<YamlMap> map = m_reader.map(node);
+    if (!map) return map.error();
+    if (auto error = m_reader.checkKeys(*map, kJointKeys, "a joint")) return *error;
+    NamedJointDef out;
+    out.source = location(node);
+    JointDef& def = out.def;
+
+    Expected<YamlNode> nameNode = m_reader.required(*map, "name");
+    if (!nameNode) return nameNode.error();
+    Expected<std::string> name = m_reader.string(*nameNode);
+    if (!name) return name.error();
+    if (name->empty() || name->size() > kMaxNameLength ||
+        std::any_of(name->begin(), name->end(), [](char c) { return std::iscntrl(static_cast<unsigned char>(c)) != 0; }))
+      return m_reader.error(*nameNode, "expected a non-empty name of at most " + std::to_string(kMaxNameLength) +
+                                           " characters, without control characters");
+    def.name = *name;
+
+    Expected<YamlNode> typeNode = m_reader.required(*map, "type");
+    if (!typeNode) return typeNode.error();
+    Expected<std::string> typeName = m_reader.string(*typeNode);
+    if (!typeName) return typeName.error();
+    const auto type = std::find_if(kTypes.begin(), kTypes.end(), [&](const TypeName& t) { return t.name == *typeName; });
+    if (type == kTypes.end())
+      return m_reader.error(*typeNode, "expected one of fixed, revolute, prismatic, spherical, distance, got \"" +
+                                           *typeName + "\"");
+    def.type = type->type;
+    const bool axial = def.type == JointType::Revolute || def.type == JointType::Prismatic;
+
+    // Keys that this type does not take, and actuation not built yet.
+    for (const YamlMap::Entry& entry : map->entries()) {
+      const std::string_view key = entry.key;
+      if (key == "drive" || key == "damping" || key == "friction")
+        return m_reader.error(entry.keyMark, entry.value.path,
+                              "joint " + std::string(key) + " is not supported yet (limits, motor and effort are)");
+      if ((key == "axis" || key == "limits" || key == "motor" || key == "effort") && !axial)
+        return m_reader.error(entry.keyMark, entry.value.path,
+                              "only revolute and prismatic joints take " + std::string(key) + ", this one is " +
+                                  *typeName);
+      if ((key == "anchor_b" || key == "length") && def.type != JointType::Distance)
+        return m_reader.error(entry.keyMark, entry.value.path,
+                              "only distance joints take " + std::string(key) + ", this one is " + *typeName);
+    }
+
+    bool moves[2] = {false, false};
+    for (const bool sideB : {false, true}) {
+      const char* key = sideB ? "body_b" : "body_a";
+      Expected<YamlNode> bodyNode = m_reader.required(*map, key);
+      if (!bodyNode) return bodyNode.error();
+      Expected<std::string> body = m_reader.string(*bodyNode);
+      if (!body) return body.error();
+      if (*body != "world") {
+        const auto found = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const BodyDef& b) { return b.name == *body; });
+        if (found == m_bodies.end())
+          return m_reader.error(*bodyNode, "no body named \"" + *body + "\" (a body's name, or world)");
+        moves[sideB ? 1 : 0] = !found->isStatic;
+      }
+      (sideB ? out.bodyB : out.bodyA) = *body;
+    }
+    if (out.bodyA == out.bodyB) {
+      const YamlMap::Entry* entry = map->find("body_b");
+      return m_reader.error(entry->value, out.bodyA == "world" ? "both sides are the world: the joint joins nothing"
+                                                                : "body_a and body_b are the same body");
+    }
+    if (!moves[0] && !moves[1])
+      return m_reader.error(map->find("body_b")->value, "neither side moves (both are the world or static bodies)");
+
+    Expected<YamlNode> anchor = m_reader.required(*map, "anchor");
+    if (!anchor) return anchor.error();
+    Expected<Vec3> anchorValue = m_reader.vec3(*anchor, NumberRule::any(kMaxLength));
+    if (!anchorValue) return anchorValue.error();
+    def.anchor = *anchorValue;
+
+    if (axial) {
+      Expected<YamlNode> axisNode = m_reader.required(*map, "axis");
+      if (!axisNode) return axisNode.error();
+      Expected<Vec3> axis = m_reader.vec3(*axisNode, NumberRule::any(kMaxLength));
+      if (!axis) return axis.error();
+      if (axis->norm() < 1e-9) return m_reader.error(*axisNode, "the axis must not be zero");
+      def.axis = axis->normalized();
+      if (const YamlMap::Entry* limits = map->find("limits")) {
+        Expected<YamlMap> limitMap = m_reader.map(limits->value);
+        if (!limitMap) return limitMap.error();
+        if (auto error = m_reader.checkKeys(*limitMap, kLimitKeys, "limits")) return *error;
+        Expected<YamlNode> lowerNode = m_reader.required(*limitMap, "lower");
+        if (!lowerNode) return lowerNode.error();
+        Expected<YamlNode> upperNode = m_reader.required(*limitMap, "upper");
+        if (!upperNode) return upperNode.error();
+        Expected<double> lower = m_reader.number(*lowerNode, NumberRule::any(kMaxLength));
+        if (!lower) return lower.error();
+        Expected<double> upper = m_reader.number(*upperNode, NumberRule::any(kMaxLength));
+        if (!upper) return upper.error();
+        if (*lower > *upper)
+          return m_reader.error(*upperNode, "upper (" + std::to_string(*upper) + ") is below lower (" +
+                                                std::to_string(*lower) + ")");
+        def.limit = {true, *lower, *upper};
+      }
+      if (const YamlMap::Entry* motor = map->find("motor")) {
+        Expected<YamlMap> motorMap = m_reader.map(motor->value);
+        if (!motorMap) return motorMap.error();
+        if (auto error = m_reader.checkKeys(*motorMap, kMotorKeys, "a motor")) return *error;
+        Expected<YamlNode> capNode = m_reader.required(*motorMap, "max_effort");
+        if (!capNode) return capNode.error();
+        Expected<double> cap = m_reader.number(*capNode, NumberRule::nonNegative(kMaxEffort));
+        if (!cap) return cap.error();
+        Expected<double> target = m_reader.number(*motorMap, "target_rate", NumberRule::any(kMaxRate), 0.0);
+        if (!target) return target.error();
+        def.motor = {true, *target, *cap};
+      }
+      Expected<double> effort = m_reader.number(*map, "effort", NumberRule::any(kMaxEffort), 0.0);
+      if (!effort) return effort.error();
+      def.effort = *effort;
+    }
+    if (def.type == JointType::Distance) {
+      Expected<YamlNode> otherAnchor = m_reader.required(*map, "anchor_b");
+      if (!otherAnchor) return otherAnchor.error();
+      Expected<Vec3> anchorB = m_reader.vec3(*otherAnchor, NumberRule::any(kMaxLength));
+      if (!anchorB) return anchorB.error();
+      def.anchorB = *anchorB;
+      const double apart = (def.anchorB - def.anchor).norm();
+      Expected<double> length = m_reader.number(*map, "length", NumberRule::positive(kMaxLength), apart);
+      if (!length) return length.error();
+      if (!(*length > 0.0))
+        return m_reader.error(*otherAnchor, "the anchors coincide: give the rod a length");
+      def.length = *length;
+    }
+    Expected<bool> collide = m_reader.boolean(*map, "collide_connected", false);
+    if (!collide) return collide.error();
+    def.collideConnected = *collide;
+    return out;
+  }
+
+ private:
+  std::string location(const YamlNode& node) const {
+    return m_reader.sourceName() + ":" + std::to_string(node.mark.line + 1) + ":" + std::to_string(node.mark.column + 1) +
+           ": " + node.path;
+  }
+
+  const YamlReader& m_reader;
+  const std::vector<BodyDef>& m_bodies;
+};
+
+}  // namespace
+
+std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const std::vector<BodyDef>& bodies,
+                                 std::vector<NamedJointDef>& joints) {
+  Expected<std::vector<YamlNode>> items = reader.list(node);
+  if (!items) return items.error();
+  const JointParser parser(reader, bodies);
+  std::map<std::string, std::size_t, std::less<>> indexByName;
+  for (std::size_t i = 0; i < items->size(); ++i) {
+    Expected<NamedJointDef> joint = parser.parse((*items)[i]);
+    if (!joint) return joint.error();
+    const auto [existing, inserted] = indexByName.emplace(joint->def.name, i);
+    if (!inserted)
+      return reader.error((*items)[i].node["name"].Mark(), (*items)[i].path + ".name",
+                          "duplicate joint name \"" + joint->def.name + "\" (also the name of " + node.path + "[" +
+                              std::to_string(existing->second) + "])");
+    joints.push_back(std::move(*joint));
+  }
+  return std::nullopt;
+}
+
+}  // namespace rbsim

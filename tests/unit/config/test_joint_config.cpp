@@ -1,0 +1,106 @@
+// The `joints:` list of a world file: a joint per type read as written,
+// the example world builds and steps, and every mistake reported at its
+// file:line:column and key.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "config/config_loader.h"
+#include "rbsim/physics/world.h"
+
+namespace rbsim {
+namespace {
+
+const std::string kBodies =
+    "bodies:\n"
+    "  - {name: base, shape: {type: box, half_extents: [0.1, 0.1, 0.1]}, static: true}\n"
+    "  - {name: arm, shape: {type: sphere, radius: 0.05}, mass: 1, position: [0.5, 0, 0]}\n"
+    "  - {name: tip, shape: {type: sphere, radius: 0.05}, mass: 1, position: [1.0, 0, 0]}\n";
+
+std::string errorOf(const std::string& joints) {
+  const Expected<WorldDef> world = parseWorldConfig(kBodies + "joints:\n" + joints, "j.yaml", "");
+  if (world.ok()) {
+    ADD_FAILURE() << "accepted:\n" << joints;
+    return "";
+  }
+  return world.error().message;
+}
+
+TEST(JointConfig, JointsAreReadAsWrittenAndTheWorldStepsThem) {
+  const Expected<WorldDef> def = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - name: shoulder\n"
+          "    type: revolute\n"
+          "    body_a: world\n"
+          "    body_b: arm\n"
+          "    anchor: [0, 0, 0]\n"
+          "    axis: [0, 2, 0]\n"
+          "    limits: {lower: -1, upper: 1.5}\n"
+          "    motor: {max_effort: 3, target_rate: 0.5}\n"
+          "  - {name: rod, type: distance, body_a: arm, body_b: tip, anchor: [0.5, 0, 0], anchor_b: [1, 0, 0]}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  ASSERT_EQ(def->joints.size(), 2u);
+  const NamedJointDef& shoulder = def->joints[0];
+  EXPECT_EQ(shoulder.def.type, JointType::Revolute);
+  EXPECT_EQ(shoulder.bodyA, "world");
+  EXPECT_EQ(shoulder.bodyB, "arm");
+  EXPECT_EQ(shoulder.def.axis, Vec3(0, 1, 0));
+  EXPECT_TRUE(shoulder.def.limit.enabled);
+  EXPECT_EQ(shoulder.def.limit.upper, 1.5);
+  EXPECT_EQ(shoulder.def.motor.maxEffort, 3.0);
+  EXPECT_EQ(shoulder.def.motor.targetRate, 0.5);
+  EXPECT_NE(shoulder.source.find("j.yaml:6:5: joints[0]"), std::string::npos) << shoulder.source;
+  EXPECT_DOUBLE_EQ(def->joints[1].def.length, 0.5);
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_EQ(world->jointCount(), 2);
+  for (int k = 0; k < 100; ++k) world->step();
+  EXPECT_LT(world->jointState(world->findJoint("rod")).error, 1e-9);
+}
+
+TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
+  const Expected<WorldDef> def = loadWorldConfig(std::string(RBSIM_TEST_DATA_DIR) + "/../../config/worlds/joints.yaml");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_EQ(world->jointCount(), 6);
+  for (int k = 0; k < 2000; ++k) world->step();
+  for (int j = 0; j < world->jointCount(); ++j) EXPECT_LT(world->jointStateAt(j).error, 1e-6) << world->jointStateAt(j).name;
+  EXPECT_NEAR(world->jointState(world->findJoint("axle")).rate, 5.0, 1e-9) << "the motor reached its target";
+  EXPECT_NEAR(world->jointState(world->findJoint("lift")).position, -0.5, 1e-9) << "the carriage rests at its limit";
+}
+
+TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
+  const std::string base = "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]";
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: ghost, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
+                .find("j.yaml:6:"),
+            std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: ghost, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
+                .find("no body named \"ghost\""),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", axis: [0, 0, 0]}\n").find("duplicate"), std::string::npos) << "a key twice";
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 0, 0]}\n")
+                .find("joints[0].axis: the axis must not be zero"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", limits: {lower: 1, upper: -1}}\n").find("joints[0].limits.upper: upper"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: arm, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
+                .find("the same body"),
+            std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: base, anchor: [0, 0, 0]}\n").find("neither side moves"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", motor: {max_effort: -1}}\n").find("joints[0].motor.max_effort"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
+                .find("only revolute and prismatic joints take axis"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {target: 0}}\n").find("joint drive is not supported yet"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: hinge, body_a: world, body_b: arm, anchor: [0, 0, 0]}\n").find("expected one of fixed"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + "}\n" + base + "}\n").find("duplicate joint name \"j\""), std::string::npos);
+  EXPECT_NE(errorOf(base + ", speed: 3}\n").find("speed"), std::string::npos) << "an unknown key";
+}
+
+}  // namespace
+}  // namespace rbsim
