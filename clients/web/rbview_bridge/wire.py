@@ -88,9 +88,11 @@ class _Layout:
     offset of the first row's 13 numbers, bytes from one row to the next), one
     per stretch of bodies whose records have the same size (names of one
     length: s10..s99 are one run), so that each run is one strided view.
-    ``check_index``/``check_values``: the bytes of every body's id, name length
-    and frozen-string length, compared on each page that claims this layout (a
-    body that freezes changes its frozen length, and so every offset after it)."""
+    ``check_index``/``check_values``: every byte of the page but the bodies'
+    numbers (ids, names and frozen strings with their lengths), compared with one
+    numpy take on each page that claims this layout: a body that freezes changes
+    its frozen string, and so every offset after it; a new world revision its
+    names. A page that matches is laid out exactly as the one that was parsed."""
 
     __slots__ = ("offsets", "ids", "names", "frozen", "runs", "check_index", "check_values")
 
@@ -128,8 +130,7 @@ class StatePageDecoder:
 
     @staticmethod
     def _layout_fits(data, layout):
-        """Every body's id, name length and frozen length are where and what they
-        were: then every offset of the layout holds (the page's length is in the key)."""
+        """Every byte outside the numbers is what it was (the page's length is in the key)."""
         if not len(layout.check_index):
             return True
         raw = np.frombuffer(data, dtype=np.uint8)
@@ -141,6 +142,7 @@ class StatePageDecoder:
         ids = np.empty(count, dtype=np.int32)
         name_lengths = np.empty(count, dtype=np.int64)
         frozen_at = np.empty(count, dtype=np.int64)
+        frozen_lengths = np.empty(count, dtype=np.int64)
         names = []
         frozen = []
         at = 8 + _STATE_HEADER.size
@@ -162,7 +164,7 @@ class StatePageDecoder:
             (frozen_len,) = struct.unpack_from(">i", data, at)
             if frozen_len < 1 or at + 4 + frozen_len > end or data[at + 4 + frozen_len - 1] != 0:
                 raise WireError("world_state_t body %d: bad frozen length %d" % (i, frozen_len))
-            frozen_at[i] = at
+            frozen_at[i], frozen_lengths[i] = at, frozen_len
             frozen.append(bytes(data[at + 4:at + 3 + frozen_len]).decode("utf-8", "replace"))
             at += 4 + frozen_len
         if at != end:
@@ -178,9 +180,9 @@ class StatePageDecoder:
                 j += 1
             layout.runs.append((i, j - i, int(offsets[i]), stride))
             i = j
-        # id and name length: the 8 bytes before the name; frozen length: 4 bytes.
+        # Every byte but the numbers': id, name length, name, frozen length, frozen.
         starts = np.concatenate([offsets - name_lengths - 8, frozen_at])
-        widths = np.concatenate([np.full(count, 8), np.full(count, 4)])
+        widths = np.concatenate([name_lengths + 8, frozen_lengths + 4])
         layout.check_index = (np.repeat(starts, widths)
                               + np.arange(int(widths.sum())) - np.repeat(np.cumsum(widths) - widths, widths))
         raw = np.frombuffer(data, dtype=np.uint8)
