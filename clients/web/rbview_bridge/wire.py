@@ -3,10 +3,13 @@
 State pages arrive at the state rate (up to hundreds of Hz) with thousands of
 bodies, so they are not decoded body by body in Python (lcm-gen's decoder costs
 microseconds per body): the byte offsets of every body's 13 numbers depend only
-on the names, which are fixed within one world revision, so they are found once
-per page layout and then gathered with numpy. Contacts are fixed-size records
-and are read as one numpy structured array. The rarer messages (world, status,
-acks) go through the lcm-gen decoders.
+on the names and frozen strings, which are fixed within one world revision
+(until a body freezes), so they are found once per page layout; a later page of
+that layout is checked (every byte but the numbers, one numpy take) and its
+numbers are then read in place as strided numpy views, one per run of
+equal-size body records (frames.frame_from_pages turns them into the frame).
+Contacts are fixed-size records and are read as one numpy structured array.
+The rarer messages (world, status, acks) go through the lcm-gen decoders.
 
 Wire layout (LCM type specification, big-endian): world_state_t is an 8-byte
 fingerprint, then utime q, step q, sim_time d, world_revision q, page i,
