@@ -54,3 +54,42 @@ def state_frame(header, numbers, static_mask, contacts=None, contacts_step=-1, c
                        float(contacts_step))
     return b"".join((head, numbers[:, 0:7].astype("<f4").tobytes(), velocities.astype("<f4").tobytes(),
                      contact_floats.tobytes()))
+
+
+def frame_from_pages(pages, static_mask, contacts=None, contacts_step=-1, contacts_total=0):
+    """The same bytes as state_frame, built from complete, tiling state pages
+    (wire.StatePage) with a few numpy passes and no per-body Python: each run of
+    bodies of a page is byte-swapped straight from the LCM bytes into one native
+    (n, 13) array, which is cut into the frame's float32 poses and velocities."""
+    header = pages[0]
+    n = header.total_bodies
+    if contacts is not None and len(contacts):
+        shown = contacts[:MAX_CONTACTS_PER_FRAME]
+    else:
+        shown = None
+    m = 0 if shown is None else len(shown)
+    head_floats = HEADER_BYTES // 4
+    out = np.empty(head_floats + 13 * n + 7 * m, dtype="<f4")
+    poses = out[head_floats:head_floats + 7 * n].reshape(n, 7)
+    velocities = out[head_floats + 7 * n:head_floats + 13 * n].reshape(n, 6)
+    numbers = np.empty((n, 13), dtype=np.float64)
+    for page in pages:
+        base = page.first_body_index
+        for row, count, view in page.runs():
+            numbers[base + row:base + row + count] = view  # byte-swapped, gathered: one pass a run
+    with np.errstate(over="ignore", invalid="ignore"):  # as astype: 1e300 m is inf in float32
+        poses[...] = numbers[:, 0:7]
+        velocities[...] = numbers[:, 7:13]
+    still = ~numbers[:, 7:13].any(axis=1)
+    if static_mask is not None and len(static_mask) == n:
+        still &= ~static_mask
+    at_rest = int(np.count_nonzero(still))
+    if m:
+        contact_floats = out[head_floats + 13 * n:].reshape(m, 7)
+        contact_floats[:, 0:3] = shown["position"]
+        contact_floats[:, 3:6] = shown["normal"]
+        contact_floats[:, 6] = shown["depth"]
+    HEADER.pack_into(out, 0, MAGIC, KIND_STATE, float(header.step), float(header.sim_time),
+                     float(header.utime), float(header.world_revision), n, m, int(contacts_total),
+                     at_rest, float(contacts_step))
+    return out.tobytes()

@@ -1,7 +1,8 @@
 """The live source: rbserver's channels over LCM in, commands and wrenches out.
 
-Runs LCM's receive loop on its own thread (rbsim.lcm_ctypes); state frames are
-built there and handed to the hub, so the asyncio loop only sends bytes.
+Runs LCM's receive loop on its own thread (rbsim.lcm_ctypes); state pages are
+checked there and handed to the hub as a frame to build (frames.frame_from_pages),
+which is built once, on the asyncio loop, only if a browser is sent it.
 Requests from browsers are published with this bridge's client id and a
 sequence number of its own; the ack that echoes it goes back to the browser
 that asked (or a timeout note after ACK_TIMEOUT s).
@@ -20,7 +21,7 @@ from rbsim import ack_t, command_t, status_t, world_t, wrench_t
 from rbsim.lcm_ctypes import Lcm
 
 from . import frames, wire
-from .server import ACK_TIMEOUT, dumps
+from .server import ACK_TIMEOUT, Lazy, dumps
 
 log = logging.getLogger("rbview")
 
@@ -45,12 +46,24 @@ class FrameBuilder:
     def set_contacts(self, header, records):
         self.contacts = (header.step, header.total_contacts, records)
 
-    def frame(self, header, numbers):
+    def _parts(self, pages):
+        header = pages[0]
         mask = self.static_mask if header.world_revision == self.world_revision else None
         if self.contacts is not None:
             step, total, records = self.contacts
-            return frames.state_frame(header, numbers, mask, records, step, total)
-        return frames.state_frame(header, numbers, mask)
+            return pages, mask, records, step, total
+        return pages, mask
+
+    def frame(self, pages):
+        """The frame of complete, tiling state pages, built now."""
+        return frames.frame_from_pages(*self._parts(pages))
+
+    def lazy_frame(self, pages):
+        """The same, built only when a browser is sent it (on the asyncio thread):
+        states that no browser takes (none connected, or each still drawing the
+        last one when a newer state replaces this one) cost no frame."""
+        parts = self._parts(pages)
+        return Lazy(lambda: frames.frame_from_pages(*parts))
 
 
 class LiveSource:
@@ -102,11 +115,9 @@ class LiveSource:
         pages = self.state_pages.add(page.key(), page, page.num_pages)
         if pages is None:
             return
-        merged = wire.merge_state(pages)
-        if merged is None:
+        if not wire.pages_tile(pages):
             return self._bad(channel, "pages that do not tile the bodies")
-        header, _ids, _names, numbers = merged
-        self.hub.post("state", self.builder.frame(header, numbers))
+        self.hub.post("state", self.builder.lazy_frame(pages))
 
     def _on_contacts(self, channel, data, _recv_utime):
         try:

@@ -79,10 +79,9 @@ def load(path, prefix):
                     pages = state_pages.add(page.key(), page, page.num_pages)
                     if pages is None:
                         continue
-                    merged = wire.merge_state(pages)
-                    if merged is None:
+                    if not wire.pages_tile(pages):
                         raise wire.WireError("state pages that do not tile the bodies")
-                    header, _ids, _names, numbers = merged
+                    header = pages[0]
                     key = (header.world_revision, header.step)
                     if key in seen:
                         continue
@@ -91,7 +90,7 @@ def load(path, prefix):
                     builder.contacts = None
                     if header.step in contacts:
                         builder.set_contacts(*contacts[header.step])
-                    frame = builder.frame(header, numbers)
+                    frame = builder.frame(pages)
                     total_bytes += len(frame)
                     if total_bytes > MAX_FRAME_BYTES:
                         raise MemoryError("%s: more than %d MB of states; replay a shorter log"

@@ -37,6 +37,23 @@ def dumps(message):
     return json.dumps(sanitize(message), separators=(",", ":"), allow_nan=False)
 
 
+class Lazy:
+    """A value made on first use (on the asyncio thread), then kept: a state frame
+    is built only if some browser is sent it, and once for all of them."""
+
+    __slots__ = ("_make", "_value")
+
+    def __init__(self, make):
+        self._make = make
+        self._value = None
+
+    def get(self):
+        if self._value is None:
+            self._value = self._make()
+            self._make = None
+        return self._value
+
+
 class Slot:
     """The newest value of one kind and a counter that says it changed."""
 
@@ -92,7 +109,8 @@ class Session:
                 self.credit = False
                 self.seen["state"] = state.seq
                 self.frames_sent += 1
-                await self.socket.send(state.value)
+                value = state.value
+                await self.socket.send(value.get() if isinstance(value, Lazy) else value)
 
 
 class Hub:

@@ -3,10 +3,13 @@
 State pages arrive at the state rate (up to hundreds of Hz) with thousands of
 bodies, so they are not decoded body by body in Python (lcm-gen's decoder costs
 microseconds per body): the byte offsets of every body's 13 numbers depend only
-on the names, which are fixed within one world revision, so they are found once
-per page layout and then gathered with numpy. Contacts are fixed-size records
-and are read as one numpy structured array. The rarer messages (world, status,
-acks) go through the lcm-gen decoders.
+on the names and frozen strings, which are fixed within one world revision
+(until a body freezes), so they are found once per page layout; a later page of
+that layout is checked (every byte but the numbers, one numpy take) and its
+numbers are then read in place as strided numpy views, one per run of
+equal-size body records (frames.frame_from_pages turns them into the frame).
+Contacts are fixed-size records and are read as one numpy structured array.
+The rarer messages (world, status, acks) go through the lcm-gen decoders.
 
 Wire layout (LCM type specification, big-endian): world_state_t is an 8-byte
 fingerprint, then utime q, step q, sim_time d, world_revision q, page i,
@@ -45,25 +48,68 @@ class WireError(ValueError):
 
 
 class StatePage:
-    """One world_state_t page: header fields and a (num_bodies, 13) float64 array
-    (position 3, orientation w x y z, linear velocity 3, angular velocity 3), and ids."""
+    """One world_state_t page: its header fields and, through its layout, views
+    of the page's bytes: ``runs()`` gives (first row, rows, (rows, 13) array of
+    big-endian float64 viewing the bytes in place: position 3, orientation
+    w x y z, linear velocity 3, angular velocity 3); ``numbers`` is the same as
+    one native (num_bodies, 13) float64 array (a copy, for tests and tools)."""
 
     __slots__ = ("utime", "step", "sim_time", "world_revision", "page", "num_pages",
-                 "total_bodies", "first_body_index", "num_bodies", "ids", "numbers", "names",
-                 "frozen")
+                 "total_bodies", "first_body_index", "num_bodies", "data", "layout")
 
     def key(self):
         return (self.utime, self.step, self.world_revision)
+
+    @property
+    def ids(self):
+        return self.layout.ids
+
+    @property
+    def names(self):
+        return self.layout.names
+
+    @property
+    def frozen(self):
+        return self.layout.frozen
+
+    def runs(self):
+        data = self.data
+        for row, count, offset, stride in self.layout.runs:
+            yield row, count, np.ndarray((count, 13), dtype=">f8", buffer=data, offset=offset,
+                                         strides=(stride, 8))
+
+    @property
+    def numbers(self):
+        out = np.empty((self.num_bodies, 13), dtype=np.float64)
+        for row, count, view in self.runs():
+            out[row:row + count] = view
+        return out
+
+
+class _Layout:
+    """Where the bodies of one page layout are. ``runs``: (first row, rows, byte
+    offset of the first row's 13 numbers, bytes from one row to the next), one
+    per stretch of bodies whose records have the same size (names of one
+    length: s10..s99 are one run), so that each run is one strided view.
+    ``check_index``/``check_values``: every byte of the page but the bodies'
+    numbers (ids, names and frozen strings with their lengths), compared with one
+    numpy take on each page that claims this layout: a body that freezes changes
+    its frozen string, and so every offset after it; a new world revision its
+    names. A page that matches is laid out exactly as the one that was parsed."""
+
+    __slots__ = ("offsets", "ids", "names", "frozen", "runs", "check_index", "check_values")
 
 
 class StatePageDecoder:
     """Decodes world_state_t pages, remembering each page layout's body offsets."""
 
     def __init__(self, max_layouts=64):
-        self._layouts = {}  # (len, revision, page, first, n) -> Layout
+        self._layouts = {}  # (len, revision, page, first, n) -> _Layout
         self._max_layouts = max_layouts
 
     def decode(self, data):
+        if not isinstance(data, bytes):
+            data = bytes(data)
         if len(data) < 8 + _STATE_HEADER.size or data[:8] != STATE_FINGERPRINT:
             raise WireError("not a world_state_t (size %d or fingerprint)" % len(data))
         page = StatePage()
@@ -77,38 +123,29 @@ class StatePageDecoder:
         layout = self._layouts.get(key)
         if layout is None or not self._layout_fits(data, layout):
             layout = self._find_layout(data, page.num_bodies)
+            self._layouts.pop(key, None)
             if len(self._layouts) >= self._max_layouts:
                 self._layouts.pop(next(iter(self._layouts)))
             self._layouts[key] = layout
-        offsets, page.ids, page.names, _, _, page.frozen = layout
-        raw = np.frombuffer(data, dtype=np.uint8)
-        gathered = raw[offsets[:, None] + np.arange(_BODY_NUMBERS)]
-        page.numbers = gathered.view(">f8").reshape(page.num_bodies, 13).astype(np.float64)
+        page.data = data
+        page.layout = layout
         return page
 
     @staticmethod
     def _layout_fits(data, layout):
-        """Cheap check that a cached layout still applies: the ids at their
-        offsets, and every body's frozen-string length where it was (a body that
-        freezes changes it; gathered with numpy, not body by body)."""
-        offsets, ids, names, frozen_at, frozen_lengths, _ = layout
-        if len(offsets) == 0:
+        """Every byte outside the numbers is what it was (the page's length is in the key)."""
+        if not len(layout.check_index):
             return True
-        for i in (0, len(offsets) // 2, len(offsets) - 1):
-            name_len = len(names[i].encode("utf-8")) + 1
-            at = offsets[i] - 8 - name_len
-            if struct.unpack_from(">i", data, at)[0] != ids[i]:
-                return False
         raw = np.frombuffer(data, dtype=np.uint8)
-        lengths = raw[frozen_at[:, None] + np.arange(4)].view(">i4").reshape(-1)
-        return bool(np.array_equal(lengths, frozen_lengths))
+        return bool(np.array_equal(raw.take(layout.check_index), layout.check_values))
 
     @staticmethod
     def _find_layout(data, count):
         offsets = np.empty(count, dtype=np.int64)
         ids = np.empty(count, dtype=np.int32)
+        name_lengths = np.empty(count, dtype=np.int64)
         frozen_at = np.empty(count, dtype=np.int64)
-        frozen_lengths = np.empty(count, dtype=np.int32)
+        frozen_lengths = np.empty(count, dtype=np.int64)
         names = []
         frozen = []
         at = 8 + _STATE_HEADER.size
@@ -121,6 +158,7 @@ class StatePageDecoder:
             if name_len < 1 or at + name_len + _BODY_NUMBERS > end or data[at + name_len - 1] != 0:
                 raise WireError("world_state_t body %d: bad name length %d" % (i, name_len))
             names.append(bytes(data[at:at + name_len - 1]).decode("utf-8", "replace"))
+            name_lengths[i] = name_len
             at += name_len
             offsets[i] = at
             at += _BODY_NUMBERS
@@ -134,7 +172,25 @@ class StatePageDecoder:
             at += 4 + frozen_len
         if at != end:
             raise WireError("world_state_t has %d trailing bytes" % (end - at))
-        return offsets, ids, names, frozen_at, frozen_lengths, frozen
+        layout = _Layout()
+        layout.offsets, layout.ids, layout.names, layout.frozen = offsets, ids, names, frozen
+        layout.runs = []
+        i = 0
+        while i < count:
+            j = i + 1
+            stride = int(offsets[j] - offsets[i]) if j < count else _BODY_NUMBERS + 5
+            while j < count and offsets[j] - offsets[j - 1] == stride:
+                j += 1
+            layout.runs.append((i, j - i, int(offsets[i]), stride))
+            i = j
+        # Every byte but the numbers': id, name length, name, frozen length, frozen.
+        starts = np.concatenate([offsets - name_lengths - 8, frozen_at])
+        widths = np.concatenate([name_lengths + 8, frozen_lengths + 4])
+        layout.check_index = (np.repeat(starts, widths)
+                              + np.arange(int(widths.sum())) - np.repeat(np.cumsum(widths) - widths, widths))
+        raw = np.frombuffer(data, dtype=np.uint8)
+        layout.check_values = raw.take(layout.check_index)
+        return layout
 
 
 class ContactsPage:
@@ -255,17 +311,23 @@ def page_index(page):
     return page.page
 
 
-def merge_state(pages):
-    """Complete state pages -> (header page, ids, names, numbers (n, 13)) or None if they do not tile."""
+def pages_tile(pages):
+    """True if complete state pages hold bodies 0 .. total_bodies-1 once each, in order."""
     first = pages[0]
     expected = 0
     for p in pages:
         if (p.total_bodies != first.total_bodies or p.first_body_index != expected
                 or p.world_revision != first.world_revision):
-            return None
+            return False
         expected += p.num_bodies
-    if expected != first.total_bodies:
+    return expected == first.total_bodies
+
+
+def merge_state(pages):
+    """Complete state pages -> (header page, ids, names, numbers (n, 13)) or None if they do not tile."""
+    if not pages_tile(pages):
         return None
+    first = pages[0]
     if len(pages) == 1:
         return first, first.ids, first.names, first.numbers
     return (first, np.concatenate([p.ids for p in pages]), [n for p in pages for n in p.names],
