@@ -78,6 +78,17 @@ int JointConstraint::rowCount() const {
   return 0;
 }
 
+std::string invalidDriveReason(const JointDrive& drive) {
+  const auto nonNegative = [](double x) { return std::isfinite(x) && x >= 0.0; };
+  if (!std::isfinite(drive.target)) return "the drive's target is not finite";
+  if (!nonNegative(drive.stiffness) || !nonNegative(drive.damping))
+    return "the drive's stiffness and damping must be finite and non-negative";
+  if (!nonNegative(drive.frequency) || !nonNegative(drive.dampingRatio))
+    return "the drive's frequency and damping ratio must be finite and non-negative";
+  if (std::isnan(drive.maxEffort) || drive.maxEffort <= 0.0) return "the drive's max effort must be positive";
+  return {};
+}
+
 Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSidePose& a,
                                               const JointSidePose& b) {
   const std::string where = "joint '" + def.name + "'";
@@ -110,6 +121,16 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
     if (!axial) return Error{where + ": only revolute and prismatic joints take a motor"};
     if (!std::isfinite(def.motor.targetRate) || !std::isfinite(def.motor.maxEffort) || def.motor.maxEffort < 0.0)
       return Error{where + ": the motor needs a finite target rate and a finite, non-negative max effort"};
+  }
+  if (def.drive.enabled) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints take a drive"};
+    if (def.motor.enabled) return Error{where + ": a joint takes a motor or a drive, not both"};
+    if (const std::string why = invalidDriveReason(def.drive); !why.empty()) return Error{where + ": " + why};
+  }
+  if (def.damping != 0.0 || def.friction != 0.0) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints take damping and friction"};
+    if (!std::isfinite(def.damping) || def.damping < 0.0 || !std::isfinite(def.friction) || def.friction < 0.0)
+      return Error{where + ": damping and friction must be finite and non-negative"};
   }
   if (def.effort != 0.0) {
     if (!axial) return Error{where + ": only revolute and prismatic joints take an effort"};

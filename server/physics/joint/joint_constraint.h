@@ -100,7 +100,14 @@ struct JointConstraint {
 // initial configuration) and the sides' poses. Errors name the joint and the
 // field: a non-finite anchor, a zero or non-finite axis, a rod of zero or
 // negative length, a limit, motor or effort on a joint without an axis or
-// with bad numbers (not finite, lower above upper, a negative effort cap).
+// with bad numbers (not finite, lower above upper, a negative effort cap),
+// a motor and a drive together, damping or friction on a joint without an
+// axis, or negative.
+// Why a drive's numbers are bad (empty: they are not): a target that is not
+// finite, a negative or non-finite stiffness, damping, frequency or damping
+// ratio, a max effort that is not positive.
+std::string invalidDriveReason(const JointDrive& drive);
+
 Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSidePose& a,
                                               const JointSidePose& b);
 

@@ -89,6 +89,20 @@ Expected<bool> World::setJointMotor(JointId id, const JointMotor& motor) {
   if (motor.enabled && (!std::isfinite(motor.targetRate) || !std::isfinite(motor.maxEffort) || motor.maxEffort < 0.0))
     return Error{"joint '" + joint.def.name + "': the motor needs a finite target rate and a finite, non-negative max effort"};
   joint.def.motor = motor;
+  if (motor.enabled) joint.def.drive.enabled = false;
+  wakeJointBodies(joint.def);
+  return true;
+}
+
+Expected<bool> World::setJointDrive(JointId id, const JointDrive& drive) {
+  if (const std::string why = invalidJointReason(id); !why.empty()) return Error{"cannot set the drive: " + why};
+  JointConstraint& joint = m_joints[static_cast<std::size_t>(m_jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
+  if (drive.enabled && !joint.hasAxis()) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take a drive"};
+  if (drive.enabled) {
+    if (const std::string why = invalidDriveReason(drive); !why.empty()) return Error{"joint '" + joint.def.name + "': " + why};
+  }
+  joint.def.drive = drive;
+  if (drive.enabled) joint.def.motor.enabled = false;
   wakeJointBodies(joint.def);
   return true;
 }
@@ -174,6 +188,7 @@ JointState World::jointStateAt(int denseIndex) const {
   out.anchorA = poses[0].position + poses[0].rotation * joint.anchorA;
   out.anchorB = poses[1].position + poses[1].rotation * joint.anchorB;
   out.axis = poses[0].rotation * joint.axisA;
+  out.rotation = (poses[0].orientation.conjugate() * poses[1].orientation * joint.restRelative.conjugate()).normalized();
   double errors[kMaxJointRows];
   joint.errors(poses[0], poses[1], joint.basisAt(poses[0]), errors);
   for (int r = 0; r < joint.rowCount(); ++r) out.error = std::max(out.error, std::abs(errors[r]));

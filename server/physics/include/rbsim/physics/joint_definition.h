@@ -12,8 +12,10 @@
 // step ends with the joints closed to rounding (about 1e-12 m and rad) and
 // the velocities tangent to them, whatever the mass ratios.
 
+#include <limits>
 #include <string>
 
+#include "physics/math/quaternion.h"
 #include "physics/math/types.h"
 #include "rbsim/physics/ids.h"
 
@@ -48,6 +50,24 @@ struct JointMotor {
   double maxEffort = 0.0;   // N·m or N, >= 0
 };
 
+// Revolute and prismatic joints: a position drive pulls the joint coordinate
+// to `target` as a spring and damper along the axis (a servo, a PD
+// controller): effort = −stiffness (position − target) − damping rate,
+// capped at `maxEffort`. The spring and damper are implicit in the step
+// (as Box2D's and Jolt's soft constraints), so any stiffness is stable.
+// Instead of stiffness and damping, a drive may give its natural frequency
+// and damping ratio: the stiffness and damping then follow each step from
+// the effective mass or inertia the axis moves (m ω², 2 ζ m ω).
+struct JointDrive {
+  bool enabled = false;
+  double target = 0.0;        // rad or m
+  double stiffness = 0.0;     // N·m/rad or N/m, >= 0
+  double damping = 0.0;       // N·m·s/rad or N·s/m, >= 0
+  double frequency = 0.0;     // Hz, >= 0; > 0: used instead of stiffness and damping
+  double dampingRatio = 0.0;  // with frequency: 1 is critical damping
+  double maxEffort = std::numeric_limits<double>::infinity();  // N·m or N, > 0
+};
+
 struct JointDef {
   std::string name;  // unique among the world's joints
   JointType type = JointType::Revolute;
@@ -64,7 +84,15 @@ struct JointDef {
   bool collideConnected = false;
   // Revolute and prismatic only.
   JointLimit limit;
+  // The motor and the drive are two ways to command the axis: at most one
+  // is enabled.
   JointMotor motor;
+  JointDrive drive;
+  // The joint's own losses, as URDF's <dynamics>: viscous damping (an
+  // effort −damping · rate) and dry friction (an effort of at most
+  // `friction` against the motion, holding the joint still below it).
+  double damping = 0.0;   // N·m·s/rad or N·s/m, >= 0
+  double friction = 0.0;  // N·m or N, >= 0
   // A force or torque along the axis, on B (and its reaction on A), as a
   // torque-controlled actuator commands it: N·m or N, until changed.
   double effort = 0.0;
@@ -90,6 +118,10 @@ struct JointState {
   // distance (distance, m); 0 for the others.
   double position = 0.0;
   double rate = 0.0;  // its time derivative: rad/s or m/s
+  // B's orientation relative to A's, from the initial configuration
+  // (identity there): q_A⁻¹ q_B r₀⁻¹ in A's frame; a spherical joint's
+  // position.
+  Quaternion rotation = Quaternion::identity();
   Vec3 anchorA = Vec3::Zero();  // m, world: the anchor on A now
   Vec3 anchorB = Vec3::Zero();  // m, world: on B now (equal to anchorA but for rounding, or a rod's length away)
   Vec3 axis = Vec3::UnitZ();    // world: the axis as A carries it
@@ -99,8 +131,9 @@ struct JointState {
   // world; the couple about B's anchor): the constraint impulses / dt.
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
-  // The actuation along the axis over the last step (the motor's and the
-  // direct effort): N·m or N on B.
+  // The actuation along the axis over the last step (the motor's or the
+  // drive's, and the direct effort): N·m or N on B. Damping and friction
+  // are not in it.
   double axisEffort = 0.0;
   // At a limit after the last step: -1 at the lower one, +1 at the upper, 0 within.
   int atLimit = 0;

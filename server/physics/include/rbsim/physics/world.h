@@ -142,9 +142,10 @@ class World {
   // A joint with a body frozen by the numerical guard is not enforced.
   Expected<JointId> createJoint(const JointDef& def);
   // A joint's actuation, changed between steps (as commands do): the motor
-  // (off: enabled false) and the direct effort. Errors name the joint; the
-  // joint's bodies wake.
+  // or the drive (off: enabled false; enabling one turns the other off) and
+  // the direct effort. Errors name the joint; the joint's bodies wake.
   Expected<bool> setJointMotor(JointId id, const JointMotor& motor);
+  Expected<bool> setJointDrive(JointId id, const JointDrive& drive);
   Expected<bool> setJointEffort(JointId id, double effort);
   Expected<bool> removeJoint(JointId id);
   JointId findJoint(std::string_view name) const;  // null id when absent
