@@ -22,6 +22,10 @@ constexpr std::array<std::string_view, 15> kJointKeys = {
     "limits", "motor", "effort", "drive", "damping", "friction", "collide_connected"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
+constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
+                                                        "max_effort"};
+constexpr double kMaxGain = 1e12;       // N·m/rad, N/m, N·m·s/rad or N·s/m
+constexpr double kMaxFrequency = 1e6;   // Hz
 
 struct TypeName {
   std::string_view name;
@@ -66,13 +70,12 @@ class JointParser {
     def.type = type->type;
     const bool axial = def.type == JointType::Revolute || def.type == JointType::Prismatic;
 
-    // Keys that this type does not take, and actuation not built yet.
+    // Keys that this type does not take.
     for (const YamlMap::Entry& entry : map->entries()) {
       const std::string_view key = entry.key;
-      if (key == "drive" || key == "damping" || key == "friction")
-        return m_reader.error(entry.keyMark, entry.value.path,
-                              "joint " + std::string(key) + " is not supported yet (limits, motor and effort are)");
-      if ((key == "axis" || key == "limits" || key == "motor" || key == "effort") && !axial)
+      if ((key == "axis" || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
+           key == "damping" || key == "friction") &&
+          !axial)
         return m_reader.error(entry.keyMark, entry.value.path,
                               "only revolute and prismatic joints take " + std::string(key) + ", this one is " +
                                   *typeName);
@@ -146,6 +149,20 @@ class JointParser {
         if (!target) return target.error();
         def.motor = {true, *target, *cap};
       }
+      if (const YamlMap::Entry* drive = map->find("drive")) {
+        if (def.motor.enabled)
+          return m_reader.error(drive->keyMark, drive->value.path,
+                                "a joint takes a motor or a drive, not both (the drive is a position servo, the motor a velocity one)");
+        Expected<JointDrive> parsed = parseDrive(drive->value);
+        if (!parsed) return parsed.error();
+        def.drive = *parsed;
+      }
+      Expected<double> damping = m_reader.number(*map, "damping", NumberRule::nonNegative(kMaxGain), 0.0);
+      if (!damping) return damping.error();
+      def.damping = *damping;
+      Expected<double> friction = m_reader.number(*map, "friction", NumberRule::nonNegative(kMaxEffort), 0.0);
+      if (!friction) return friction.error();
+      def.friction = *friction;
       Expected<double> effort = m_reader.number(*map, "effort", NumberRule::any(kMaxEffort), 0.0);
       if (!effort) return effort.error();
       def.effort = *effort;
@@ -170,6 +187,49 @@ class JointParser {
   }
 
  private:
+  // drive: {target, stiffness, damping} or {target, frequency,
+  // damping_ratio}, with an optional max_effort.
+  Expected<JointDrive> parseDrive(const YamlNode& node) const {
+    Expected<YamlMap> map = m_reader.map(node);
+    if (!map) return map.error();
+    if (auto error = m_reader.checkKeys(*map, kDriveKeys, "a drive")) return *error;
+    JointDrive drive;
+    drive.enabled = true;
+    Expected<double> target = m_reader.number(*map, "target", NumberRule::any(kMaxLength), 0.0);
+    if (!target) return target.error();
+    drive.target = *target;
+    const YamlMap::Entry* frequency = map->find("frequency");
+    const YamlMap::Entry* stiffness = map->find("stiffness");
+    if (frequency && (stiffness || map->find("damping")))
+      return m_reader.error(frequency->keyMark, frequency->value.path,
+                            "give stiffness and damping, or frequency and damping_ratio, not both");
+    if (frequency) {
+      Expected<double> hertz = m_reader.number(frequency->value, NumberRule::positive(kMaxFrequency));
+      if (!hertz) return hertz.error();
+      drive.frequency = *hertz;
+      Expected<double> ratio = m_reader.number(*map, "damping_ratio", NumberRule::nonNegative(kMaxFrequency), 1.0);
+      if (!ratio) return ratio.error();
+      drive.dampingRatio = *ratio;
+    } else {
+      if (const YamlMap::Entry* ratio = map->find("damping_ratio"))
+        return m_reader.error(ratio->keyMark, ratio->value.path, "damping_ratio goes with frequency (or give damping)");
+      Expected<YamlNode> stiffnessNode = m_reader.required(*map, "stiffness");
+      if (!stiffnessNode) return stiffnessNode.error();
+      Expected<double> k = m_reader.number(*stiffnessNode, NumberRule::nonNegative(kMaxGain));
+      if (!k) return k.error();
+      drive.stiffness = *k;
+      Expected<double> c = m_reader.number(*map, "damping", NumberRule::nonNegative(kMaxGain), 0.0);
+      if (!c) return c.error();
+      drive.damping = *c;
+    }
+    if (const YamlMap::Entry* cap = map->find("max_effort")) {
+      Expected<double> value = m_reader.number(cap->value, NumberRule::positive(kMaxEffort));
+      if (!value) return value.error();
+      drive.maxEffort = *value;
+    }
+    return drive;
+  }
+
   std::string location(const YamlNode& node) const {
     return m_reader.sourceName() + ":" + std::to_string(node.mark.line + 1) + ":" + std::to_string(node.mark.column + 1) +
            ": " + node.path;

@@ -16,8 +16,9 @@ namespace rbsim {
 // the names and which are static). Errors: an unknown key or type, a body
 // that is not there, a joint naming one body twice or joining nothing that
 // moves, a zero axis, lower > upper, a negative effort cap, a key that the
-// joint's type does not take, a duplicate joint name, and the actuation not
-// built yet (drive, damping, friction), said as such rather than ignored.
+// joint's type does not take, a duplicate joint name, a motor and a drive
+// on one joint, a drive with both stiffness and frequency, and negative
+// gains, damping or friction.
 std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const std::vector<BodyDef>& bodies,
                                  std::vector<NamedJointDef>& joints);
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "physics/body/integrator.h"
+#include "physics/joint/axis_actuation.h"
 #include "physics/math/rotation_matrix.h"
 
 namespace rbsim {
@@ -244,111 +245,186 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
   return total;
 }
 
-void JointSolver::driveMotors(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+namespace {
+
+// The rate of a row from the bodies' momenta (velocities with the inverse
+// inertias given, one per body), and an impulse along a row into the
+// momenta.
+double rowRate(const JointSolverRow& row, const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) {
+  double v = 0.0;
+  if (row.bodyA >= 0) {
+    const auto i = static_cast<std::size_t>(row.bodyA);
+    v += row.jacobian.linearA.dot(bodies[i].inverseMass * bodies[i].linearMomentum) +
+         row.jacobian.angularA.dot(inverseInertia[i] * bodies[i].angularMomentum);
+  }
+  if (row.bodyB >= 0) {
+    const auto i = static_cast<std::size_t>(row.bodyB);
+    v += row.jacobian.linearB.dot(bodies[i].inverseMass * bodies[i].linearMomentum) +
+         row.jacobian.angularB.dot(inverseInertia[i] * bodies[i].angularMomentum);
+  }
+  return v;
+}
+
+void pushAlongRow(const JointSolverRow& row, double lambda, std::vector<JointBody>& bodies) {
+  if (row.bodyA >= 0) {
+    JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
+    body.linearMomentum += lambda * row.jacobian.linearA;
+    body.angularMomentum += lambda * row.jacobian.angularA;
+  }
+  if (row.bodyB >= 0) {
+    JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
+    body.linearMomentum += lambda * row.jacobian.linearB;
+    body.angularMomentum += lambda * row.jacobian.angularB;
+  }
+}
+
+// Whether a joint has anything acting along its axis besides its limit.
+bool axisActs(const JointConstraint& joint) {
+  const JointDef& def = joint.def;
+  return joint.hasAxis() && (def.motor.enabled || def.drive.enabled || def.damping > 0.0 || def.friction > 0.0);
+}
+
+// The drive's position error, the short way round for a revolute joint
+// without limits (a wheel, a continuous joint: its angle wraps at ±2π).
+double driveError(const JointConstraint& joint, double position) {
+  double error = position - joint.def.drive.target;
+  if (joint.def.type == JointType::Revolute && !joint.def.limit.enabled)
+    error = std::remainder(error, 2.0 * 3.14159265358979323846);
+  return error;
+}
+
+}  // namespace
+
+void JointSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
+  const auto count = static_cast<Eigen::Index>(m_rows.size());
+  Eigen::VectorXd rate(count);
+  for (Eigen::Index r = 0; r < count; ++r) rate[r] = rowRate(m_rows[static_cast<std::size_t>(r)], bodies, inverseInertia);
+  const Eigen::VectorXd impulse = m_system.solve(-rate);
+  for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
+}
+
+void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                              const std::vector<Mat3>& inverseInertia, bool atEnd,
                               std::vector<JointLinkResult>& results) {
-  // The motors' rows (J_m v = target) solved exactly together with the
-  // joints' rows (J₀ v = 0), so that a motor moves what the joints let it
-  // move (an arm about its hinge, not the bob about its own centre). A motor
-  // whose impulse would pass its cap is held at the cap and the rest solved
-  // again: an active set, at most one round per motor.
-  struct Motor {
+  // The laws along the axes (axis_actuation.h) act as RATTLE's kicks do:
+  // half of the step before the drift, on the rate the drift moves with
+  // (the drive's spring at the position the drift reaches), and half after
+  // the second half kick, on the rate the step ends with (the spring where
+  // the drift left it). So a motor holds its rate, and friction or a drive
+  // holds a joint still against a load, at both: nothing creeps.
+  //
+  // They act together with the joints' rows (m_rows, K as m_system holds
+  // it), so that an actuator moves what the joints let it move (an arm
+  // about its hinge, not the bob about its own centre). With the joints
+  // holding, axis i's rate is
+  //   w_i = w_free_i + Σ_j A_ij Λ_j,
+  // A_ij = J_i (M⁻¹ − M⁻¹JᵀK⁻¹JM⁻¹) J_jᵀ, and each Λ_i obeys its axis's
+  // law. Gauss–Seidel over the axes, each solved exactly given the others:
+  // one sweep for a single axis; for coupled axes (an arm's joints) it
+  // converges because the laws are monotone and A is positive definite
+  // (a convex problem).
+  const double half = 0.5 * h;
+  struct Axis {
     std::size_t link;
-    JointRow row;
-    double impulse = 0.0;  // N·s or N·m·s
-    bool capped = false;
+    Row row;
+    AxisLaw law;
+    AxisImpulse impulse;
   };
-  std::vector<Motor> motors;
+  std::vector<Axis> axes;
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
-    if (!link.joint->def.motor.enabled) continue;
-    Motor motor{l, {}, 0.0, false};
-    link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), motor.row);
-    motors.push_back(motor);
+    const JointConstraint& joint = *link.joint;
+    if (!axisActs(joint)) continue;
+    const JointDef& def = joint.def;
+    AxisLaw law;
+    law.h = half;
+    law.motor = def.motor.enabled;
+    law.motorTarget = def.motor.targetRate;
+    law.motorCap = def.motor.maxEffort * half;
+    law.drive = def.drive.enabled;
+    law.driveCap = def.drive.maxEffort * half;
+    law.driveLookahead = atEnd ? 0.0 : h;
+    law.damping = def.damping;
+    law.frictionCap = def.friction * half;
+    Axis axis{l, {link.bodyA, link.bodyB, static_cast<int>(l), {}}, law, {}};
+    const JointSidePose a = sidePose(link, bodies, false, !atEnd);
+    const JointSidePose b = sidePose(link, bodies, true, !atEnd);
+    joint.axisRow(a, b, axis.row.jacobian);
+    if (law.drive) axis.law.driveError = driveError(joint, joint.coordinate(a, b));
+    axes.push_back(axis);
   }
-  if (motors.empty()) return;
-  const auto rateOf = [&](const Row& row) {
-    double v = 0.0;
-    if (row.bodyA >= 0) {
-      const JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-      v += row.jacobian.linearA.dot(body.inverseMass * body.linearMomentum) +
-           row.jacobian.angularA.dot(body.startInverseInertia * body.angularMomentum);
+  if (axes.empty()) return;
+
+  // Unit impulse along each axis, with the joints' reply: the columns of A.
+  // An axis the joints lock (a loop's redundant hinge, a limit held) takes
+  // no law: nothing along it can move.
+  const std::vector<JointBody> start = bodies;
+  const auto n = axes.size();
+  Eigen::MatrixXd response(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  std::vector<char> locked(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (JointBody& body : bodies) {
+      body.linearMomentum.setZero();
+      body.angularMomentum.setZero();
     }
-    if (row.bodyB >= 0) {
-      const JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-      v += row.jacobian.linearB.dot(body.inverseMass * body.linearMomentum) +
-           row.jacobian.angularB.dot(body.startInverseInertia * body.angularMomentum);
-    }
-    return v;
-  };
-  const auto push = [&](const Row& row, double lambda) {
-    if (row.bodyA >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-      body.linearMomentum += lambda * row.jacobian.linearA;
-      body.angularMomentum += lambda * row.jacobian.angularA;
-    }
-    if (row.bodyB >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-      body.linearMomentum += lambda * row.jacobian.linearB;
-      body.angularMomentum += lambda * row.jacobian.angularB;
-    }
-  };
-  std::vector<Vec3> linear, angular;  // the momenta before the motors, to start each round from
-  for (const JointBody& body : bodies) {
-    linear.push_back(body.linearMomentum);
-    angular.push_back(body.angularMomentum);
+    pushAlongRow(axes[i].row, 1.0, bodies);
+    const double unconstrained = rowRate(axes[i].row, bodies, inverseInertia);
+    if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+    for (std::size_t j = 0; j < n; ++j)
+      response(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) = rowRate(axes[j].row, bodies, inverseInertia);
+    const auto ii = static_cast<Eigen::Index>(i);
+    locked[i] = !(response(ii, ii) > 1e-9 * unconstrained);
   }
-  std::vector<Mat3> inverseInertia;
-  for (const JointBody& body : bodies) inverseInertia.push_back(body.startInverseInertia);
-  const auto motorRow = [&](const Motor& motor) {
-    const JointLink& link = links[motor.link];
-    return Row{link.bodyA, link.bodyB, static_cast<int>(motor.link), motor.row};
-  };
-  for (std::size_t round = 0; round <= motors.size(); ++round) {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      bodies[i].linearMomentum = linear[i];
-      bodies[i].angularMomentum = angular[i];
+  // The free rates: the momenta with the joints' rates removed.
+  bodies = start;
+  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  Eigen::VectorXd freeRate(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) freeRate[static_cast<Eigen::Index>(i)] = rowRate(axes[i].row, bodies, inverseInertia);
+
+  // A drive given as a frequency and damping ratio: k = m ω², c = 2 ζ m ω
+  // with m the axis's effective mass or inertia, 1 / A_ii.
+  for (std::size_t i = 0; i < n; ++i) {
+    const JointDrive& drive = links[axes[i].link].joint->def.drive;
+    AxisLaw& law = axes[i].law;
+    if (!law.drive || locked[i]) continue;
+    if (drive.frequency > 0.0) {
+      const double mass = 1.0 / response(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+      const double omega = 2.0 * 3.14159265358979323846 * drive.frequency;
+      law.driveStiffness = mass * omega * omega;
+      law.driveDamping = 2.0 * drive.dampingRatio * mass * omega;
+    } else {
+      law.driveStiffness = drive.stiffness;
+      law.driveDamping = drive.damping;
     }
-    // Capped motors give their cap; the others and the joints are solved.
-    std::vector<Row> rows = m_rows;
-    std::vector<std::size_t> free;
-    for (std::size_t m = 0; m < motors.size(); ++m) {
-      if (motors[m].capped) {
-        push(motorRow(motors[m]), motors[m].impulse);
-      } else {
-        free.push_back(m);
-        rows.push_back(motorRow(motors[m]));
-      }
-    }
-    RowSystem system;
-    system.factor(rows, bodies, inverseInertia);
-    if (!system.ok()) return;
-    const auto count = static_cast<Eigen::Index>(rows.size());
-    Eigen::VectorXd error(count);
-    for (Eigen::Index r = 0; r < count; ++r) {
-      const std::size_t index = static_cast<std::size_t>(r);
-      const double target = index >= m_rows.size() ? links[static_cast<std::size_t>(rows[index].link)].joint->def.motor.targetRate : 0.0;
-      error[r] = rateOf(rows[index]) - target;
-    }
-    const Eigen::VectorXd impulse = system.solve(-error);
-    for (Eigen::Index r = 0; r < count; ++r) push(rows[static_cast<std::size_t>(r)], impulse[r]);
-    bool newlyCapped = false;
-    for (std::size_t k = 0; k < free.size(); ++k) {
-      Motor& motor = motors[free[k]];
-      motor.impulse = impulse[static_cast<Eigen::Index>(m_rows.size() + k)];
-      const double cap = links[motor.link].joint->def.motor.maxEffort * h;
-      if (std::abs(motor.impulse) > cap) {
-        motor.impulse = std::copysign(cap, motor.impulse);
-        motor.capped = true;
-        newlyCapped = true;
-      }
-    }
-    if (!newlyCapped) break;
   }
-  for (const Motor& motor : motors) {
-    JointLinkResult& result = results[motor.link];
-    result.axisImpulse += motor.impulse;
-    result.linearImpulse += motor.impulse * motor.row.linearB;
-    result.angularImpulse += motor.impulse * motor.row.angularB;
+
+  constexpr int kSweeps = 200;
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    double change = 0.0, size = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (locked[i]) continue;
+      const auto ii = static_cast<Eigen::Index>(i);
+      double others = 0.0;
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) others += response(ii, static_cast<Eigen::Index>(j)) * axes[j].impulse.total;
+      const AxisImpulse next = solveAxisLaw(axes[i].law, freeRate[ii] + others, response(ii, ii));
+      change = std::max(change, std::abs(next.total - axes[i].impulse.total));
+      size = std::max(size, std::abs(next.total));
+      axes[i].impulse = next;
+    }
+    if (n == 1 || change <= 1e-14 * size) break;
+  }
+
+  // The impulses into the momenta, then the joints' rates removed again:
+  // the same end velocities as A says, by linearity.
+  bodies = start;
+  for (const Axis& axis : axes) pushAlongRow(axis.row, axis.impulse.total, bodies);
+  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  for (const Axis& axis : axes) {
+    JointLinkResult& result = results[axis.link];
+    result.axisImpulse += axis.impulse.actuation;
+    result.linearImpulse += axis.impulse.total * axis.row.jacobian.linearB;
+    result.angularImpulse += axis.impulse.total * axis.row.jacobian.angularB;
   }
 }
 
@@ -393,8 +469,9 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
   m_system.factor(m_rows, bodies, startInverseInertia);
 
-  // The motors act on the velocities the drift will use.
-  driveMotors(links, bodies, h, results);
+  // The motors, drives, damping and friction: their first half, on the
+  // velocities the drift will use.
+  actuateAxes(links, bodies, h, startInverseInertia, false, results);
 
   // Steps 1 and 2: from the start with the momenta's velocities; the
   // impulses change the momenta. Limits by active set: a coordinate that
@@ -513,7 +590,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                                    const std::vector<Mat3>& inverseInertia,
+                                    const std::vector<Mat3>& inverseInertia, double h,
                                     std::vector<JointLinkResult>& results) {
   m_rows.clear();
   for (std::size_t l = 0; l < links.size(); ++l) {
@@ -525,19 +602,7 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     for (int r = 0; r < link.joint->rowCount(); ++r)
       m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
   }
-  const auto velocityOf = [&](int index, bool linear) -> Vec3 {
-    const JointBody& body = bodies[static_cast<std::size_t>(index)];
-    return linear ? Vec3(body.inverseMass * body.linearMomentum)
-                  : Vec3(inverseInertia[static_cast<std::size_t>(index)] * body.angularMomentum);
-  };
-  const auto rateOf = [&](const Row& row) {
-    double v = 0.0;
-    if (row.bodyA >= 0)
-      v += row.jacobian.linearA.dot(velocityOf(row.bodyA, true)) + row.jacobian.angularA.dot(velocityOf(row.bodyA, false));
-    if (row.bodyB >= 0)
-      v += row.jacobian.linearB.dot(velocityOf(row.bodyB, true)) + row.jacobian.angularB.dot(velocityOf(row.bodyB, false));
-    return v;
-  };
+  const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
   // A joint held at a limit leaves with no rate into it.
   std::vector<int> endLimits;  // the links whose limit rows follow the joints' rows
   for (std::size_t l = 0; l < links.size(); ++l) {
@@ -556,7 +621,9 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
   // The step's K₀ when the rows are the ones it was made for (the usual
   // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
   // else K₁ made here.
-  bool reuse = m_system.ok() && m_system.size() == count && endLimits.size() == m_limits.size();
+  // The axes' second half needs the end's K itself (its projection exact).
+  const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return axisActs(*l.joint); });
+  bool reuse = !axesAct && m_system.ok() && m_system.size() == count && endLimits.size() == m_limits.size();
   for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
   if (!reuse) m_system.factor(m_rows, bodies, inverseInertia);
   if (!m_system.ok()) return;
@@ -572,20 +639,7 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     if (largest <= 1e-13 || largest >= previous) break;
     previous = largest;
     const Eigen::VectorXd step = m_system.solve(-rate);
-    for (Eigen::Index r = 0; r < count; ++r) {
-      const Row& row = m_rows[static_cast<std::size_t>(r)];
-      const double lambda = step[r];
-      if (row.bodyA >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-        body.linearMomentum += lambda * row.jacobian.linearA;
-        body.angularMomentum += lambda * row.jacobian.angularA;
-      }
-      if (row.bodyB >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-        body.linearMomentum += lambda * row.jacobian.linearB;
-        body.angularMomentum += lambda * row.jacobian.angularB;
-      }
-    }
+    for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
     impulse += step;
   }
   for (Eigen::Index r = 0; r < count; ++r) {
@@ -596,6 +650,18 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     const Vec3 arm = b.rotation * links[static_cast<std::size_t>(row.link)].joint->anchorB;
     result.linearImpulse += lambda * row.jacobian.linearB;
     result.angularImpulse += lambda * (row.jacobian.angularB - arm.cross(row.jacobian.linearB));
+  }
+  if (!axesAct) return;
+  // The axes' second half, on the rates the step ends with; its impulses
+  // on B are taken about B's anchor as the rest.
+  std::vector<JointLinkResult> second(links.size());
+  actuateAxes(links, bodies, h, inverseInertia, true, second);
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const JointSidePose b = sidePose(links[l], bodies, true, false);
+    const Vec3 arm = b.rotation * links[l].joint->anchorB;
+    results[l].axisImpulse += second[l].axisImpulse;
+    results[l].linearImpulse += second[l].linearImpulse;
+    results[l].angularImpulse += second[l].angularImpulse - arm.cross(second[l].linearImpulse);
   }
 }
 

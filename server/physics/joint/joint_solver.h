@@ -74,7 +74,7 @@ struct JointLinkResult {
   Vec3 linearImpulse = Vec3::Zero();   // N·s, on B
   Vec3 angularImpulse = Vec3::Zero();  // N·m·s, on B about its anchor
   double error = 0.0;                  // largest |C| at the end poses
-  double axisImpulse = 0.0;            // the motor's, along the axis (N·s or N·m·s)
+  double axisImpulse = 0.0;            // the motor's or drive's, along the axis (N·s or N·m·s)
   int atLimit = 0;                     // -1, +1: held at the lower or upper limit
 };
 
@@ -128,9 +128,10 @@ class JointSolver {
   // Step 4: with the bodies at their end poses (`inverseInertia` there, one
   // per body) and their momenta after the second half kick, removes every
   // velocity along the joints' rows, and into a limit that `results` (of
-  // solvePositions) says is held.
+  // solvePositions) says is held; then the second half of the motors',
+  // drives', damping's and friction's impulses over the step h.
   void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                         const std::vector<Mat3>& inverseInertia, std::vector<JointLinkResult>& results);
+                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
 
  private:
   using Row = JointSolverRow;
@@ -150,9 +151,16 @@ class JointSolver {
                           const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets,
                           Drift& drift, double h, const JointSolverSettings& settings, double& largest);
 
-  // The motors' impulses (before the drift), with the joints' rows kept.
-  void driveMotors(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
-                   std::vector<JointLinkResult>& results);
+  // The impulses along the joints' axes (before the drift): motors,
+  // drives, damping and friction, with the joints' rows kept.
+  // Half of the step's impulses, at the start's poses before the drift or
+  // at the end's after the second half kick (atEnd), with the inverse
+  // inertias there.
+  void actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                   const std::vector<Mat3>& inverseInertia, bool atEnd, std::vector<JointLinkResult>& results);
+  // Removes the rates along m_rows from the momenta (with K as m_system
+  // holds it).
+  void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;
 
   // A limit held this step: its row follows the joints' rows in m_rows.
   struct LimitRow {

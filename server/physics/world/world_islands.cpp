@@ -109,10 +109,11 @@ void World::updateSleep(const std::vector<int>& islandOf) {
   // asleep under the force, and falling asleep must not throw away the
   // momentum the push gave it.
   std::vector<double> islandRest(n, std::numeric_limits<double>::infinity());
+  const std::vector<char> actuated = m_joints.empty() ? std::vector<char>{} : findActuatedBodies();
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = m_bodies[i];
     if (body.isStatic() || body.isSleeping()) continue;
-    const bool still = !m_loads[i].active &&
+    const bool still = !m_loads[i].active && (actuated.empty() || !actuated[i]) &&
                        body.linearVelocity().squaredNorm() <
                            config.sleepLinearVelocity * config.sleepLinearVelocity &&
                        body.angularVelocity().squaredNorm() <

@@ -223,6 +223,25 @@ const std::vector<BodyContact>& World::contactsBetweenUnjoinedBodies(const std::
   return storage;
 }
 
+std::vector<char> World::findActuatedBodies() const {
+  // A drive moves its joint until it settles; a body's own sleep thresholds
+  // (cm/s) are too coarse for a servo creeping to its target, so a drive's
+  // joint counts as moving down to this rate.
+  constexpr double kDriveSettledRate = 1e-4;  // rad/s or m/s
+  std::vector<char> busy;
+  for (std::size_t j = 0; j < m_joints.size(); ++j) {
+    const JointDef& def = m_joints[j].def;
+    const bool motorMoves = def.motor.enabled && def.motor.targetRate != 0.0;
+    if (!motorMoves && !def.drive.enabled) continue;
+    if (!jointIsEnforced(m_joints[j])) continue;
+    if (!motorMoves && std::abs(jointStateAt(static_cast<int>(j)).rate) <= kDriveSettledRate) continue;
+    if (busy.empty()) busy.assign(m_bodies.size(), 0);
+    for (const BodyId body : {def.bodyA, def.bodyB})
+      if (!body.isNull()) busy[denseIndexOf(body)] = 1;
+  }
+  return busy;
+}
+
 std::vector<char> World::findJointedBodies() const {
   std::vector<char> jointed;
   for (const JointConstraint& joint : m_joints) {
@@ -431,7 +450,7 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
         endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
       }
       applyEfforts(bodies, false, 0.5 * s, true);  // the second half kick
-      solver.projectVelocities(links, bodies, endInverseInertia, results);
+      solver.projectVelocities(links, bodies, endInverseInertia, s, results);
       for (std::size_t k = 0; k < bodies.size(); ++k)
         ends[k] = {bodies[k].position, bodies[k].orientation, bodies[k].linearMomentum, bodies[k].angularMomentum};
       for (std::size_t l = 0; l < links.size(); ++l) {

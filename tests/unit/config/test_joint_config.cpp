@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "config/config_loader.h"
@@ -61,16 +62,46 @@ TEST(JointConfig, JointsAreReadAsWrittenAndTheWorldStepsThem) {
   EXPECT_LT(world->jointState(world->findJoint("rod")).error, 1e-9);
 }
 
+TEST(JointConfig, DrivesDampingAndFrictionAreReadAsWritten) {
+  const Expected<WorldDef> def = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - {name: servo, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
+          "     drive: {target: 0.3, stiffness: 200, damping: 20, max_effort: 50}, damping: 0.1, friction: 0.2}\n"
+          "  - {name: soft, type: prismatic, body_a: arm, body_b: tip, anchor: [1, 0, 0], axis: [1, 0, 0],\n"
+          "     drive: {frequency: 2, damping_ratio: 0.7}}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  const JointDef& servo = def->joints[0].def;
+  EXPECT_TRUE(servo.drive.enabled);
+  EXPECT_EQ(servo.drive.target, 0.3);
+  EXPECT_EQ(servo.drive.stiffness, 200.0);
+  EXPECT_EQ(servo.drive.damping, 20.0);
+  EXPECT_EQ(servo.drive.maxEffort, 50.0);
+  EXPECT_EQ(servo.drive.frequency, 0.0);
+  EXPECT_EQ(servo.damping, 0.1);
+  EXPECT_EQ(servo.friction, 0.2);
+  const JointDef& soft = def->joints[1].def;
+  EXPECT_EQ(soft.drive.frequency, 2.0);
+  EXPECT_EQ(soft.drive.dampingRatio, 0.7);
+  EXPECT_EQ(soft.drive.target, 0.0);
+  EXPECT_TRUE(std::isinf(soft.drive.maxEffort)) << "no cap unless given";
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+}
+
 TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
   const Expected<WorldDef> def = loadWorldConfig(std::string(RBSIM_TEST_DATA_DIR) + "/../../config/worlds/joints.yaml");
   ASSERT_TRUE(def.ok()) << def.error().message;
   Expected<World> world = World::fromDef(*def);
   ASSERT_TRUE(world.ok()) << world.error().message;
-  EXPECT_EQ(world->jointCount(), 6);
+  EXPECT_EQ(world->jointCount(), 7);
   for (int k = 0; k < 2000; ++k) world->step();
   for (int j = 0; j < world->jointCount(); ++j) EXPECT_LT(world->jointStateAt(j).error, 1e-6) << world->jointStateAt(j).name;
   EXPECT_NEAR(world->jointState(world->findJoint("axle")).rate, 5.0, 1e-9) << "the motor reached its target";
   EXPECT_NEAR(world->jointState(world->findJoint("lift")).position, -0.5, 1e-9) << "the carriage rests at its limit";
+  EXPECT_NEAR(world->jointState(world->findJoint("servo")).position, 0.8, 1e-6) << "the servo turned the arm to its target";
+  EXPECT_EQ(world->jointState(world->findJoint("door_hinge")).rate, 0.0) << "damping and friction stopped the door";
 }
 
 TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
@@ -95,7 +126,20 @@ TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
   EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
                 .find("only revolute and prismatic joints take axis"),
             std::string::npos);
-  EXPECT_NE(errorOf(base + ", drive: {target: 0}}\n").find("joint drive is not supported yet"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {target: 0}}\n").find("joints[0].drive.stiffness: missing required key"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {stiffness: 1, frequency: 2}}\n").find("not both"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {stiffness: 1, damping_ratio: 2}}\n").find("damping_ratio goes with frequency"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {stiffness: -1}}\n").find("joints[0].drive.stiffness"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", drive: {stiffness: 1, max_effort: 0}}\n").find("joints[0].drive.max_effort"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", motor: {max_effort: 1}, drive: {stiffness: 1}}\n").find("a motor or a drive, not both"),
+            std::string::npos);
+  EXPECT_NE(errorOf(base + ", damping: -0.1}\n").find("joints[0].damping"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", friction: .nan}\n").find("joints[0].friction"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0], damping: 1}\n")
+                .find("only revolute and prismatic joints take damping"),
+            std::string::npos);
   EXPECT_NE(errorOf("  - {name: j, type: hinge, body_a: world, body_b: arm, anchor: [0, 0, 0]}\n").find("expected one of fixed"),
             std::string::npos);
   EXPECT_NE(errorOf(base + "}\n" + base + "}\n").find("duplicate joint name \"j\""), std::string::npos);

@@ -298,6 +298,10 @@ class World {
   // with an enforced joint (empty when there is none): the joint step moves
   // it instead of the free integration and the contact path.
   std::vector<char> findJointedBodies() const;
+  // Per dense index: 1 for a body that an actuator still moves (a motor
+  // with a target rate, a drive whose joint still moves), which must not
+  // fall asleep however slowly it goes; empty when no joint acts so.
+  std::vector<char> findActuatedBodies() const;
   // The joint step of the jointed bodies over h (joint/joint_solver.h). An
   // island (`islandOf`) that touches nothing takes RATTLE: half kick, drift
   // and projection, half kick, velocity projection. An island in contact
