@@ -6,8 +6,9 @@
 // iterations; the joints are solved exactly whatever it is. No sleeping (as
 // the peers here: every engine simulates every body for the whole run).
 //
-// Not supported yet: cone/twist limits on ball joints (the ragdoll's
-// shoulders, hips, waist and neck are unlimited; the notes say so).
+// Ball joints with a swing limit take it as their cone (JointDef::
+// coneAngle); twist ranges are not supported yet (the ragdoll's shoulders,
+// hips, waist and neck twist freely; the notes say so).
 #include <cstdio>
 #include <optional>
 
@@ -69,7 +70,8 @@ class RbsimEngine final : public jb::Engine {
     // The scene's hinge limits are B's rotation relative to A about the
     // axis, zero at the build pose: rbsim's joint coordinate exactly.
     if (j.kind == jb::JointKind::kHinge && j.limited) def.limit = {true, j.lower, j.upper};
-    if (j.kind == jb::JointKind::kBall && j.limited) ++m_unlimitedBalls;
+    if (j.kind == jb::JointKind::kBall && j.limited && j.swing > 0) def.coneAngle = j.swing;
+    if (j.kind == jb::JointKind::kBall && j.limited && j.twist > 0) ++m_untwistedBalls;
     const rbsim::Expected<rbsim::JointId> id = m_world->createJoint(def);
     if (!id.ok()) {
       std::fprintf(stderr, "rbsim: %s\n", id.error().message.c_str());
@@ -97,16 +99,16 @@ class RbsimEngine final : public jb::Engine {
   }
 
   std::string notes() const override {
-    if (m_unlimitedBalls == 0) return "";
-    return std::to_string(m_unlimitedBalls) + " cone/twist-limited ball joints simulated without limits "
-           "(rbsim has no cone limit yet)";
+    if (m_untwistedBalls == 0) return "";
+    return std::to_string(m_untwistedBalls) + " ball joints with a cone but without their twist range "
+           "(rbsim has no twist limit yet)";
   }
 
  private:
   std::optional<rbsim::World> m_world;
   std::vector<rbsim::BodyId> m_bodies;
   int m_joints = 0;
-  int m_unlimitedBalls = 0;
+  int m_untwistedBalls = 0;
 };
 
 }  // namespace

@@ -17,9 +17,9 @@ constexpr double kMaxEffort = 1e12;  // N or N·m
 constexpr double kMaxRate = 1e6;     // rad/s or m/s
 constexpr std::size_t kMaxNameLength = 128;
 
-constexpr std::array<std::string_view, 15> kJointKeys = {
-    "name",  "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
-    "limits", "motor", "effort", "drive", "damping", "friction", "collide_connected"};
+constexpr std::array<std::string_view, 16> kJointKeys = {
+    "name",   "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
+    "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
 constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
@@ -73,7 +73,16 @@ class JointParser {
     // Keys that this type does not take.
     for (const YamlMap::Entry& entry : map->entries()) {
       const std::string_view key = entry.key;
-      if ((key == "axis" || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
+      const bool spherical = def.type == JointType::Spherical, distance = def.type == JointType::Distance;
+      if (key == "cone_limit" && !spherical)
+        return m_reader.error(entry.keyMark, entry.value.path, "only spherical joints take cone_limit, this one is " + *typeName);
+      if (key == "axis" && spherical && !map->find("cone_limit"))
+        return m_reader.error(entry.keyMark, entry.value.path, "a spherical joint takes an axis only with cone_limit (the cone's axis)");
+      if (key == "limits" && distance) continue;  // a rope's lengths
+      if (key == "length" && distance && map->find("limits"))
+        return m_reader.error(entry.keyMark, entry.value.path,
+                              "a distance joint has a length (a rod) or limits (a rope: free between them), not both");
+      if (((key == "axis" && !spherical) || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
            key == "damping" || key == "friction") &&
           !axial)
         return m_reader.error(entry.keyMark, entry.value.path,
@@ -121,21 +130,9 @@ class JointParser {
       if (axis->norm() < 1e-9) return m_reader.error(*axisNode, "the axis must not be zero");
       def.axis = axis->normalized();
       if (const YamlMap::Entry* limits = map->find("limits")) {
-        Expected<YamlMap> limitMap = m_reader.map(limits->value);
-        if (!limitMap) return limitMap.error();
-        if (auto error = m_reader.checkKeys(*limitMap, kLimitKeys, "limits")) return *error;
-        Expected<YamlNode> lowerNode = m_reader.required(*limitMap, "lower");
-        if (!lowerNode) return lowerNode.error();
-        Expected<YamlNode> upperNode = m_reader.required(*limitMap, "upper");
-        if (!upperNode) return upperNode.error();
-        Expected<double> lower = m_reader.number(*lowerNode, NumberRule::any(kMaxLength));
-        if (!lower) return lower.error();
-        Expected<double> upper = m_reader.number(*upperNode, NumberRule::any(kMaxLength));
-        if (!upper) return upper.error();
-        if (*lower > *upper)
-          return m_reader.error(*upperNode, "upper (" + std::to_string(*upper) + ") is below lower (" +
-                                                std::to_string(*lower) + ")");
-        def.limit = {true, *lower, *upper};
+        Expected<JointLimit> limit = parseLimit(limits->value, NumberRule::any(kMaxLength));
+        if (!limit) return limit.error();
+        def.limit = *limit;
       }
       if (const YamlMap::Entry* motor = map->find("motor")) {
         Expected<YamlMap> motorMap = m_reader.map(motor->value);
@@ -167,12 +164,33 @@ class JointParser {
       if (!effort) return effort.error();
       def.effort = *effort;
     }
+    if (def.type == JointType::Spherical) {
+      if (const YamlMap::Entry* cone = map->find("cone_limit")) {
+        Expected<double> angle = m_reader.number(cone->value, NumberRule::positive(3.14159265358979323846));
+        if (!angle) return angle.error();
+        if (!(*angle < 3.14159265358979323846)) return m_reader.error(cone->value, "the cone's half angle must be below π rad");
+        def.coneAngle = *angle;
+        Expected<YamlNode> axisNode = m_reader.required(*map, "axis");
+        if (!axisNode) return axisNode.error();
+        Expected<Vec3> axis = m_reader.vec3(*axisNode, NumberRule::any(kMaxLength));
+        if (!axis) return axis.error();
+        if (axis->norm() < 1e-9) return m_reader.error(*axisNode, "the axis must not be zero");
+        def.axis = axis->normalized();
+      }
+    }
     if (def.type == JointType::Distance) {
       Expected<YamlNode> otherAnchor = m_reader.required(*map, "anchor_b");
       if (!otherAnchor) return otherAnchor.error();
       Expected<Vec3> anchorB = m_reader.vec3(*otherAnchor, NumberRule::any(kMaxLength));
       if (!anchorB) return anchorB.error();
       def.anchorB = *anchorB;
+      if (const YamlMap::Entry* limits = map->find("limits")) {
+        Expected<JointLimit> limit = parseLimit(limits->value, NumberRule::nonNegative(kMaxLength));
+        if (!limit) return limit.error();
+        if (!(limit->upper > 0.0)) return m_reader.error(limits->value, "a rope's upper length must be positive");
+        def.limit = *limit;
+        return finish(*map, out);
+      }
       const double apart = (def.anchorB - def.anchor).norm();
       Expected<double> length = m_reader.number(*map, "length", NumberRule::positive(kMaxLength), apart);
       if (!length) return length.error();
@@ -180,13 +198,37 @@ class JointParser {
         return m_reader.error(*otherAnchor, "the anchors coincide: give the rod a length");
       def.length = *length;
     }
-    Expected<bool> collide = m_reader.boolean(*map, "collide_connected", false);
-    if (!collide) return collide.error();
-    def.collideConnected = *collide;
-    return out;
+    return finish(*map, out);
   }
 
  private:
+  // The keys every joint may take, last.
+  Expected<NamedJointDef> finish(const YamlMap& map, NamedJointDef& out) const {
+    Expected<bool> collide = m_reader.boolean(map, "collide_connected", false);
+    if (!collide) return collide.error();
+    out.def.collideConnected = *collide;
+    return out;
+  }
+
+  // limits: {lower, upper}, lower <= upper.
+  Expected<JointLimit> parseLimit(const YamlNode& node, NumberRule rule) const {
+    Expected<YamlMap> limitMap = m_reader.map(node);
+    if (!limitMap) return limitMap.error();
+    if (auto error = m_reader.checkKeys(*limitMap, kLimitKeys, "limits")) return *error;
+    Expected<YamlNode> lowerNode = m_reader.required(*limitMap, "lower");
+    if (!lowerNode) return lowerNode.error();
+    Expected<YamlNode> upperNode = m_reader.required(*limitMap, "upper");
+    if (!upperNode) return upperNode.error();
+    Expected<double> lower = m_reader.number(*lowerNode, rule);
+    if (!lower) return lower.error();
+    Expected<double> upper = m_reader.number(*upperNode, rule);
+    if (!upper) return upper.error();
+    if (*lower > *upper)
+      return m_reader.error(*upperNode, "upper (" + std::to_string(*upper) + ") is below lower (" +
+                                            std::to_string(*lower) + ")");
+    return JointLimit{true, *lower, *upper};
+  }
+
   // drive: {target, stiffness, damping} or {target, frequency,
   // damping_ratio}, with an optional max_effort.
   Expected<JointDrive> parseDrive(const YamlNode& node) const {

@@ -81,6 +81,24 @@ TEST_F(Checkpoints, SaveOverTheBusAndResetToItContinuesIdentically) {
   expectRejected(sendCommand(client(), rbsim::command_t::RESET, "missing.rbck"));
 }
 
+TEST_F(Checkpoints, AWorldWithJointsIsSavedAndResetToIdentically) {
+  // The example world of joints: hinges with limits, damping and friction,
+  // a motor, a drive, a slider at its limit, a weld, a rope and a cone.
+  const std::string directory = scratchPath("checkpoints");
+  startServer(std::string(kWorldsDir) + "/../../../config/worlds/joints.yaml",
+              {"--paused", "--state-rate", "0", "--checkpoint-dir", directory});
+  stepAndWait(300);
+  expectAccepted(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "joints.rbck"));
+  stepAndWait(500);
+  const rbsim::world_state_t first = history().at(800);
+  expectAccepted(sendCommand(client(), rbsim::command_t::RESET, "joints.rbck"));
+  waitFor("the state of step 300 after the reset", [&] {
+    return client().latestState() && client().latestState()->step == 300;
+  });
+  stepAndWait(500);
+  EXPECT_TRUE(sameBodies(first, history().at(800))) << "the run from the checkpoint differs from the first run";
+}
+
 TEST_F(Checkpoints, SaveIsRejectedWithoutACheckpointDirectory) {
   startServer(kWorld, {});
   const rbsim::ack_t ack = expectRejected(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "x.rbck"));

@@ -1,7 +1,7 @@
 // Writes the seed corpus of fuzz_checkpoint (tests/fuzz/corpus/checkpoint/):
 // checkpoint payloads of sessions of the small world, with spawned bodies
-// of every shape, wrenches pending and acting, and contacts in the solver's
-// warm-start cache. Run after the checkpoint format changes:
+// of every shape, wrenches pending and acting, contacts in the solver's
+// warm-start cache, and joints of every kind. Run after the checkpoint format changes:
 //
 //   build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/checkpoint
 
@@ -83,5 +83,47 @@ int main(int argc, char** argv) {
   busy.pause();
   busy.requestSteps(3);
   if (!save(busy, directory / "busy")) return 1;
+
+  // Joints of every kind on the busy world's bodies, one of them removed
+  // (a hole in the joint slot table), after a few steps.
+  Session jointed(fuzz::smallWorld());
+  World& world = jointed.world();
+  const BodyId crate = world.findBody("crate"), ball = world.findBody("ball"), pill = world.findBody("pill");
+  if (crate.isNull() || ball.isNull() || pill.isNull()) {
+    std::fprintf(stderr, "the small world lacks crate, ball or pill\n");
+    return 1;
+  }
+  const auto joint = [&](const char* name, JointType type, BodyId a, BodyId b, const Vec3& anchor) {
+    JointDef def;
+    def.name = name;
+    def.type = type;
+    def.bodyA = a;
+    def.bodyB = b;
+    def.anchor = anchor;
+    def.axis = Vec3(0, 0, 1);
+    return def;
+  };
+  JointDef hinge = joint("hinge", JointType::Revolute, BodyId{}, crate, world.body(crate).position() + Vec3(0, 0, 0.3));
+  hinge.limit = {true, -0.4, 0.4};
+  hinge.drive.enabled = true;
+  hinge.drive.target = 0.2;
+  hinge.drive.stiffness = 50.0;
+  hinge.damping = 0.1;
+  hinge.friction = 0.05;
+  JointDef rope = joint("rope", JointType::Distance, crate, ball, world.body(crate).position());
+  rope.anchorB = world.body(ball).position();
+  rope.limit = {true, 0.0, (rope.anchorB - rope.anchor).norm() + 0.2};
+  JointDef cone = joint("cone", JointType::Spherical, BodyId{}, pill, world.body(pill).position() + Vec3(0, 0, 0.2));
+  cone.coneAngle = 0.5;
+  JointDef spare = joint("spare", JointType::Fixed, ball, pill, world.body(ball).position());
+  for (const JointDef& def : {hinge, rope, cone, spare}) {
+    if (!world.createJoint(def)) {
+      std::fprintf(stderr, "cannot join %s\n", def.name.c_str());
+      return 1;
+    }
+  }
+  (void)world.removeJoint(world.findJoint("spare"));
+  for (int i = 0; i < 20; ++i) jointed.step();
+  if (!save(jointed, directory / "jointed")) return 1;
   return 0;
 }

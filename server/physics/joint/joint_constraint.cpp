@@ -1,6 +1,7 @@
 #include "physics/joint/joint_constraint.h"
 
 #include <cmath>
+#include <limits>
 
 namespace rbsim {
 
@@ -73,7 +74,7 @@ int JointConstraint::rowCount() const {
     case JointType::Revolute: return 5;
     case JointType::Prismatic: return 5;
     case JointType::Fixed: return 6;
-    case JointType::Distance: return 1;
+    case JointType::Distance: return def.limit.enabled ? 0 : 1;
   }
   return 0;
 }
@@ -100,7 +101,12 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
   joint.anchorA = toA(def.anchor);
   joint.anchorB = toB(def.anchor);
   joint.restRelative = (a.orientation.conjugate() * b.orientation).normalized();
-  if (def.type == JointType::Revolute || def.type == JointType::Prismatic) {
+  const bool cone = def.type == JointType::Spherical && def.coneAngle != 0.0;
+  if (cone && (!std::isfinite(def.coneAngle) || def.coneAngle <= 0.0 || def.coneAngle >= 3.14159265358979323846))
+    return Error{where + ": the cone angle must be in (0, π) rad (got " + std::to_string(def.coneAngle) + ")"};
+  if (def.coneAngle != 0.0 && def.type != JointType::Spherical)
+    return Error{where + ": only spherical joints take a cone limit"};
+  if (def.type == JointType::Revolute || def.type == JointType::Prismatic || cone) {
     const double norm = def.axis.norm();
     if (!std::isfinite(norm) || norm < 1e-9)
       return Error{where + ": the axis must be a finite, non-zero vector"};
@@ -112,10 +118,14 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
   }
   const bool axial = def.type == JointType::Revolute || def.type == JointType::Prismatic;
   if (def.limit.enabled) {
-    if (!axial) return Error{where + ": only revolute and prismatic joints take a limit"};
+    if (!axial && def.type != JointType::Distance)
+      return Error{where + ": only revolute, prismatic and distance joints take a limit (a spherical one a cone)"};
     if (!std::isfinite(def.limit.lower) || !std::isfinite(def.limit.upper) || def.limit.lower > def.limit.upper)
       return Error{where + ": the limit needs finite lower <= upper (got " + std::to_string(def.limit.lower) +
                    ", " + std::to_string(def.limit.upper) + ")"};
+    if (def.type == JointType::Distance && (def.limit.lower < 0.0 || def.limit.upper <= 0.0))
+      return Error{where + ": a rope's lengths need 0 <= lower <= upper, upper > 0 (got " +
+                   std::to_string(def.limit.lower) + ", " + std::to_string(def.limit.upper) + ")"};
   }
   if (def.motor.enabled) {
     if (!axial) return Error{where + ": only revolute and prismatic joints take a motor"};
@@ -141,6 +151,7 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
     joint.anchorB = toB(def.anchorB);
     const double initial = (def.anchorB - def.anchor).norm();
     joint.length = def.length < 0.0 ? initial : def.length;
+    if (def.limit.enabled) joint.length = def.limit.upper;  // a rope: its longest
     if (!std::isfinite(joint.length) || joint.length < 1e-9)
       return Error{where + ": the length must be positive and finite (the anchors are " +
                    std::to_string(initial) + " m apart)"};
@@ -272,11 +283,43 @@ double JointConstraint::coordinate(const JointSidePose& a, const JointSidePose& 
       return (pB - pA).dot(a.rotation * axisA);
     case JointType::Distance:
       return (pB - pA).norm();
+    case JointType::Spherical: {
+      if (def.coneAngle <= 0.0) return 0.0;
+      const Vec3 u = a.rotation * axisA, v = b.rotation * axisB;
+      return std::atan2(u.cross(v).norm(), u.dot(v));
+    }
     case JointType::Fixed:
-    case JointType::Spherical:
       return 0.0;
   }
   return 0.0;
+}
+
+double JointConstraint::limitLower() const {
+  return def.type == JointType::Spherical ? -std::numeric_limits<double>::infinity() : def.limit.lower;
+}
+
+double JointConstraint::limitUpper() const {
+  return def.type == JointType::Spherical ? def.coneAngle : def.limit.upper;
+}
+
+void JointConstraint::limitRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const {
+  if (axisRow(a, b, out)) return;
+  if (def.type == JointType::Distance) {
+    rows(a, b, Basis{}, &out);  // distance's one row, whether or not it is an equality
+    return;
+  }
+  // The swing: its axis u × v, or any normal to u where the two coincide
+  // (no swing: the cone is not reached there unless its angle is 0).
+  const Vec3 u = a.rotation * axisA, v = b.rotation * axisB;
+  Vec3 n = u.cross(v);
+  const double norm = n.norm();
+  if (norm > 0.0) {
+    n /= norm;
+  } else {
+    Vec3 other;
+    perpendiculars(u, n, other);
+  }
+  out = {Vec3::Zero(), -n, Vec3::Zero(), n};
 }
 
 double JointConstraint::coordinateRate(const JointSidePose& a, const JointSidePose& b, const Vec3& vA,
@@ -296,8 +339,13 @@ double JointConstraint::coordinateRate(const JointSidePose& a, const JointSidePo
       const Vec3 atB = vB + wB.cross(pB - b.position);
       return distance > 0.0 ? (atB - atA).dot(separation) / distance : 0.0;
     }
+    case JointType::Spherical: {
+      if (def.coneAngle <= 0.0) return 0.0;
+      JointRow row;
+      limitRow(a, b, row);
+      return row.angularB.dot(wB) + row.angularA.dot(wA);
+    }
     case JointType::Fixed:
-    case JointType::Spherical:
       return 0.0;
   }
   return 0.0;

@@ -10,7 +10,8 @@
 //   prismatic  5: no relative rotation (3), and p_B − p_A stays on the axis
 //                 carried by A: (p_B − p_A)·t_k, t_k perpendicular to it (2)
 //   fixed      6: the anchors coincide (3), no relative rotation (3)
-//   distance   1: |p_B − p_A| − length
+//   distance   1: |p_B − p_A| − length; none for a rope (a distance joint
+//                 with a limit: only its bounds, as inequalities)
 // "No relative rotation" is the error rotation e = q_B r₀⁻¹ q_A⁻¹ (r₀ the
 // relative orientation at creation) as the 3 numbers 2·vec(e), whose rate is
 // ω_B − ω_A near e = 1.
@@ -84,6 +85,17 @@ struct JointConstraint {
   // efforts act. False for the other types.
   bool axisRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const;
   bool hasAxis() const { return def.type == JointType::Revolute || def.type == JointType::Prismatic; }
+
+  // A bound on coordinate() held as an inequality: a revolute's or
+  // prismatic's limit, a rope's (a distance joint with a limit) lengths, a
+  // spherical joint's cone (an upper bound on the swing).
+  bool hasLimit() const { return def.limit.enabled || (def.type == JointType::Spherical && def.coneAngle > 0.0); }
+  double limitLower() const;
+  double limitUpper() const;
+  // The exact derivative of coordinate() there: axisRow() for an axis, the
+  // rod's row for a distance, (ω_B − ω_A)·(u × v)/|u × v| for a swing
+  // between u (the cone's axis on A) and v (on B).
+  void limitRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const;
 
   // Last step's actuation and limit, for JointState.
   double lastAxisEffort = 0.0;

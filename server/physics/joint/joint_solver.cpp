@@ -80,6 +80,10 @@ Mat3 turnResponse(const Quaternion& from, const Vec3& omega, double h) {
 void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
                      const std::vector<Mat3>& inverseInertia) {
   const auto count = static_cast<Eigen::Index>(rows.size());
+  if (count == 0) {  // nothing to hold (ropes, all slack): no system
+    m_ok = false;
+    return;
+  }
   // The rows touching each body, in row order.
   std::vector<std::vector<std::pair<int, bool>>> touching(bodies.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -217,7 +221,7 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
       }
       for (const LimitRow& limit : m_limits) {
         const JointLink& link = links[static_cast<std::size_t>(limit.link)];
-        link.joint->axisRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), currentRows[r++]);
+        link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), currentRows[r++]);
       }
       for (std::size_t i = 0; i < bodies.size(); ++i) turns[i] = turnResponse(drift.fromOrientation[i], omegaOf(i), h);
       exact.factor(m_rows, currentRows, bodies, turns, h);
@@ -462,7 +466,8 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     body.position = body.startPosition;
     body.orientation = body.startOrientation;
   }
-  if (m_rows.empty()) return true;
+  const bool anyLimit = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return l.joint->hasLimit(); });
+  if (m_rows.empty() && !anyLimit) return true;
   const std::size_t jointRows = m_rows.size();
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
@@ -519,16 +524,16 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     }
     for (std::size_t l = 0; l < links.size(); ++l) {
       const JointLink& link = links[l];
-      const JointLimit& limit = link.joint->def.limit;
-      if (!limit.enabled) continue;
+      const JointConstraint& joint = *link.joint;
+      if (!joint.hasLimit()) continue;
       const bool active = std::any_of(kept.begin(), kept.end(), [&](const LimitRow& r) { return r.link == static_cast<int>(l); });
       if (active) continue;
-      const double q = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
-      if (q < limit.lower - settings.tolerance) {
-        kept.push_back({static_cast<int>(l), limit.lower, -1});
+      const double q = joint.coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
+      if (q < joint.limitLower() - settings.tolerance) {
+        kept.push_back({static_cast<int>(l), joint.limitLower(), -1});
         changed = true;
-      } else if (q > limit.upper + settings.tolerance) {
-        kept.push_back({static_cast<int>(l), limit.upper, +1});
+      } else if (q > joint.limitUpper() + settings.tolerance) {
+        kept.push_back({static_cast<int>(l), joint.limitUpper(), +1});
         changed = true;
       }
     }
@@ -538,7 +543,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     for (const LimitRow& limit : m_limits) {
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
       JointRow row;
-      link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
+      link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
       m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
     }
     m_system.factor(m_rows, bodies, startInverseInertia);
@@ -603,55 +608,73 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
       m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
   }
   const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
-  // A joint held at a limit leaves with no rate into it.
+  // A joint held at a limit leaves with no rate into it. Which limits are
+  // moved into is looked at before the projection and again after it: the
+  // joints' reply can turn a kick into a rate into a limit (gravity's pull
+  // on a hinged arm's centre becomes a turn about the hinge once the hinge
+  // holds).
   std::vector<int> endLimits;  // the links whose limit rows follow the joints' rows
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    const int side = results[l].atLimit;
-    if (side == 0) continue;
-    const JointLink& link = links[l];
-    Row row{link.bodyA, link.bodyB, static_cast<int>(l), {}};
-    link.joint->axisRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
-    if (rateOf(row) * side > 0.0) {  // moving into it
-      m_rows.push_back(row);
-      endLimits.push_back(static_cast<int>(l));
+  const auto addLimitsMovedInto = [&] {
+    bool added = false;
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      const int side = results[l].atLimit;
+      if (side == 0 || std::find(endLimits.begin(), endLimits.end(), static_cast<int>(l)) != endLimits.end()) continue;
+      const JointLink& link = links[l];
+      Row row{link.bodyA, link.bodyB, static_cast<int>(l), {}};
+      link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
+      if (rateOf(row) * side > 0.0) {  // moving into it
+        m_rows.push_back(row);
+        endLimits.push_back(static_cast<int>(l));
+        added = true;
+      }
     }
-  }
-  if (m_rows.empty()) return;
-  const auto count = static_cast<Eigen::Index>(m_rows.size());
-  // The step's K₀ when the rows are the ones it was made for (the usual
-  // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
-  // else K₁ made here.
+    return added;
+  };
   // The axes' second half needs the end's K itself (its projection exact).
   const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return axisActs(*l.joint); });
-  bool reuse = !axesAct && m_system.ok() && m_system.size() == count && endLimits.size() == m_limits.size();
-  for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
-  if (!reuse) m_system.factor(m_rows, bodies, inverseInertia);
-  if (!m_system.ok()) return;
-  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
-  Eigen::VectorXd rate(count);
-  double previous = INFINITY;
-  for (int iteration = 0; iteration < 8; ++iteration) {
-    double largest = 0.0;
-    for (Eigen::Index r = 0; r < count; ++r) {
-      rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
-      largest = std::max(largest, std::abs(rate[r]));
+  addLimitsMovedInto();
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1 && !addLimitsMovedInto()) break;
+    const auto count = static_cast<Eigen::Index>(m_rows.size());
+    // The step's K₀ when the rows are the ones it was made for (the usual
+    // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
+    // else K₁ made here.
+    bool reuse = round == 0 && !axesAct && m_system.ok() && m_system.size() == count &&
+                 endLimits.size() == m_limits.size();
+    for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
+    if (!reuse) m_system.factor(m_rows, bodies, inverseInertia);  // none for no rows
+    if (m_rows.empty() || !m_system.ok()) break;
+    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
+    Eigen::VectorXd rate(count);
+    double previous = INFINITY;
+    for (int iteration = 0; iteration < 8; ++iteration) {
+      double largest = 0.0;
+      for (Eigen::Index r = 0; r < count; ++r) {
+        rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
+        largest = std::max(largest, std::abs(rate[r]));
+      }
+      if (largest <= 1e-13 || largest >= previous) break;
+      previous = largest;
+      const Eigen::VectorXd step = m_system.solve(-rate);
+      for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
+      impulse += step;
     }
-    if (largest <= 1e-13 || largest >= previous) break;
-    previous = largest;
-    const Eigen::VectorXd step = m_system.solve(-rate);
-    for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
-    impulse += step;
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Row& row = m_rows[static_cast<std::size_t>(r)];
+      const double lambda = impulse[r];
+      JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
+      const JointSidePose b = sidePose(links[static_cast<std::size_t>(row.link)], bodies, true, false);
+      const Vec3 arm = b.rotation * links[static_cast<std::size_t>(row.link)].joint->anchorB;
+      result.linearImpulse += lambda * row.jacobian.linearB;
+      result.angularImpulse += lambda * (row.jacobian.angularB - arm.cross(row.jacobian.linearB));
+    }
   }
-  for (Eigen::Index r = 0; r < count; ++r) {
-    const Row& row = m_rows[static_cast<std::size_t>(r)];
-    const double lambda = impulse[r];
-    JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
-    const JointSidePose b = sidePose(links[static_cast<std::size_t>(row.link)], bodies, true, false);
-    const Vec3 arm = b.rotation * links[static_cast<std::size_t>(row.link)].joint->anchorB;
-    result.linearImpulse += lambda * row.jacobian.linearB;
-    result.angularImpulse += lambda * (row.jacobian.angularB - arm.cross(row.jacobian.linearB));
-  }
-  if (!axesAct) return;
+  if (axesAct) actuateAxesAtEnd(links, bodies, inverseInertia, h, results);
+}
+
+void JointSolver::actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                                   const std::vector<Mat3>& inverseInertia, double h,
+                                   std::vector<JointLinkResult>& results) {
   // The axes' second half, on the rates the step ends with; its impulses
   // on B are taken about B's anchor as the rest.
   std::vector<JointLinkResult> second(links.size());

@@ -158,6 +158,9 @@ class JointSolver {
   // inertias there.
   void actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                    const std::vector<Mat3>& inverseInertia, bool atEnd, std::vector<JointLinkResult>& results);
+  // The second half at the end, into `results` (B's couple about its anchor).
+  void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                        const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
   // Removes the rates along m_rows from the momenta (with K as m_system
   // holds it).
   void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;

@@ -192,6 +192,9 @@ JointState World::jointStateAt(int denseIndex) const {
   double errors[kMaxJointRows];
   joint.errors(poses[0], poses[1], joint.basisAt(poses[0]), errors);
   for (int r = 0; r < joint.rowCount(); ++r) out.error = std::max(out.error, std::abs(errors[r]));
+  if (joint.hasLimit()) {  // a bound passed counts as an error too
+    out.error = std::max({out.error, joint.limitLower() - out.position, out.position - joint.limitUpper()});
+  }
   out.force = joint.lastForce;
   out.torque = joint.lastTorque;
   out.axisEffort = joint.lastAxisEffort;

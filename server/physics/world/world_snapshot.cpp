@@ -7,10 +7,13 @@
 // mass properties and whether they were given, placement of the shape in
 // body space, material, flags), its dynamics, the load given for the coming
 // step, its sleep state (asleep, time at rest) and whether the numerical
-// guard froze it; the slot table behind BodyIds; and the contact solver's
-// warm-start cache (last step's solved manifolds), because the next step's
-// impulses start from it. Colliders, body-space meshes and the broad phase
-// are rebuilt from the above: they are functions of it.
+// guard froze it; the slot table behind BodyIds; every joint with its
+// definition (actuation included), its data in the bodies' frames and its
+// last reaction, and the slot table behind JointIds; and the contact
+// solver's warm-start cache (last step's solved manifolds), because the
+// next step's impulses start from it. Colliders, body-space meshes, the
+// broad phase and the joint solver's kept factorisation pattern are rebuilt
+// from the above: they are functions of it.
 //
 // World settings are not restored: they come from the config. The snapshot
 // records the ones a resumed run must share (dt, gravity, integrator,
@@ -31,6 +34,7 @@
 #include "physics/body/body.h"
 #include "physics/body/external_load.h"
 #include "physics/collision/collider.h"
+#include "physics/joint/joint_constraint.h"
 #include "rbsim/physics/byte_stream.h"
 #include "physics/common/exact_text.h"
 
@@ -236,6 +240,104 @@ void checkSettings(ByteReader& in, const WorldSettings& s) {
                 "," + std::to_string(s.contact.backtracking) + "," + std::to_string(s.contact.sleeping));
 }
 
+// One joint: its definition (the bodies as slot index and generation), its
+// body-frame data, its last reaction. The definition's world-frame anchor
+// and axis are those of its creation; the body-frame data is what moves.
+void writeJoint(const JointConstraint& joint, ByteWriter& out) {
+  const JointDef& def = joint.def;
+  out.string(def.name);
+  out.u8(static_cast<uint8_t>(def.type));
+  for (const BodyId body : {def.bodyA, def.bodyB}) {
+    out.i32(body.index);
+    out.u32(body.generation);
+  }
+  out.vec3(def.anchor);
+  out.vec3(def.axis);
+  out.vec3(def.anchorB);
+  out.f64(def.length);
+  out.boolean(def.collideConnected);
+  out.boolean(def.limit.enabled);
+  out.f64(def.limit.lower);
+  out.f64(def.limit.upper);
+  out.f64(def.coneAngle);
+  out.boolean(def.motor.enabled);
+  out.f64(def.motor.targetRate);
+  out.f64(def.motor.maxEffort);
+  out.boolean(def.drive.enabled);
+  out.f64(def.drive.target);
+  out.f64(def.drive.stiffness);
+  out.f64(def.drive.damping);
+  out.f64(def.drive.frequency);
+  out.f64(def.drive.dampingRatio);
+  out.f64(def.drive.maxEffort);
+  out.f64(def.damping);
+  out.f64(def.friction);
+  out.f64(def.effort);
+  out.vec3(joint.anchorA);
+  out.vec3(joint.anchorB);
+  out.vec3(joint.axisA);
+  out.vec3(joint.axisB);
+  out.vec3(joint.normalA1);
+  out.vec3(joint.normalA2);
+  out.quaternion(joint.restRelative);
+  out.f64(joint.length);
+  out.vec3(joint.lastForce);
+  out.vec3(joint.lastTorque);
+  out.f64(joint.lastAxisEffort);
+  out.i32(joint.lastAtLimit);
+}
+
+// Reads what writeJoint wrote; the bodies' ids get `worldTag`. Checks only
+// what reading can: the caller checks the bodies and the numbers.
+JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
+  JointConstraint joint;
+  JointDef& def = joint.def;
+  def.name = in.string("joint name", kMaxNameLength);
+  const uint8_t type = in.u8("joint type");
+  if (type > static_cast<uint8_t>(JointType::Distance)) in.fail("joint '" + def.name + "' has an unknown type " + std::to_string(type));
+  def.type = static_cast<JointType>(type);
+  for (BodyId* body : {&def.bodyA, &def.bodyB}) {
+    body->index = in.i32("joint body slot");
+    body->generation = in.u32("joint body generation");
+    body->world = body->index == 0 ? 0 : worldTag;
+  }
+  def.anchor = in.vec3("joint anchor");
+  def.axis = in.vec3("joint axis");
+  def.anchorB = in.vec3("joint anchor b");
+  def.length = in.f64("joint length");
+  def.collideConnected = in.boolean("joint collide-connected flag");
+  def.limit.enabled = in.boolean("joint limit flag");
+  def.limit.lower = in.f64("joint limit lower");
+  def.limit.upper = in.f64("joint limit upper");
+  def.coneAngle = in.f64("joint cone angle");
+  def.motor.enabled = in.boolean("joint motor flag");
+  def.motor.targetRate = in.f64("joint motor target rate");
+  def.motor.maxEffort = in.f64("joint motor max effort");
+  def.drive.enabled = in.boolean("joint drive flag");
+  def.drive.target = in.f64("joint drive target");
+  def.drive.stiffness = in.f64("joint drive stiffness");
+  def.drive.damping = in.f64("joint drive damping");
+  def.drive.frequency = in.f64("joint drive frequency");
+  def.drive.dampingRatio = in.f64("joint drive damping ratio");
+  def.drive.maxEffort = in.f64("joint drive max effort");
+  def.damping = in.f64("joint damping");
+  def.friction = in.f64("joint friction");
+  def.effort = in.f64("joint effort");
+  joint.anchorA = in.vec3("joint body-frame anchor a");
+  joint.anchorB = in.vec3("joint body-frame anchor b");
+  joint.axisA = in.vec3("joint body-frame axis a");
+  joint.axisB = in.vec3("joint body-frame axis b");
+  joint.normalA1 = in.vec3("joint normal 1");
+  joint.normalA2 = in.vec3("joint normal 2");
+  joint.restRelative = in.quaternion("joint rest orientation");
+  joint.length = in.f64("joint rod length");
+  joint.lastForce = in.vec3("joint last force");
+  joint.lastTorque = in.vec3("joint last torque");
+  joint.lastAxisEffort = in.f64("joint last effort");
+  joint.lastAtLimit = in.i32("joint last limit side");
+  return joint;
+}
+
 bool allFinite(std::initializer_list<double> values) {
   for (const double v : values)
     if (!std::isfinite(v)) return false;
@@ -311,7 +413,6 @@ std::vector<SolvedManifold> readWarmStart(ByteReader& in, int bodyCount) {
 
 Expected<bool> World::writeSnapshot(ByteWriter& out) const {
   const World& world = *this;
-  if (jointCount() > 0) return Error{"a world with joints cannot be checkpointed yet (format 3 holds no joints)"};
   out.u32(kSnapshotMagic);
   out.u32(kSnapshotVersion);
   writeSettings(world.m_settings, out);
@@ -361,6 +462,18 @@ Expected<bool> World::writeSnapshot(ByteWriter& out) const {
     out.f64(body.restTime());
     // A frozen body's state is the pose it is held at (state_guard.h).
     out.u8(static_cast<uint8_t>(body.freezeReason()));
+  }
+  out.u32(static_cast<uint32_t>(world.m_jointSlots.size()));
+  for (const World::Slot& slot : world.m_jointSlots) {
+    out.u32(slot.generation);
+    out.i32(slot.denseIndex);
+  }
+  out.u32(static_cast<uint32_t>(world.m_freeJointSlots.size()));
+  for (const int32_t slot : world.m_freeJointSlots) out.i32(slot);
+  out.u32(static_cast<uint32_t>(world.m_joints.size()));
+  for (std::size_t j = 0; j < world.m_joints.size(); ++j) {
+    out.i32(world.m_jointIds[j].index);
+    writeJoint(world.m_joints[j], out);
   }
   writeWarmStart(world.contacts(), out);
   return true;
@@ -517,9 +630,77 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     return Error{"world snapshot: the slot table does not match the " +
                  std::to_string(world.m_bodies.size()) + " bodies"};
 
+  if (auto joints = world.readJointsSnapshot(in); !joints) return joints.error();
   world.m_contacts = readWarmStart(in, world.bodyCount());
   if (in.failed()) return failure();
   return world;
+}
+
+Expected<bool> World::readJointsSnapshot(ByteReader& in) {
+  const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
+  const uint32_t slotCount = in.count("joint slot count", 8);
+  for (uint32_t i = 0; i < slotCount && !in.failed(); ++i) {
+    Slot slot;
+    slot.generation = in.u32("joint slot generation");
+    slot.denseIndex = in.i32("joint slot dense index");
+    m_jointSlots.push_back(slot);
+  }
+  const uint32_t freeCount = in.count("free joint slot count", 4);
+  for (uint32_t i = 0; i < freeCount && !in.failed(); ++i) {
+    const int32_t slot = in.i32("free joint slot");
+    if (slot < 0 || static_cast<uint32_t>(slot) >= slotCount || m_jointSlots[static_cast<std::size_t>(slot)].denseIndex != -1)
+      in.fail("free joint slot " + std::to_string(slot) + " is not a free slot of the table");
+    m_freeJointSlots.push_back(slot);
+  }
+  if (in.failed()) return failure();
+  const uint32_t jointCount = in.count("joint count", 300);
+  for (uint32_t j = 0; j < jointCount && !in.failed(); ++j) {
+    const int32_t slotIndex = in.i32("joint slot");
+    JointConstraint joint = readJoint(in, m_tag);
+    if (in.failed()) break;
+    const std::string where = "joint " + std::to_string(j) + " ('" + joint.def.name + "')";
+    if (slotIndex < 1 || static_cast<uint32_t>(slotIndex) > slotCount ||
+        m_jointSlots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(j))
+      return Error{"world snapshot: " + where + " is not where the joint slot table puts it"};
+    if (joint.def.name.empty() || !findJoint(joint.def.name).isNull())
+      return Error{"world snapshot: " + where + ": empty or duplicate name"};
+    // The bodies: present, distinct, one of them moving.
+    bool moves = false;
+    JointSidePose poses[2];
+    const BodyId sides[2] = {joint.def.bodyA, joint.def.bodyB};
+    for (int side = 0; side < 2; ++side) {
+      if (sides[side].isNull()) continue;
+      if (const std::string why = invalidIdReason(sides[side]); !why.empty())
+        return Error{"world snapshot: " + where + ": body_" + (side == 0 ? "a" : "b") + ": " + why};
+      const Body& body = m_bodies[denseIndexOf(sides[side])];
+      moves = moves || !body.isStatic();
+      poses[side] = {body.position(), body.orientation(), body.rotation()};
+    }
+    if ((!sides[0].isNull() && sides[0] == sides[1]) || !moves)
+      return Error{"world snapshot: " + where + ": joins a body to itself or nothing that moves"};
+    // The definition's numbers, by the rules a new joint obeys; the
+    // body-frame data must be finite and its axes unit.
+    if (auto made = makeJointConstraint(joint.def, poses[0], poses[1]); !made)
+      return Error{"world snapshot: " + made.error().message};
+    const auto unit = [](const Vec3& v) { return v.allFinite() && std::abs(v.norm() - 1.0) < 1e-9; };
+    if (!joint.anchorA.allFinite() || !joint.anchorB.allFinite() || !unit(joint.axisA) || !unit(joint.axisB) ||
+        !unit(joint.normalA1) || !unit(joint.normalA2) || !joint.restRelative.isFinite() ||
+        std::abs(joint.restRelative.norm() - 1.0) > 1e-9 || !std::isfinite(joint.length) || joint.length < 0.0 ||
+        !joint.lastForce.allFinite() || !joint.lastTorque.allFinite() || !std::isfinite(joint.lastAxisEffort) ||
+        joint.lastAtLimit < -1 || joint.lastAtLimit > 1)
+      return Error{"world snapshot: " + where + " has non-finite or non-unit frame data"};
+    m_jointIds.push_back(JointId{slotIndex, m_jointSlots[static_cast<std::size_t>(slotIndex - 1)].generation, m_tag});
+    m_joints.push_back(std::move(joint));
+  }
+  if (in.failed()) return failure();
+  std::size_t slotsInUse = 0;
+  for (const Slot& slot : m_jointSlots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
+  if (slotsInUse != m_joints.size() || slotsInUse + m_freeJointSlots.size() != m_jointSlots.size())
+    return Error{"world snapshot: the joint slot table does not match the " + std::to_string(m_joints.size()) +
+                 " joints"};
+  if (!m_joints.empty() && m_settings.contact.model == ContactModel::Penalty)
+    return Error{"world snapshot: joints need the impulse contact model"};
+  return true;
 }
 
 Expected<World> World::decodeSnapshot(std::span<const uint8_t> bytes, const WorldSettings& settings) {

@@ -90,18 +90,52 @@ TEST(JointConfig, DrivesDampingAndFrictionAreReadAsWritten) {
   ASSERT_TRUE(world.ok()) << world.error().message;
 }
 
+TEST(JointConfig, RopesAndConesAreReadAsWritten) {
+  const Expected<WorldDef> def = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - {name: hip, type: spherical, body_a: base, body_b: arm, anchor: [0, 0, 0], axis: [1, 0, 0],\n"
+          "     cone_limit: 0.7}\n"
+          "  - {name: rope, type: distance, body_a: arm, body_b: tip, anchor: [0.5, 0, 0], anchor_b: [1, 0, 0],\n"
+          "     limits: {lower: 0.2, upper: 0.8}}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  EXPECT_EQ(def->joints[0].def.coneAngle, 0.7);
+  EXPECT_EQ(def->joints[0].def.axis, Vec3(1, 0, 0));
+  EXPECT_TRUE(def->joints[1].def.limit.enabled);
+  EXPECT_EQ(def->joints[1].def.limit.lower, 0.2);
+  EXPECT_EQ(def->joints[1].def.limit.upper, 0.8);
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  const std::string base = "  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0]";
+  EXPECT_NE(errorOf(base + ", axis: [1, 0, 0]}\n").find("takes an axis only with cone_limit"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", cone_limit: 0.5}\n").find("joints[0].axis: missing required key"), std::string::npos);
+  EXPECT_NE(errorOf(base + ", axis: [1, 0, 0], cone_limit: 3.5}\n").find("joints[0].cone_limit"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0], "
+                    "cone_limit: 1}\n")
+                .find("only spherical joints take cone_limit"),
+            std::string::npos);
+  const std::string rod = "  - {name: j, type: distance, body_a: world, body_b: arm, anchor: [0, 0, 0], anchor_b: [0.5, 0, 0]";
+  EXPECT_NE(errorOf(rod + ", length: 1, limits: {lower: 0, upper: 1}}\n").find("not both"), std::string::npos);
+  EXPECT_NE(errorOf(rod + ", limits: {lower: -1, upper: 1}}\n").find("joints[0].limits.lower"), std::string::npos);
+  EXPECT_NE(errorOf(rod + ", limits: {lower: 0, upper: 0}}\n").find("a rope's upper length must be positive"),
+            std::string::npos);
+}
+
 TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
   const Expected<WorldDef> def = loadWorldConfig(std::string(RBSIM_TEST_DATA_DIR) + "/../../config/worlds/joints.yaml");
   ASSERT_TRUE(def.ok()) << def.error().message;
   Expected<World> world = World::fromDef(*def);
   ASSERT_TRUE(world.ok()) << world.error().message;
-  EXPECT_EQ(world->jointCount(), 7);
+  EXPECT_EQ(world->jointCount(), 9);
   for (int k = 0; k < 2000; ++k) world->step();
   for (int j = 0; j < world->jointCount(); ++j) EXPECT_LT(world->jointStateAt(j).error, 1e-6) << world->jointStateAt(j).name;
   EXPECT_NEAR(world->jointState(world->findJoint("axle")).rate, 5.0, 1e-9) << "the motor reached its target";
   EXPECT_NEAR(world->jointState(world->findJoint("lift")).position, -0.5, 1e-9) << "the carriage rests at its limit";
   EXPECT_NEAR(world->jointState(world->findJoint("servo")).position, 0.8, 1e-6) << "the servo turned the arm to its target";
   EXPECT_EQ(world->jointState(world->findJoint("door_hinge")).rate, 0.0) << "damping and friction stopped the door";
+  EXPECT_NEAR(world->jointState(world->findJoint("lamp_rope")).position, 1.0, 1e-9) << "the lamp hangs on its taut rope";
+  EXPECT_NEAR(world->jointState(world->findJoint("hip")).position, 0.3, 1e-9) << "the leg rests on the hip's cone";
 }
 
 TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
@@ -123,7 +157,7 @@ TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
   EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: base, anchor: [0, 0, 0]}\n").find("neither side moves"),
             std::string::npos);
   EXPECT_NE(errorOf(base + ", motor: {max_effort: -1}}\n").find("joints[0].motor.max_effort"), std::string::npos);
-  EXPECT_NE(errorOf("  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
+  EXPECT_NE(errorOf("  - {name: j, type: fixed, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")
                 .find("only revolute and prismatic joints take axis"),
             std::string::npos);
   EXPECT_NE(errorOf(base + ", drive: {target: 0}}\n").find("joints[0].drive.stiffness: missing required key"), std::string::npos);

@@ -3,7 +3,10 @@
 // snapshot data is refused with a message, never misread.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "meshio/mesh_io.h"
 #include "rbsim/physics/world.h"
@@ -120,6 +123,178 @@ TEST(WorldSnapshot, RestoredPileContinuesBitIdentically) {
   EXPECT_EQ(original.body(*a).serial(), restored->body(*b).serial());
   EXPECT_FALSE(restored->isValid(*a));
   EXPECT_TRUE(restored->isValid(*b));
+}
+
+// Joints of every kind and actuation: a chain of boxes lying on the ground
+// (the contact path), a wheel's motor, a servo's drive with damping and
+// friction, a lamp on a rope, a leg in a cone, a weld; one joint removed
+// so that the joint slot table has a hole.
+World makeJointedWorld() {
+  World world(pileSettings());
+  BodyDef ground;
+  ground.name = "ground";
+  ground.shape = PlaneShape{};
+  ground.isStatic = true;
+  EXPECT_TRUE(world.createBody(ground).ok());
+  const auto add = [&](const std::string& name, const Shape& shape, const Vec3& position) {
+    BodyDef def;
+    def.name = name;
+    def.shape = shape;
+    def.position = position;
+    const auto id = world.createBody(def);
+    EXPECT_TRUE(id.ok()) << name;
+    return id.ok() ? *id : BodyId{};
+  };
+  const auto join = [&](JointDef def) {
+    const auto id = world.createJoint(def);
+    EXPECT_TRUE(id.ok()) << (id.ok() ? "" : id.error().message);
+    return id.ok() ? *id : JointId{};
+  };
+  BodyId previous;
+  for (int i = 0; i < 5; ++i) {
+    const BodyId link = add("link" + std::to_string(i), BoxShape{Vec3(0.1, 0.04, 0.04)}, Vec3(0.2 * i, 0, 0.3));
+    if (i > 0) {
+      JointDef hinge;
+      hinge.name = "chain" + std::to_string(i);
+      hinge.bodyA = previous;
+      hinge.bodyB = link;
+      hinge.anchor = Vec3(0.2 * i - 0.1, 0, 0.3);
+      hinge.axis = Vec3(0, 1, 0);
+      hinge.limit = {true, -0.5, 0.5};
+      join(hinge);
+    }
+    previous = link;
+  }
+  JointDef wheel;
+  wheel.name = "axle";
+  wheel.bodyB = add("wheel", CylinderShape{0.2, 0.05}, Vec3(-2, 0, 1));
+  wheel.anchor = Vec3(-2, 0, 1);
+  wheel.motor = {true, 4.0, 0.3};
+  join(wheel);
+  JointDef servo;
+  servo.name = "servo";
+  servo.bodyB = add("arm", BoxShape{Vec3(0.3, 0.03, 0.03)}, Vec3(0.3, -2, 1));
+  servo.anchor = Vec3(0, -2, 1);
+  servo.axis = Vec3(0, 1, 0);
+  servo.drive.enabled = true;
+  servo.drive.target = 0.4;
+  servo.drive.frequency = 2.0;
+  servo.drive.dampingRatio = 0.3;
+  servo.damping = 0.01;
+  servo.friction = 0.02;
+  join(servo);
+  JointDef rope;
+  rope.name = "rope";
+  rope.type = JointType::Distance;
+  rope.bodyB = add("lamp", SphereShape{0.1}, Vec3(2.3, 0, 1.5));
+  rope.anchor = Vec3(2, 0, 2);
+  rope.anchorB = Vec3(2.3, 0, 1.5);
+  rope.limit = {true, 0.0, 0.9};
+  join(rope);
+  JointDef hip;
+  hip.name = "hip";
+  hip.type = JointType::Spherical;
+  hip.bodyB = add("leg", CapsuleShape{0.05, 0.3}, Vec3(0, 2, 1.15));
+  hip.anchor = Vec3(0, 2, 1.5);
+  hip.axis = Vec3(0, 0, -1);
+  hip.coneAngle = 0.4;
+  join(hip);
+  const JointId spare = join([&] {
+    JointDef weld;
+    weld.name = "spare";
+    weld.type = JointType::Fixed;
+    weld.bodyA = world.findBody("leg");
+    weld.bodyB = world.findBody("lamp");
+    weld.anchor = Vec3(1, 1, 1.3);
+    return weld;
+  }());
+  EXPECT_TRUE(world.removeJoint(spare).ok());
+  EXPECT_TRUE(world.setBodyVelocities(world.findBody("leg"), Vec3(0.5, 0, 0), Vec3(0, 1.5, 0)).ok());
+  return world;
+}
+
+TEST(WorldSnapshot, RestoredJointsContinueBitIdentically) {
+  World original = makeJointedWorld();
+  for (int i = 0; i < 700; ++i) original.step();
+  ASSERT_GT(original.contactPointCount(), 0) << "the chain lies on the ground";
+  const auto bytes = original.encodeSnapshot();
+  ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+  auto restored = World::decodeSnapshot(*bytes, pileSettings());
+  ASSERT_TRUE(restored.ok()) << restored.error().message;
+  ASSERT_EQ(restored->jointCount(), original.jointCount());
+  EXPECT_EQ(*restored->encodeSnapshot(), *bytes) << "a restored world saves to the same bytes";
+  const auto sameJoints = [&] {
+    for (int j = 0; j < original.jointCount(); ++j) {
+      const JointState a = original.jointStateAt(j), b = restored->jointStateAt(j);
+      if (a.name != b.name || a.position != b.position || a.rate != b.rate || a.force != b.force ||
+          a.torque != b.torque || a.axisEffort != b.axisEffort || a.atLimit != b.atLimit)
+        return false;
+    }
+    return true;
+  };
+  EXPECT_TRUE(sameJoints());
+  for (int i = 0; i < 600; ++i) {
+    original.step();
+    restored->step();
+    ASSERT_EQ(restored->stateHash(), original.stateHash()) << "step " << original.stepCount();
+    ASSERT_TRUE(sameJoints()) << "step " << original.stepCount();
+  }
+  // Joints made after the restore get the same slots and generations.
+  JointDef late;
+  late.name = "late";
+  late.type = JointType::Spherical;
+  late.bodyB = original.findBody("link0");
+  late.anchor = Vec3(-0.1, 0, 0.3);
+  const auto a = original.createJoint(late);
+  late.bodyB = restored->findBody("link0");
+  const auto b = restored->createJoint(late);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->index, b->index);
+  EXPECT_EQ(a->generation, b->generation);
+}
+
+TEST(WorldSnapshot, CorruptJointsAreRefusedWithAMessage) {
+  World world = makeJointedWorld();
+  const auto bytes = world.encodeSnapshot();
+  ASSERT_TRUE(bytes.ok());
+  // Every truncation is refused, never misread.
+  for (std::size_t cut = bytes->size() - 1; cut > bytes->size() - 2000; cut -= 7) {
+    const auto decoded = World::decodeSnapshot(std::span(bytes->data(), cut), pileSettings());
+    ASSERT_FALSE(decoded.ok()) << "cut at " << cut;
+  }
+  // The rope renamed "axle", the wheel's joint's name: a duplicate.
+  std::vector<uint8_t> duplicate = *bytes;
+  const std::string rope = "rope", axle = "axle";
+  const auto at = std::search(duplicate.begin(), duplicate.end(), rope.begin(), rope.end());
+  ASSERT_NE(at, duplicate.end());
+  std::copy(axle.begin(), axle.end(), at);
+  const auto renamed = World::decodeSnapshot(duplicate, pileSettings());
+  ASSERT_FALSE(renamed.ok());
+  EXPECT_NE(renamed.error().message.find("('axle'): empty or duplicate name"), std::string::npos)
+      << renamed.error().message;
+  // A joint's body slot pointing at nothing.
+  World small(pileSettings());
+  BodyDef ball;
+  ball.name = "ball";
+  ball.shape = SphereShape{0.1};
+  const BodyId id = *small.createBody(ball);
+  JointDef pin;
+  pin.name = "pin";
+  pin.type = JointType::Spherical;
+  pin.bodyB = id;
+  ASSERT_TRUE(small.createJoint(pin).ok());
+  std::vector<uint8_t> dangling = *small.encodeSnapshot();
+  // The joint's body b slot index is the i32 right after its type byte and
+  // body a's 8 bytes: find "pin" and step over its 3 bytes.
+  const std::string pinName = "pin";
+  const auto name = std::search(dangling.begin(), dangling.end(), pinName.begin(), pinName.end());
+  ASSERT_NE(name, dangling.end());
+  const auto slot = name + 3 + 1 + 8;
+  ASSERT_EQ(*slot, 1);
+  *slot = 9;
+  const auto refused = World::decodeSnapshot(dangling, pileSettings());
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("joint 0 ('pin'): body_b"), std::string::npos) << refused.error().message;
 }
 
 TEST(WorldSnapshot, TruncatedOrCorruptDataIsRefusedWithAMessage) {

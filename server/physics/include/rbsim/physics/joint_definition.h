@@ -33,8 +33,10 @@ enum class JointType {
 const char* jointTypeName(JointType type);
 
 // Revolute and prismatic joints: bounds on the joint coordinate
-// (JointState::position), held at the position level: the joint stops at a
-// bound (inelastically) and pushes back only.
+// (JointState::position); distance joints: bounds on the anchors' distance,
+// which makes the joint a rope or a range instead of a rod (free between
+// lower and upper). Held at the position level: the joint stops at a bound
+// (inelastically) and pushes back only.
 struct JointLimit {
   bool enabled = false;
   double lower = 0.0;  // rad or m
@@ -74,7 +76,7 @@ struct JointDef {
   BodyId bodyA;  // null: the world
   BodyId bodyB;  // null: the world (one of the two must move)
   Vec3 anchor = Vec3::Zero();     // m, world: the joint's point (on A, for a distance joint)
-  Vec3 axis = Vec3::UnitZ();      // revolute and prismatic: the joint axis (normalised here)
+  Vec3 axis = Vec3::UnitZ();      // revolute and prismatic: the joint axis; spherical: the cone's (normalised here)
   Vec3 anchorB = Vec3::Zero();    // m, world: distance joints only, the point on B
   // Distance joints: the rod's length; negative: the anchors' distance at
   // creation.
@@ -82,8 +84,12 @@ struct JointDef {
   // Whether the two bodies still collide with each other (by default they
   // do not: the links of a chain overlap at their joints).
   bool collideConnected = false;
-  // Revolute and prismatic only.
+  // Revolute, prismatic and distance joints (a distance joint with a limit
+  // has no `length`: it is free between the bounds).
   JointLimit limit;
+  // Spherical joints: > 0 limits the swing, the angle between `axis` as A
+  // carries it and as B carries it, to at most this (a shoulder, a hip).
+  double coneAngle = 0.0;  // rad, < π
   // The motor and the drive are two ways to command the axis: at most one
   // is enabled.
   JointMotor motor;
@@ -115,7 +121,8 @@ struct JointState {
   // The joint coordinate from the initial configuration: the angle of B
   // about the axis relative to A (revolute, rad, right-handed about the
   // axis), B's displacement along the axis (prismatic, m), the anchors'
-  // distance (distance, m); 0 for the others.
+  // distance (distance, m), the swing from the cone's axis (spherical with
+  // a cone limit, rad); 0 for the others.
   double position = 0.0;
   double rate = 0.0;  // its time derivative: rad/s or m/s
   // B's orientation relative to A's, from the initial configuration

@@ -203,8 +203,9 @@ class World {
   // field and byte offset of truncated, corrupt or inconsistent data.
   static constexpr uint32_t kSnapshotMagic = 0x53574252u;  // "RBWS" in file order
   // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
-  // the body, and whether a body's mass properties were given as data.
-  static constexpr uint32_t kSnapshotVersion = 3;
+  // the body, and whether a body's mass properties were given as data; 4:
+  // joints.
+  static constexpr uint32_t kSnapshotVersion = 4;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
@@ -230,6 +231,8 @@ class World {
   FlyingBody flying(std::size_t denseIndex) const;
   // Why `id` names no body of this world ("" when it does).
   std::string invalidIdReason(BodyId id) const;
+  // The joints of a snapshot, after its bodies (world_snapshot.cpp).
+  Expected<bool> readJointsSnapshot(ByteReader& in);
   // Gravity and the body's external load, for the integrator; notes that a
   // load was seen, so that clearLoads() has something to do.
   ForceInputs forcesOn(std::size_t denseIndex);
