@@ -17,12 +17,14 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j"$jobs"
 ctest --test-dir "$build" -j"$jobs" --output-on-failure --timeout 900
 
-# The golden state hashes (free bodies, and a pile in contact) must be the
-# same in Debug as in Release: build just those tests unoptimised and run them.
+# The golden state hashes (free bodies, a pile in contact, a world of
+# joints) must be the same in Debug as in Release: build just those tests
+# unoptimised and run them.
 cmake -S . -B "$debug_build" -DCMAKE_BUILD_TYPE=Debug -DRBSIM_BUILD_BENCH=OFF
-cmake --build "$debug_build" -j"$jobs" --target test_world test_contact_response
+cmake --build "$debug_build" -j"$jobs" --target test_world test_contact_response test_joints
 "$debug_build"/tests/test_world --gtest_filter='Determinism.*'
 "$debug_build"/tests/test_contact_response --gtest_filter='ContactDeterminism.*'
+"$debug_build"/tests/test_joints --gtest_filter='JointDeterminism.GoldenHash'
 
 # Python: the lcm-gen types and (later) the client package. Run with Debian's
 # interpreter, which has numpy and pytest.
