@@ -3,12 +3,15 @@
 // and closed forms.
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <rbsim/joint_command_t.hpp>
 
 #include "bridge/command_handler.h"
+#include "bridge/message_decode.h"
 #include "bridge/wire_convert.h"
 #include "handler_test_messages.h"
 
@@ -224,6 +227,49 @@ TEST(JointWire, GarbageOnTheJointCommandChannelIsRejected) {
   EXPECT_FALSE(outcome->ack.accepted);
   EXPECT_EQ(outcome->ack.kind, rbsim::ack_t::KIND_JOINT_COMMAND);
   EXPECT_EQ(outcome->ack.reason, "undecodable joint_command_t message (5 bytes)");
+}
+
+// The decoders of the joint types are hardened as the others are
+// (lcmtypes/harden_decoders.cmake): a joint name whose length prefix is 0,
+// negative or INT32_MIN, or an embedded NUL, is refused, not thrown on.
+TEST(JointWire, MalformedJointNamesAreRefusedByTheDecoder) {
+  auto message = jointCommand("axle", rbsim::joint_command_t::MODE_OFF, 0.0);
+  const std::vector<uint8_t> good = encoded(message);
+  // hash (8), utime (8), client length (4) and characters with NUL, seq (8).
+  const std::size_t jointLength = 8 + 8 + 4 + message.client.size() + 1 + 8;
+  for (const int32_t length : {0, -1, INT32_MIN}) {
+    std::vector<uint8_t> bytes = good;
+    const auto u = static_cast<uint32_t>(length);
+    for (int i = 0; i < 4; ++i) bytes[jointLength + static_cast<std::size_t>(i)] = static_cast<uint8_t>(u >> (24 - 8 * i));
+    rbsim::joint_command_t decoded;
+    EXPECT_FALSE(decodeWholeMessage(decoded, bytes.data(), bytes.size())) << length;
+  }
+  std::vector<uint8_t> nul = good;
+  nul[jointLength + 4 + 1] = 0;  // "a\0le"
+  rbsim::joint_command_t decoded;
+  EXPECT_FALSE(decodeWholeMessage(decoded, nul.data(), nul.size()));
+  EXPECT_TRUE(decodeWholeMessage(decoded, good.data(), good.size()));
+}
+
+// Joint commands go through the same admission as wrenches and commands.
+TEST(JointWire, ReadOnlyAndTheRateLimitCoverJointCommands) {
+  ServerSettings readOnly;
+  readOnly.readOnly = true;
+  Session session(jointWorld());
+  CommandHandler locked(session, readOnly, ".");
+  const auto effort = jointCommand("axle", rbsim::joint_command_t::MODE_EFFORT, 1.0);
+  EXPECT_NE(send(locked, effort).ack.reason.find("read-only"), std::string::npos);
+
+  ServerSettings limited;
+  limited.clientRate = 1.0;
+  limited.clientBurst = 2;
+  CommandHandler handler(session, limited, ".");
+  EXPECT_TRUE(send(handler, effort).ack.accepted);
+  EXPECT_TRUE(send(handler, effort).ack.accepted);
+  const CommandOutcome third = send(handler, effort);
+  EXPECT_FALSE(third.ack.accepted);
+  EXPECT_NE(third.ack.reason.find("rate limit"), std::string::npos) << third.ack.reason;
+  EXPECT_EQ(session.jointCommands().pendingCount(), 2);
 }
 
 // A constant torque tau on a free hinge: rate = tau t / I about the axis,
