@@ -120,6 +120,13 @@ def messages(types_dir):
           record(1, message("spawn_mesh")) + record(0, wrench("persistent_world")) + step(3) +
           record(0, wrench("clear_all_later")) + step(7) + record(2, message("pause")) +
           record(1, message("real_time_factor")) + record(1, message("publish_world")))
+    joint_commands = os.path.join(CORPUS, "joint_command_message")
+    def joint_command(name):
+        with open(os.path.join(joint_commands, name), "rb") as f:
+            return f.read()
+    write("command_handler", "joint_commands",
+          record(6, joint_command("velocity")) + step(2) + record(6, joint_command("position")) +
+          record(0, wrench("one_step_world")) + step(3))
 
     # Replay logs: an rbserver --record file (a handled_t after each received
     # message) and an lcm-logger log (acks only), of a short session.
