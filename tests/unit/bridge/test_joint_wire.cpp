@@ -218,6 +218,24 @@ TEST(JointWire, ModesAreExclusiveAndTakeEffectAtTheAckedStep) {
   EXPECT_EQ(session.jointCommands().pendingCount(), 0);
 }
 
+// A command scheduled ahead for a joint whose body is removed before its
+// step is dropped; the other joints' commands still apply.
+TEST(JointWire, ACommandForARemovedJointIsDropped) {
+  Session session(jointWorld());
+  CommandHandler handler(session, ServerSettings{}, ".");
+  auto axle = jointCommand("axle", rbsim::joint_command_t::MODE_EFFORT, 1.0);
+  axle.apply_at_step = 3;
+  auto lift = jointCommand("lift", rbsim::joint_command_t::MODE_EFFORT, 2.0);
+  lift.apply_at_step = 3;
+  ASSERT_TRUE(send(handler, axle).ack.accepted);
+  ASSERT_TRUE(send(handler, lift).ack.accepted);
+  ASSERT_TRUE(session.world().removeBody(session.world().findBody("wheel")));
+  for (int i = 0; i < 3; ++i) session.step();
+  EXPECT_EQ(session.jointCommands().pendingCount(), 0);
+  EXPECT_EQ(session.world().findJoint("axle"), JointId{});
+  EXPECT_EQ(definition(session.world(), "lift").effort, 2.0);
+}
+
 TEST(JointWire, GarbageOnTheJointCommandChannelIsRejected) {
   Session session(jointWorld());
   CommandHandler handler(session, ServerSettings{}, ".");
