@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <rbsim/command_t.hpp>
+#include <rbsim/joint_command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
 #include "bridge/message_decode.h"
@@ -56,6 +57,7 @@ CommandHandler::CommandHandler(Session& session, ServerSettings settings,
       m_spawnMeshDirectory(std::move(spawnMeshDirectory)),
       m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
       m_commandChannel(m_settings.channelPrefix + "COMMAND"),
+      m_jointCommandChannel(m_settings.channelPrefix + "JOINT_COMMAND"),
       m_rateLimiter(m_settings.clientRate, m_settings.clientBurst) {}
 
 std::optional<std::string> CommandHandler::sizeRefusal(std::size_t size) const {
@@ -76,6 +78,7 @@ std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, c
                                                      std::size_t size, int64_t receivedAt) {
   if (channel == m_wrenchChannel) return handleWrench(data, size, receivedAt);
   if (channel == m_commandChannel) return handleCommand(data, size, receivedAt);
+  if (channel == m_jointCommandChannel) return handleJointCommand(data, size, receivedAt);
   return std::nullopt;
 }
 
@@ -100,6 +103,24 @@ CommandOutcome CommandHandler::handleWrench(const void* data, std::size_t size, 
   CommandOutcome outcome = accepted(std::move(ack), request->firstStep);
   outcome.ack.wrenches_cleared = cleared;
   return outcome;
+}
+
+CommandOutcome CommandHandler::handleJointCommand(const void* data, std::size_t size, int64_t receivedAt) {
+  const int8_t kind = rbsim::ack_t::KIND_JOINT_COMMAND;
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, kind, -1), *refusal);
+  rbsim::joint_command_t message;
+  if (!decodeWholeMessage(message, data, size))
+    return rejected(ackFor("", -1, kind, -1),
+                    "undecodable joint_command_t message (" + std::to_string(size) + " bytes)");
+  rbsim::ack_t ack = ackFor(message.client, message.seq, kind, message.mode);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
+  World& world = m_session.world();
+  const auto request = jointCommandRequestFrom(message, world, world.stepCount() + 1, m_settings.limits);
+  if (!request) return rejected(std::move(ack), request.error().message);
+  // Every command goes through the scheduler, the next step's too, so that
+  // a command takes effect at the start of its step however it was sent.
+  m_session.jointCommands().add(*request);
+  return accepted(std::move(ack), request->firstStep);
 }
 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {

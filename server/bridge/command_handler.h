@@ -1,6 +1,6 @@
 #pragma once
 // The server's command path without LCM and without a clock: raw bytes of a
-// wrench_t or command_t in, the ack_t and what the caller must do out. The
+// wrench_t, command_t or joint_command_t in, the ack_t and what the caller must do out. The
 // same handler serves rbserver, a replay of a recorded session and fuzz
 // targets, so all three take exactly the same decisions.
 //
@@ -11,7 +11,8 @@
 // size (limits.max_message_bytes, before decoding), read-only mode
 // (server.read_only), the sender's rate (limits.client_rate/client_burst),
 // then per message: bodies that accept wrenches (limits.wrench_bodies),
-// the wrench limits, and the number of bodies for SPAWN (limits.max_bodies).
+// the wrench limits (which bound joint efforts too), and the number of
+// bodies for SPAWN (limits.max_bodies).
 
 #include <cstddef>
 #include <cstdint>
@@ -44,16 +45,19 @@ class CommandHandler {
   // session must outlive the handler.
   CommandHandler(Session& session, ServerSettings settings, std::string spawnMeshDirectory);
 
-  // A message received on `channel`: <prefix>WRENCH or <prefix>COMMAND.
+  // A message received on `channel`: <prefix>WRENCH, <prefix>COMMAND or
+  // <prefix>JOINT_COMMAND.
   // Nullopt for any other channel (no ack is due). `receivedAt` (ns of a
   // monotonic clock) is the only notion of time the handler has.
   std::optional<CommandOutcome> handle(std::string_view channel, const void* data,
                                        std::size_t size, int64_t receivedAt);
   CommandOutcome handleWrench(const void* data, std::size_t size, int64_t receivedAt);
   CommandOutcome handleCommand(const void* data, std::size_t size, int64_t receivedAt);
+  CommandOutcome handleJointCommand(const void* data, std::size_t size, int64_t receivedAt);
 
   const std::string& wrenchChannel() const { return m_wrenchChannel; }
   const std::string& commandChannel() const { return m_commandChannel; }
+  const std::string& jointCommandChannel() const { return m_jointCommandChannel; }
 
  private:
   CommandOutcome applyCommand(const rbsim::command_t& message, int64_t receivedAt);
@@ -67,6 +71,7 @@ class CommandHandler {
   std::string m_spawnMeshDirectory;
   std::string m_wrenchChannel;
   std::string m_commandChannel;
+  std::string m_jointCommandChannel;
   ClientRateLimiter m_rateLimiter;
 };
 

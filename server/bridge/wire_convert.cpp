@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 namespace rbsim {
@@ -130,6 +131,45 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   return out;
 }
 
+// A joint's side by body name; the world (a null id) is "world", as world
+// files name it.
+std::string sideName(const World& world, BodyId id) {
+  if (id.isNull() || !world.isValid(id)) return "world";
+  return world.body(id).name();
+}
+
+rbsim::joint_state_t jointStateMessage(const JointState& state) {
+  rbsim::joint_state_t out;
+  out.name = state.name;
+  out.position = state.position;
+  out.rate = state.rate;
+  copyTo(out.rotation, state.rotation);
+  copyTo(out.force, state.force);
+  copyTo(out.torque, state.torque);
+  out.effort = state.axisEffort;
+  out.at_limit = static_cast<int8_t>(state.atLimit);
+  out.error = state.error;
+  out.active = state.active;
+  return out;
+}
+
+rbsim::joint_description_t jointDescription(const World& world, int denseIndex) {
+  const JointState state = world.jointStateAt(denseIndex);
+  const JointDef& def = world.jointDefinitionAt(denseIndex);
+  rbsim::joint_description_t out;
+  out.name = state.name;
+  out.type = jointTypeName(state.type);
+  out.body_a = sideName(world, state.bodyA);
+  out.body_b = sideName(world, state.bodyB);
+  copyTo(out.anchor_a, state.anchorA);
+  copyTo(out.anchor_b, state.anchorB);
+  copyTo(out.axis, state.axis);
+  out.limit_enabled = def.limit.enabled;
+  out.lower_limit = def.limit.lower;
+  out.upper_limit = def.limit.upper;
+  return out;
+}
+
 // Splits items into pages whose encoded size stays under the budget. The
 // Fields policy names the page type's list and counters (bodies for states
 // and world descriptions, contacts for contacts).
@@ -141,6 +181,16 @@ struct BodyFields {
     page.first_body_index = first;
     page.num_bodies = count;
     page.total_bodies = total;
+  }
+};
+struct JointFields {
+  template <class Page>
+  static auto& items(Page& page) { return page.joints; }
+  template <class Page>
+  static void setCounts(Page& page, int32_t first, int32_t count, int32_t total) {
+    page.first_joint_index = first;
+    page.num_joints = count;
+    page.total_joints = total;
   }
 };
 struct ContactFields {
@@ -220,10 +270,57 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   header.integrator = std::string(integratorName(world.settings().integrator));
   header.linear_damping = world.settings().linearDamping;
   header.angular_damping = world.settings().angularDamping;
+  header.total_joints = 0;
+  header.first_joint_index = 0;
+  header.num_joints = 0;
   std::vector<rbsim::body_description_t> bodies;
   bodies.reserve(world.bodies().size());
   for (const BodyView body : world.bodies()) bodies.push_back(bodyDescription(body));
-  return paginate<BodyFields>(header, std::move(bodies));
+  std::vector<rbsim::world_t> pages = paginate<BodyFields>(header, std::move(bodies));
+
+  // The joints after the bodies: into the last page while it has room, then
+  // into pages of their own (whose body counters say no bodies, from the
+  // end of the list).
+  const int32_t totalJoints = world.jointCount();
+  const int32_t totalBodies = pages.back().total_bodies;
+  rbsim::world_t* current = &pages.back();
+  auto size = static_cast<std::size_t>(current->getEncodedSize());
+  for (int32_t i = 0; i < totalJoints; ++i) {
+    rbsim::joint_description_t joint = jointDescription(world, i);
+    const auto jointSize = static_cast<std::size_t>(joint._getEncodedSizeNoHash());
+    if ((current->num_bodies > 0 || current->num_joints > 0) && size + jointSize > kMaxPagePayloadBytes) {
+      rbsim::world_t next = header;
+      BodyFields::setCounts(next, totalBodies, 0, totalBodies);
+      next.first_joint_index = i;
+      pages.push_back(std::move(next));
+      current = &pages.back();
+      size = static_cast<std::size_t>(current->getEncodedSize());
+    }
+    current->joints.push_back(std::move(joint));
+    current->num_joints = static_cast<int32_t>(current->joints.size());
+    size += jointSize;
+  }
+  int32_t firstJoint = 0;
+  for (std::size_t i = 0; i < pages.size(); ++i) {
+    pages[i].page = static_cast<int32_t>(i);
+    pages[i].num_pages = static_cast<int32_t>(pages.size());
+    pages[i].total_joints = totalJoints;
+    pages[i].first_joint_index = firstJoint;
+    firstJoint += pages[i].num_joints;
+  }
+  return pages;
+}
+
+std::vector<rbsim::joints_t> jointStatePages(const World& world, int64_t utime, int64_t revision) {
+  rbsim::joints_t header;
+  header.utime = utime;
+  header.step = world.stepCount();
+  header.sim_time = world.time();
+  header.world_revision = revision;
+  std::vector<rbsim::joint_state_t> joints;
+  joints.reserve(static_cast<std::size_t>(world.jointCount()));
+  for (int i = 0; i < world.jointCount(); ++i) joints.push_back(jointStateMessage(world.jointStateAt(i)));
+  return paginate<JointFields>(header, std::move(joints));
 }
 
 std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime) {
@@ -271,6 +368,91 @@ Expected<WrenchFrame> wrenchFrameFrom(int8_t value, const char* field) {
 }
 
 }  // namespace
+
+Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command_t& message,
+                                                      const World& world, int64_t nextStep,
+                                                      const WrenchLimits& limits) {
+  JointCommandRequest request;
+  request.client = message.client;
+  request.seq = message.seq;
+  request.joint = message.joint;
+  switch (message.mode) {
+    case rbsim::joint_command_t::MODE_OFF:
+      request.mode = JointCommandMode::Off;
+      break;
+    case rbsim::joint_command_t::MODE_VELOCITY:
+      request.mode = JointCommandMode::Velocity;
+      break;
+    case rbsim::joint_command_t::MODE_POSITION:
+      request.mode = JointCommandMode::Position;
+      break;
+    case rbsim::joint_command_t::MODE_EFFORT:
+      request.mode = JointCommandMode::Effort;
+      break;
+    default:
+      return Error{"mode: unknown mode " + std::to_string(message.mode) +
+                   " (OFF 0, VELOCITY 1, POSITION 2, EFFORT 3)"};
+  }
+
+  const JointId id = world.findJoint(message.joint);
+  if (id.isNull()) return Error{"joint: unknown joint '" + message.joint + "'"};
+  const JointState state = world.jointState(id);
+  const bool revolute = state.type == JointType::Revolute;
+  if (!revolute && state.type != JointType::Prismatic)
+    return Error{"joint: '" + message.joint + "' is a " + jointTypeName(state.type) +
+                 " joint, which has no axis to actuate (only revolute and prismatic joints take joint commands)"};
+
+  if (message.apply_at_step == -1) {
+    request.firstStep = nextStep;
+  } else if (message.apply_at_step < nextStep) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) +
+                 " is in the past (next step is " + std::to_string(nextStep) + ")"};
+  } else if (message.apply_at_step - nextStep > limits.maxStepsAhead) {
+    return Error{"apply_at_step " + std::to_string(message.apply_at_step) + " is more than " +
+                 std::to_string(limits.maxStepsAhead) + " steps ahead"};
+  } else {
+    request.firstStep = message.apply_at_step;
+  }
+  if (request.mode == JointCommandMode::Off) return request;
+
+  // Efforts are bounded as a wrench's torque (revolute) or force (prismatic) is.
+  const double effortLimit = revolute ? limits.maxTorque : limits.maxForce;
+  const std::string effortUnit = revolute ? " N·m" : " N";
+  const auto overLimit = [&](const char* field, double value) {
+    return Error{std::string(field) + " " + std::to_string(value) + effortUnit + " exceeds the limit of " +
+                 std::to_string(effortLimit) + effortUnit + " (limits." +
+                 (revolute ? "max_torque" : "max_force") + ")"};
+  };
+  if (!std::isfinite(message.target)) return Error{"target must be finite"};
+  request.target = message.target;
+  switch (request.mode) {
+    case JointCommandMode::Velocity:
+      if (!std::isfinite(message.max_effort) || message.max_effort < 0.0)
+        return Error{"max_effort must be finite and >= 0 for MODE_VELOCITY (the motor's largest effort)"};
+      if (message.max_effort > effortLimit) return overLimit("max_effort", message.max_effort);
+      request.maxEffort = message.max_effort;
+      break;
+    case JointCommandMode::Position:
+      if (std::isnan(message.max_effort))
+        return Error{"max_effort must be a number (0 or less: uncapped)"};
+      if (!std::isfinite(message.stiffness) || message.stiffness < 0.0)
+        return Error{"stiffness must be finite and >= 0"};
+      if (!std::isfinite(message.damping) || message.damping < 0.0)
+        return Error{"damping must be finite and >= 0"};
+      if (message.stiffness == 0.0 && message.damping == 0.0)
+        return Error{"stiffness and damping are both 0: the drive would do nothing (use MODE_OFF)"};
+      request.stiffness = message.stiffness;
+      request.damping = message.damping;
+      request.maxEffort = message.max_effort > 0.0 ? message.max_effort : std::numeric_limits<double>::infinity();
+      break;
+    case JointCommandMode::Effort:
+      if (std::abs(message.target) > effortLimit) return overLimit("target", std::abs(message.target));
+      break;
+    case JointCommandMode::Off:
+      break;
+  }
+  return request;
+}
 
 Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const World& world,
                                           int64_t nextStep, const WrenchLimits& limits) {

@@ -8,6 +8,8 @@
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/contacts_t.hpp>
+#include <rbsim/joint_command_t.hpp>
+#include <rbsim/joints_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -16,6 +18,7 @@
 #include "config/server_settings.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world.h"
+#include "session/joint_command_scheduler.h"
 #include "session/wrench_scheduler.h"
 
 namespace rbsim {
@@ -32,7 +35,8 @@ constexpr std::size_t kMaxPagePayloadBytes = 60000;
 std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t utime,
                                                   int64_t revision);
 
-// The world's description, paged the same way (meshes make bodies large).
+// The world's description, paged the same way (meshes make bodies large),
+// with the joints after the bodies (world_t).
 std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
                                                   int64_t revision);
 
@@ -40,6 +44,17 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
 // impulses, classification by relative normal velocity), paged like the
 // state. Bodies are named by their ids (serials).
 std::vector<rbsim::contacts_t> contactPages(const World& world, int64_t utime);
+
+// Every joint's state (joints_t), paged like the state, in creation order.
+std::vector<rbsim::joints_t> jointStatePages(const World& world, int64_t utime, int64_t revision);
+
+// Checks a joint command against the world and the limits (max_torque and
+// max_force bound a revolute's and a prismatic's efforts, as for wrenches);
+// on success the request is ready for the JointCommandScheduler. Errors
+// name the field.
+Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command_t& message,
+                                                      const World& world, int64_t nextStep,
+                                                      const WrenchLimits& limits);
 
 // Checks a wrench message against the world and the limits; on success the
 // request is ready for the WrenchScheduler. `nextStep` is the step the

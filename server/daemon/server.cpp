@@ -80,6 +80,7 @@ Expected<bool> Server::open() {
   // Channel names are exact: the prefix was checked to hold no regex characters.
   m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
+  m_lcm->subscribe(m_commands.jointCommandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(channel("STATUS"), &Server::onStatus, this);
   if (m_settings.checkpointEvery > 0.0) {
     if (m_settings.checkpointDirectory.empty())
@@ -264,8 +265,10 @@ void Server::acknowledge(rbsim::ack_t ack) {
     ++m_counters.accepted;
   } else {
     ++m_counters.rejected;
-    logDebug("rejected " +
-             std::string(ack.kind == rbsim::ack_t::KIND_WRENCH ? "wrench" : "command") + " from '" +
+    const char* kind = ack.kind == rbsim::ack_t::KIND_WRENCH          ? "wrench"
+                       : ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND ? "joint command"
+                                                                      : "command";
+    logDebug("rejected " + std::string(kind) + " from '" +
              ack.client + "' seq " + std::to_string(ack.seq) + ": " + ack.reason);
   }
   publish(channel("ACK"), ack);
@@ -309,6 +312,10 @@ void Server::record(const std::string& channelName, const void* data, std::size_
 void Server::publishState() {
   for (const auto& page : worldStatePages(world(), wallMicroseconds(), m_session.worldRevision()))
     publish(channel("STATE"), page);
+  // The joints of the same step, after its bodies (none for a world without).
+  if (world().jointCount() > 0)
+    for (const auto& page : jointStatePages(world(), wallMicroseconds(), m_session.worldRevision()))
+      publish(channel("JOINTS"), page);
 }
 
 void Server::publishContacts() {

@@ -8,6 +8,7 @@
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
 #include <rbsim/handled_t.hpp>
+#include <rbsim/joint_command_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
@@ -36,14 +37,17 @@ std::vector<uint8_t> encode(const Message& message) {
 
 // Which acks stand for a change of the simulated world.
 bool changesTheWorld(const rbsim::ack_t& ack) {
-  if (ack.kind == rbsim::ack_t::KIND_WRENCH) return true;
+  if (ack.kind == rbsim::ack_t::KIND_WRENCH || ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND) return true;
   return ack.kind == rbsim::ack_t::KIND_COMMAND &&
          (ack.request == rbsim::command_t::SPAWN || ack.request == rbsim::command_t::REMOVE ||
           ack.request == rbsim::command_t::RESET);
 }
 
 std::string describe(const rbsim::ack_t& ack) {
-  return std::string(ack.kind == rbsim::ack_t::KIND_WRENCH ? "wrench" : "command") + " seq " +
+  const char* kind = ack.kind == rbsim::ack_t::KIND_WRENCH          ? "wrench"
+                     : ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND ? "joint command"
+                                                                    : "command";
+  return std::string(kind) + " seq " +
          std::to_string(ack.seq) + " from '" + ack.client + "'";
 }
 
@@ -56,7 +60,7 @@ struct Replay::Input {
   int64_t eventNumber = 0;
   std::optional<int64_t> handledStep;  // from a handled_t (--record files)
   std::optional<int64_t> handledRevision;
-  int64_t applyAtStep = -1;            // wrenches: as requested
+  int64_t applyAtStep = -1;            // wrenches and joint commands: as requested
 };
 
 struct Replay::Pending {
@@ -82,6 +86,7 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
   m_report = {};
   emitWorld(0);
   const std::string wrench = m_prefix + "WRENCH", command = m_prefix + "COMMAND",
+                    jointCommand = m_prefix + "JOINT_COMMAND",
                     handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE";
   while (!m_report.difference) {
     auto event = reader.next();
@@ -95,7 +100,7 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
     }
     m_eventTimestamp = e.timestamp;
     Expected<bool> done = true;
-    if (e.channel == wrench || e.channel == command) {
+    if (e.channel == wrench || e.channel == command || e.channel == jointCommand) {
       done = onInput(e);
     } else if (e.channel == handled) {
       done = onHandled(e);
@@ -121,6 +126,12 @@ Expected<bool> Replay::onInput(const LogEvent& event) {
     if (const auto w = decodeWhole<rbsim::wrench_t>(event.data)) {
       key = {rbsim::ack_t::KIND_WRENCH, w->client, w->seq};
       input.applyAtStep = w->apply_at_step;
+    }
+  } else if (event.channel == m_prefix + "JOINT_COMMAND") {
+    std::get<0>(key) = rbsim::ack_t::KIND_JOINT_COMMAND;
+    if (const auto j = decodeWhole<rbsim::joint_command_t>(event.data)) {
+      key = {rbsim::ack_t::KIND_JOINT_COMMAND, j->client, j->seq};
+      input.applyAtStep = j->apply_at_step;
     }
   } else {
     std::get<0>(key) = rbsim::ack_t::KIND_COMMAND;

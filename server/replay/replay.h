@@ -2,10 +2,10 @@
 // `rbserver --replay LOG`: re-simulates a recorded session as fast as
 // possible. The log is an rbserver --record file or an lcm-logger log of the
 // bus. The session starts from the config's world (or the checkpoint the
-// recorded server resumed from); each wrench or command the server accepted
-// and that changed the world (wrenches, SPAWN, REMOVE, RESET) goes through the
-// same CommandHandler at the step the server handled it, and the world is
-// stepped to every recorded state. With `verify`, every recorded state page
+// recorded server resumed from); each wrench, joint command or command the
+// server accepted and that changed the world (wrenches, joint commands,
+// SPAWN, REMOVE, RESET) goes through the same CommandHandler at the step the
+// server handled it, and the world is stepped to every recorded state. With `verify`, every recorded state page
 // is compared bit for bit with the replayed one.
 //
 // Where a message was handled: a --record file says so exactly (a handled_t

@@ -9,6 +9,7 @@ Session::Session(World initialWorld, bool startPaused)
 
 void Session::step() {
   const int64_t stepNumber = m_world.stepCount() + 1;
+  m_jointCommands.applyForStep(m_world, stepNumber);
   m_wrenches.applyForStep(m_world, stepNumber);
   m_world.step();
   m_wrenches.finishStep(stepNumber);
@@ -39,6 +40,7 @@ void Session::replaceWorld(World world, WrenchScheduler wrenches) {
   m_world = std::move(world);
   m_world.continueSerialsAfter(lastSerial);
   m_wrenches = std::move(wrenches);
+  m_jointCommands.clearAll();
   m_stepsRequested = 0;
   ++m_worldRevision;
 }

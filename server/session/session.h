@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "rbsim/physics/world.h"
+#include "session/joint_command_scheduler.h"
 #include "session/wrench_scheduler.h"
 
 namespace rbsim {
@@ -22,9 +23,12 @@ class Session {
   const World& initialWorld() const { return m_initialWorld; }
   const WrenchScheduler& wrenches() const { return m_wrenches; }
   WrenchScheduler& wrenches() { return m_wrenches; }
+  // Joint commands scheduled ahead (apply_at_step); RESET and a new world drop them.
+  const JointCommandScheduler& jointCommands() const { return m_jointCommands; }
+  JointCommandScheduler& jointCommands() { return m_jointCommands; }
 
-  // One step of the world with the wrenches due in it (numbered as on the
-  // wire: the step taken from stepCount() s is step s + 1).
+  // One step of the world with the joint commands and wrenches due in it
+  // (numbered as on the wire: the step taken from stepCount() s is step s + 1).
   void step();
 
   bool paused() const { return m_paused; }
@@ -55,6 +59,7 @@ class Session {
   World m_initialWorld;
   World m_world;
   WrenchScheduler m_wrenches;
+  JointCommandScheduler m_jointCommands;
   bool m_paused = false;
   int64_t m_stepsRequested = 0;
   int64_t m_worldRevision = 1;

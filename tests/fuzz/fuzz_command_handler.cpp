@@ -7,7 +7,9 @@
 // Records (input_records.h), by tag % 4:
 //   0 payload  on <prefix>WRENCH
 //   1 payload  on <prefix>COMMAND
-//   2 payload  on another channel (no ack is due)
+//   2 payload  on <prefix>JOINT_COMMAND if tag & 4, else on another channel
+//              (no ack is due); the small world has no joints, so this
+//              exercises decoding, admission and the rejections
 //   3 count    take up to count % 8 steps (at most kMaxSteps per input:
 //              stepping dominates the cost, and a fuzz input should run in
 //              milliseconds; long sessions are the replay tests' business)
@@ -58,12 +60,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
       for (const auto& page : worldStatePages(session.world(), 0, session.worldRevision()))
         encodeAsPublished(page);
+      for (const auto& page : jointStatePages(session.world(), 0, session.worldRevision()))
+        encodeAsPublished(page);
       continue;
     }
     const auto message = records.payload();
     const std::string channel = tag % 4 == 0   ? handler.wrenchChannel()
                                 : tag % 4 == 1 ? handler.commandChannel()
-                                               : std::string("RBSIM_STATE");
+                                : (tag & 4) != 0 ? handler.jointCommandChannel()
+                                                 : std::string("RBSIM_STATE");
     const auto outcome = handler.handle(channel, message.data, message.size, ++receivedAt);
     if (!outcome) continue;
     encodeAsPublished(outcome->ack);

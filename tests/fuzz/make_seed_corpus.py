@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Writes the seed corpora of the fuzz targets into tests/fuzz/corpus/<target>/.
 
-Seeds are small valid inputs the mutations start from: encoded wrench_t and
-command_t messages (one per mode and command), the repository's worlds and
+Seeds are small valid inputs the mutations start from: encoded wrench_t,
+command_t and joint_command_t messages (one per mode and command), the repository's worlds and
 meshes, a few bodies in YAML and point sets for the hull builder. The output
 is checked in; rerun this after changing a message type or a seed:
 
@@ -51,7 +51,7 @@ def log_event(number, channel, data):
 
 def messages(types_dir):
     sys.path.insert(0, types_dir)
-    from rbsim import ack_t, command_t, handled_t, world_state_t, wrench_t  # noqa: E402 (lcm-gen)
+    from rbsim import ack_t, command_t, handled_t, joint_command_t, world_state_t, wrench_t  # noqa: E402 (lcm-gen)
 
     modes = {"one_step": 0, "duration": 1, "persistent": 2, "clear": 3}
     for mode_name, mode in modes.items():
@@ -66,6 +66,20 @@ def messages(types_dir):
     w = wrench_t()
     w.client, w.body, w.mode, w.apply_at_step = "fuzz", "", 3, 2
     write("wrench_message", "clear_all_later", w.encode())
+
+    # Joint commands on fuzz_joint_command_message's world (axle, rail, socket, weld).
+    for name, joint, mode, target, max_effort, stiffness, damping, at_step in (
+            ("off", "axle", 0, 0.0, 0.0, 0.0, 0.0, -1),
+            ("velocity", "axle", 1, 5.0, 0.5, 0.0, 0.0, -1),
+            ("position", "rail", 2, 0.1, 0.0, 400.0, 20.0, 2),
+            ("position_capped", "rail", 2, -0.3, 5.0, 100.0, 0.0, -1),
+            ("effort", "rail", 3, -2.0, 0.0, 0.0, 0.0, -1),
+            ("spherical", "socket", 1, 1.0, 1.0, 0.0, 0.0, -1)):
+        j = joint_command_t()
+        j.utime, j.client, j.seq, j.joint, j.mode = 1, "fuzz", 1, joint, mode
+        j.target, j.max_effort, j.stiffness, j.damping, j.apply_at_step = (
+            target, max_effort, stiffness, damping, at_step)
+        write("joint_command_message", name, j.encode())
 
     def command(name, code, **fields):
         c = command_t()
@@ -106,6 +120,13 @@ def messages(types_dir):
           record(1, message("spawn_mesh")) + record(0, wrench("persistent_world")) + step(3) +
           record(0, wrench("clear_all_later")) + step(7) + record(2, message("pause")) +
           record(1, message("real_time_factor")) + record(1, message("publish_world")))
+    joint_commands = os.path.join(CORPUS, "joint_command_message")
+    def joint_command(name):
+        with open(os.path.join(joint_commands, name), "rb") as f:
+            return f.read()
+    write("command_handler", "joint_commands",
+          record(6, joint_command("velocity")) + step(2) + record(6, joint_command("position")) +
+          record(0, wrench("one_step_world")) + step(3))
 
     # Replay logs: an rbserver --record file (a handled_t after each received
     # message) and an lcm-logger log (acks only), of a short session.

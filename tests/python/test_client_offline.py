@@ -246,3 +246,92 @@ def test_named_client_id_from_the_environment(monkeypatch):
     monkeypatch.delenv("RBSIM_CLIENT_ID")
     with Client(url="memq://") as client:
         assert client.client_id.startswith("py-")
+
+
+def _joint_pages(step, names, per_page, revision=1):
+    """The joints_t pages of one step: joints `names`, `per_page` per page."""
+    from rbsim import joint_state_t, joints_t
+
+    joints = []
+    for i, name in enumerate(names):
+        j = joint_state_t()
+        j.name, j.position, j.rate, j.effort, j.at_limit, j.active = name, 0.1 * i, -float(i), 0.5, 0, True
+        j.rotation, j.force, j.torque = (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 9.81), (0.0, 0.0, 0.0)
+        joints.append(j)
+    chunks = [joints[i:i + per_page] for i in range(0, len(joints), per_page)] or [[]]
+    pages = []
+    for index, chunk in enumerate(chunks):
+        m = joints_t()
+        m.utime, m.step, m.sim_time, m.world_revision = 1_000_000 + step, step, step * 1e-3, revision
+        m.page, m.num_pages, m.total_joints = index, len(chunks), len(joints)
+        m.first_joint_index, m.num_joints, m.joints = index * per_page, len(chunk), chunk
+        pages.append(m)
+    return pages
+
+
+def test_joint_states_are_reassembled_by_name(sim):
+    names = ["j%d" % i for i in range(7)]
+    pages = _joint_pages(12, names, 3)
+    random.Random(2).shuffle(pages)
+    _publish(sim, "JOINTS", pages)
+    joints = sim.wait_joints(timeout=2.0, step=12)
+    assert joints.names() == names and len(joints) == 7
+    assert joints["j3"].rate == -3.0 and joints["j3"].position == pytest.approx(0.3)
+    assert isinstance(joints["j3"].force, np.ndarray) and joints["j3"].force.tolist() == [0.0, 0.0, 9.81]
+    assert joints.rates.tolist() == [-float(i) for i in range(7)]
+    assert sim.joint_state("j6").name == "j6"
+    with pytest.raises(KeyError):
+        sim.joint_state("nosuch")
+
+
+def test_world_description_joints_are_paged_after_the_bodies():
+    from rbsim import joint_description_t, world_t
+    from rbsim.client import WorldDescription
+
+    def joint(name):
+        j = joint_description_t()
+        j.name, j.type, j.body_a, j.body_b = name, "revolute", "world", "wheel"
+        return j
+
+    first, second = world_t(), world_t()
+    for index, page in enumerate((first, second)):
+        page.page, page.num_pages, page.total_bodies, page.total_joints = index, 2, 0, 3
+    first.first_joint_index, first.num_joints, first.joints = 0, 1, [joint("a")]
+    second.first_joint_index, second.num_joints, second.joints = 1, 2, [joint("b"), joint("c")]
+    assembler = PageAssembler()
+    assert assembler.add(world_t.decode(first.encode())) is None
+    world = WorldDescription(assembler.add(world_t.decode(second.encode())))
+    assert [j.name for j in world.joints] == ["a", "b", "c"] and world.joint("b").body_a == "world"
+    # A gap in the joints' indices is inconsistent.
+    second.first_joint_index = 2
+    assembler.add(world_t.decode(first.encode()))
+    assert assembler.add(world_t.decode(second.encode())) is None and assembler.invalid == 1
+
+
+def test_sent_joint_commands(sim):
+    from rbsim import joint_command_t
+    from rbsim.client import JointMode
+
+    sent = []
+    sim.lcm.subscribe("RBSIM_JOINT_COMMAND", lambda c, d, u: sent.append(d))
+    s1 = sim.command_joint("axle", "velocity", 5.0, max_effort=0.5, wait=False)
+    s2 = sim.command_joint("lift", JointMode.POSITION, 0.1, stiffness=400, damping=20, apply_at_step=9,
+                           wait=False)
+    s3 = sim.command_joint("axle", "off", wait=False)
+    with pytest.raises(ValueError):
+        sim.command_joint("axle", "spin", 1.0, wait=False)
+    deadline = 200
+    while len(sent) < 3 and deadline:
+        threading.Event().wait(0.01)
+        deadline -= 1
+    m1, m2, m3 = (joint_command_t.decode(d) for d in sent)
+    assert (m1.client, m1.seq, m1.joint, m1.mode, m1.target, m1.max_effort, m1.apply_at_step) == (
+        "offline", s1, "axle", joint_command_t.MODE_VELOCITY, 5.0, 0.5, -1)
+    assert (m2.seq, m2.mode, m2.stiffness, m2.damping, m2.apply_at_step) == (
+        s2, joint_command_t.MODE_POSITION, 400.0, 20.0, 9)
+    assert (m3.seq, m3.mode) == (s3, joint_command_t.MODE_OFF)
+
+    ack = ack_t()
+    ack.client, ack.seq, ack.kind, ack.accepted, ack.reason = "offline", s1, ack_t.KIND_JOINT_COMMAND, False, "no"
+    _publish(sim, "ACK", [ack])
+    assert sim.wait_ack(s1, "joint_command", timeout=2.0).reason == "no"

@@ -130,3 +130,42 @@ def test_plot_errors(session_log, tmp_path):
     proc = _plot(tmp_path / "none.lcmlog", "-o", tmp_path / "x.png")
     assert proc.returncode != 0 and "none.lcmlog" in proc.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_load_log_reads_joint_commands_and_joint_states(tmp_path):
+    from rbsim import joint_command_t, joint_state_t, joints_t
+
+    def joints(step, per_page, revision=1):
+        states = []
+        for i, name in enumerate(("axle", "lift", "weld")):
+            j = joint_state_t()
+            j.name, j.position, j.rate, j.rotation = name, 0.01 * step * i, float(i), (1.0, 0.0, 0.0, 0.0)
+            states.append(j)
+        chunks = [states[i:i + per_page] for i in range(0, len(states), per_page)]
+        pages = []
+        for index, chunk in enumerate(chunks):
+            m = joints_t()
+            m.utime, m.step, m.world_revision = 2_000_000 + step, step, revision
+            m.page, m.num_pages, m.total_joints = index, len(chunks), len(states)
+            m.first_joint_index, m.num_joints, m.joints = index * per_page, len(chunk), chunk
+            pages.append(m)
+        return pages
+
+    c = joint_command_t()
+    c.client, c.seq, c.joint, c.mode, c.target = "t", 1, "axle", joint_command_t.MODE_EFFORT, 0.2
+    events = [("RBSIM_JOINT_COMMAND", c)]
+    for step in range(4):
+        pages = joints(step, 2)
+        if step == 2:
+            pages = pages[:1]  # a page lost: step 2 is incomplete
+        events += [("RBSIM_JOINTS", p) for p in pages]
+    repeat = joints(3, 3)  # a repeat of step 3 (a paused server republishes), one page
+    repeat[0].utime = 3_000_000
+    events += [("RBSIM_JOINTS", p) for p in repeat]
+    path = tmp_path / "joints.lcmlog"
+    _write(path, events)
+    log = load_log(str(path))
+    assert [(m.joint, m.mode, m.target) for m in log.joint_commands] == [("axle", 3, 0.2)]
+    assert [j.step for j in log.joints] == [0, 1, 3]
+    assert log.joints[-1].names() == ["axle", "lift", "weld"]
+    assert log.joints[1]["weld"].position == pytest.approx(0.02)

@@ -5,6 +5,7 @@
 #include <climits>
 #include <cstdlib>
 #include <rbsim/command_t.hpp>
+#include <rbsim/joint_command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 #include <string_view>
 
@@ -20,6 +21,11 @@ static_assert(static_cast<int8_t>(WrenchMode::ClearAllClients) ==
               rbsim::wrench_t::MODE_CLEAR_ALL_CLIENTS);
 static_assert(static_cast<int8_t>(AckKind::Wrench) == rbsim::ack_t::KIND_WRENCH);
 static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAND);
+static_assert(static_cast<int8_t>(AckKind::JointCommand) == rbsim::ack_t::KIND_JOINT_COMMAND);
+static_assert(static_cast<int8_t>(JointMode::Off) == rbsim::joint_command_t::MODE_OFF);
+static_assert(static_cast<int8_t>(JointMode::Velocity) == rbsim::joint_command_t::MODE_VELOCITY);
+static_assert(static_cast<int8_t>(JointMode::Position) == rbsim::joint_command_t::MODE_POSITION);
+static_assert(static_cast<int8_t>(JointMode::Effort) == rbsim::joint_command_t::MODE_EFFORT);
 
 namespace {
 
@@ -89,6 +95,8 @@ Client::Client(ClientOptions options)
       ->setQueueCapacity(kQueueCapacity);
   m_lcm->subscribe(regexEscaped(channel("CONTACTS")), &Client::onContactsMessage, this)
       ->setQueueCapacity(kQueueCapacity);
+  m_lcm->subscribe(regexEscaped(channel("JOINTS")), &Client::onJointsMessage, this)
+      ->setQueueCapacity(kQueueCapacity);
 }
 
 Client::~Client() = default;
@@ -147,6 +155,11 @@ Client::CallbackId Client::onContacts(ContactsCallback callback) {
   return m_nextCallbackId++;
 }
 
+Client::CallbackId Client::onJoints(JointsCallback callback) {
+  m_jointsCallbacks.push_back({m_nextCallbackId, std::move(callback)});
+  return m_nextCallbackId++;
+}
+
 void Client::removeCallback(CallbackId id) {
   const auto hasId = [id](const auto& registered) { return registered.id == id; };
   std::erase_if(m_stateCallbacks, hasId);
@@ -154,6 +167,7 @@ void Client::removeCallback(CallbackId id) {
   std::erase_if(m_statusCallbacks, hasId);
   std::erase_if(m_ackCallbacks, hasId);
   std::erase_if(m_contactsCallbacks, hasId);
+  std::erase_if(m_jointsCallbacks, hasId);
 }
 
 void Client::onStateMessage(const lcm::ReceiveBuffer*, const std::string&,
@@ -181,6 +195,28 @@ void Client::onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
   m_contacts = std::move(*whole);
   ++m_contactsCount;
   notify(m_contactsCallbacks, *m_contacts);
+}
+
+void Client::onJointsMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::joints_t* page) {
+  auto whole = m_jointsPages.add(*page);
+  if (!whole) return;
+  m_joints = std::move(*whole);
+  ++m_jointsCount;
+  notify(m_jointsCallbacks, *m_joints);
+}
+
+const rbsim::joint_state_t* Client::jointState(const std::string& name) const {
+  if (!m_joints) return nullptr;
+  for (const auto& joint : m_joints->joints)
+    if (joint.name == name) return &joint;
+  return nullptr;
+}
+
+const rbsim::joint_description_t* Client::jointDescription(const std::string& name) const {
+  if (!m_world) return nullptr;
+  for (const auto& joint : m_world->joints)
+    if (joint.name == name) return &joint;
+  return nullptr;
 }
 
 void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
@@ -293,6 +329,21 @@ Request Client::remove(const std::string& body) {
 
 Request Client::publishWorld() {
   return sendCommand(rbsim::command_t::PUBLISH_WORLD, {});
+}
+
+Request Client::commandJoint(const JointCommand& command) {
+  rbsim::joint_command_t message;
+  message.utime = wallMicroseconds();
+  message.client = m_clientId;
+  message.seq = m_nextSeq++;
+  message.joint = command.joint;
+  message.mode = static_cast<int8_t>(command.mode);
+  message.target = command.target;
+  message.max_effort = command.maxEffort;
+  message.stiffness = command.stiffness;
+  message.damping = command.damping;
+  message.apply_at_step = command.applyAtStep;
+  return {message.seq, AckKind::JointCommand, publish("JOINT_COMMAND", message)};
 }
 
 std::optional<rbsim::ack_t> Client::waitForAck(int64_t seq, AckKind kind, Timeout timeout) {

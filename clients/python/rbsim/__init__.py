@@ -15,7 +15,7 @@ whose directory is appended to this package's ``__path__``, looked up, in order,
 
 Hand-written modules:
   ``rbsim.lcm_ctypes``  ctypes wrapper over liblcm.so.1 (transport, event logs)
-  ``rbsim.client``      :class:`Client`: state, status, world, wrenches, commands, acks
+  ``rbsim.client``      :class:`Client`: state, status, world, joints, wrenches, commands, acks
   ``rbsim.log``         :func:`load_log`: LCM logs as numpy arrays
   ``rbsim.cli``         the ``python3 -m rbsim`` command line
 """
@@ -34,6 +34,10 @@ _GENERATED_TYPES = (
     "compound_part_t",
     "contact_t",
     "contacts_t",
+    "joint_command_t",
+    "joint_description_t",
+    "joint_state_t",
+    "joints_t",
     "status_t",
     "world_state_t",
     "world_t",

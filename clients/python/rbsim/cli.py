@@ -12,6 +12,9 @@
     python3 -m rbsim rtf X
     python3 -m rbsim spawn FILE | - | --yaml TEXT
     python3 -m rbsim remove NAME
+    python3 -m rbsim joints                     print the joints and their state
+    python3 -m rbsim joint NAME off|velocity|position|effort [TARGET]
+                           [--max-effort E] [--stiffness K] [--damping D] [--at-step K]
     python3 -m rbsim plot LOG -o OUT.png [--bodies NAME ...]
 
 The verbs, options, defaults, outputs and exit statuses are those of rbctl,
@@ -180,6 +183,37 @@ def cmd_remove(args):
     _report(ack, "remove %s" % args.name)
 
 
+def cmd_joints(args):
+    from . import printing
+
+    with _client(args) as sim:
+        sim.wait_state(args.timeout)  # the server is up and subscribed: the request is not lost
+        world = sim.request_world(args.timeout)
+        joints = None
+        if world.joints:
+            # The joints' state of the description's revision.
+            joints = sim.joints
+            if joints is None or joints.world_revision != world.world_revision:
+                joints = sim._wait(
+                    lambda: sim.joints if sim.joints is not None
+                    and sim.joints.world_revision == world.world_revision else None,
+                    args.timeout, "joint states on %s" % sim.channel("JOINTS"))
+    print("\n".join(printing.joint_lines(world, joints)))
+
+
+def cmd_joint(args):
+    off = args.mode == "off"
+    if off and args.target is not None:
+        raise CliError("MODE off takes no TARGET", EXIT_USAGE)
+    if not off and args.target is None:
+        raise CliError("MODE %s needs a TARGET" % args.mode, EXIT_USAGE)
+    with _client(args) as sim:
+        ack = sim.command_joint(args.name, args.mode, args.target or 0.0, max_effort=args.max_effort,
+                                stiffness=args.stiffness, damping=args.damping,
+                                apply_at_step=args.at_step, wait=True, check=False, timeout=args.timeout)
+    _report(ack, "joint %s %s" % (args.name, args.mode))
+
+
 def cmd_plot(args):
     from .log import load_log
     from .plot import make_figure
@@ -303,6 +337,28 @@ def build_parser():
 
     sub = verb("remove", cmd_remove, "remove a body")
     sub.add_argument("name", help="body name")
+
+    sub = verb("joints", cmd_joints, "print the joints (type, bodies, axis, limits) and their state "
+                                     "(asks the server to publish the world description)")
+
+    sub = verb("joint", cmd_joint, "command a joint's motor, position drive or effort (the modes are "
+                                   "exclusive: each turns the joint's other actuators off)")
+    sub.add_argument("name", metavar="NAME", help="joint name")
+    sub.add_argument("mode", choices=["off", "velocity", "position", "effort"], metavar="MODE",
+                     help="off (no TARGET), velocity (the motor drives the rate to TARGET, rad/s or "
+                          "m/s), position (a spring and damper pull the joint to TARGET, rad or m) or "
+                          "effort (a constant TARGET, N*m or N, along the axis)")
+    sub.add_argument("target", type=float, nargs="?", default=None, metavar="TARGET",
+                     help="rad/s or m/s, rad or m, N*m or N by MODE")
+    sub.add_argument("--max-effort", type=float, default=0.0, metavar="E",
+                     help="N*m or N: velocity: the motor's largest effort (default 0); position: the "
+                          "drive's cap (default 0: uncapped)")
+    sub.add_argument("--stiffness", type=float, default=0.0, metavar="K",
+                     help="position: N*m/rad or N/m (default 0)")
+    sub.add_argument("--damping", type=float, default=0.0, metavar="D",
+                     help="position: N*m*s/rad or N*s/m (default 0)")
+    sub.add_argument("--at-step", type=int, default=-1, metavar="K",
+                     help="the step from which it acts (default -1: the next)")
 
     sub = verb("plot", cmd_plot, "plot an LCM log: one panel per dynamic body against simulated time, "
                                  "wrenches and commands marked")

@@ -6,9 +6,12 @@
         print(state.step, state["ball"].position)    # m, world frame
         sim.apply_wrench("ball", force=(0, 0, 5), mode="duration", duration=0.5)
         sim.pause(); sim.step(10, sync=True); sim.resume()
+        sim.command_joint("axle", "velocity", 5.0, max_effort=0.5)  # rad/s, N*m
+        print(sim.wait_joints()["axle"].rate)
 
-Channels are ``prefix + STATE, STATUS, WORLD, ACK`` (received) and
-``prefix + WRENCH, COMMAND`` (sent); see lcmtypes/rbsim/*.lcm for the fields.
+Channels are ``prefix + STATE, STATUS, WORLD, ACK, CONTACTS, JOINTS``
+(received) and ``prefix + WRENCH, COMMAND, JOINT_COMMAND`` (sent); see
+lcmtypes/rbsim/*.lcm for the fields.
 
 Units and frames (as on the wire): SI units (m, kg, s, rad, N, N*m); the world
 frame is right-handed with z up; positions and velocities are those of the
@@ -46,8 +49,8 @@ from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import ack_t, command_t, contacts_t, status_t, world_state_t, world_t, wrench_t
-from .constants import AckKind, Command, ContactKind, Frame, PointFrame, WrenchMode, parse_enum
+from . import ack_t, command_t, contacts_t, joint_command_t, joints_t, status_t, world_state_t, world_t, wrench_t
+from .constants import AckKind, Command, ContactKind, Frame, JointMode, PointFrame, WrenchMode, parse_enum
 from .lcm_ctypes import Lcm
 
 __all__ = [
@@ -59,6 +62,9 @@ __all__ = [
     "PageAssembler",
     "Contacts",
     "ContactKind",
+    "JointState",
+    "JointStates",
+    "JointMode",
     "DEFAULT_URL",
     "default_url",
     "FRAMES",
@@ -86,7 +92,7 @@ MODES = {
     "clear_all": WrenchMode.CLEAR_ALL,
 }
 #: ack_t.kind by name.
-ACK_KINDS = {"wrench": AckKind.WRENCH, "command": AckKind.COMMAND}
+ACK_KINDS = {"wrench": AckKind.WRENCH, "command": AckKind.COMMAND, "joint_command": AckKind.JOINT_COMMAND}
 #: command_t.command by name (for messages).
 COMMAND_NAMES = {command: command.name.lower() for command in Command}
 
@@ -246,6 +252,9 @@ class WorldDescription:
     ``linear_damping``/``angular_damping`` (1/s), ``bodies`` (list of
     ``body_description_t``: mass in kg, principal ``inertia`` in kg*m^2 about
     the body axes, shape fields in m). ``world["name"]`` gives a body.
+    ``joints`` (list of ``joint_description_t``: name, type, body_a, body_b
+    ("world" for the world), anchors and axis in the world frame, limits in
+    rad or m); ``world.joint("name")`` gives a joint.
     """
 
     __slots__ = (
@@ -260,6 +269,8 @@ class WorldDescription:
         "angular_damping",
         "bodies",
         "by_name",
+        "joints",
+        "joints_by_name",
     )
 
     def __init__(self, pages):
@@ -275,12 +286,18 @@ class WorldDescription:
         self.angular_damping = first.angular_damping
         self.bodies = [b for page in pages for b in page.bodies]
         self.by_name = {b.name: b for b in self.bodies}
+        self.joints = [j for page in pages for j in page.joints]
+        self.joints_by_name = {j.name: j for j in self.joints}
 
     def __getitem__(self, name):
         return self.by_name[name]
 
     def __contains__(self, name):
         return name in self.by_name
+
+    def joint(self, name: str):
+        """The ``joint_description_t`` of joint ``name`` (KeyError if none)."""
+        return self.joints_by_name[name]
 
     def inertia_world(self, name: str, orientation: Vector) -> np.ndarray:
         """Inertia tensor (kg*m^2, 3x3, world frame, about the centre of mass)
@@ -344,9 +361,87 @@ class Contacts:
         return "Contacts(step=%d, sim_time=%g, points=%d)" % (self.step, self.sim_time, len(self))
 
 
+class JointState:
+    """What one joint is doing after a step (from ``joint_state_t``).
+
+    Attributes: ``name``, ``position`` (rad for a revolute, m for a prismatic
+    or distance joint; body_b relative to body_a from the initial
+    configuration), ``rate`` (rad/s or m/s), ``rotation`` (unit quaternion
+    w, x, y, z: body_b's orientation relative to body_a's; numpy (4,)),
+    ``force`` (N, world, on body_b; (3,)), ``torque`` (N*m, world, on body_b
+    about its anchor; (3,)), ``effort`` (N*m or N, the actuation along the
+    axis), ``at_limit`` (-1, 0, +1), ``error`` (m or rad), ``active`` (False
+    while a body of it is frozen).
+    """
+
+    __slots__ = ("name", "position", "rate", "rotation", "force", "torque", "effort", "at_limit", "error",
+                 "active")
+
+    def __init__(self, message):
+        self.name = message.name
+        self.position = float(message.position)
+        self.rate = float(message.rate)
+        self.rotation = np.array(message.rotation, dtype=float)
+        self.force = np.array(message.force, dtype=float)
+        self.torque = np.array(message.torque, dtype=float)
+        self.effort = float(message.effort)
+        self.at_limit = int(message.at_limit)
+        self.error = float(message.error)
+        self.active = bool(message.active)
+
+    def __repr__(self):
+        return "JointState(%r, position=%.6g, rate=%.6g, effort=%.6g%s)" % (
+            self.name, self.position, self.rate, self.effort, ", at_limit=%+d" % self.at_limit if self.at_limit else "")
+
+
+class JointStates:
+    """One step's joints (``joints_t`` pages merged), in creation order.
+
+    Attributes: ``utime``, ``step``, ``sim_time`` (s), ``world_revision``,
+    ``joints`` (list of :class:`JointState`); ``joints_state["name"]`` gives a
+    joint by name. ``positions`` and ``rates`` are numpy (N,) arrays in
+    ``joints`` order.
+    """
+
+    __slots__ = ("utime", "step", "sim_time", "world_revision", "joints", "by_name")
+
+    def __init__(self, pages):
+        first = pages[0]
+        self.utime, self.step, self.sim_time = first.utime, first.step, first.sim_time
+        self.world_revision = first.world_revision
+        self.joints = [JointState(j) for page in pages for j in page.joints]
+        self.by_name = {j.name: j for j in self.joints}
+
+    def __getitem__(self, name):
+        return self.by_name[name]
+
+    def __contains__(self, name):
+        return name in self.by_name
+
+    def __len__(self):
+        return len(self.joints)
+
+    def names(self) -> List[str]:
+        return [j.name for j in self.joints]
+
+    @property
+    def positions(self) -> np.ndarray:
+        """rad or m: numpy (N,)."""
+        return np.array([j.position for j in self.joints], dtype=float)
+
+    @property
+    def rates(self) -> np.ndarray:
+        """rad/s or m/s: numpy (N,)."""
+        return np.array([j.rate for j in self.joints], dtype=float)
+
+    def __repr__(self):
+        return "JointStates(step=%d, sim_time=%g, joints=%r)" % (self.step, self.sim_time, self.names())
+
+
 class PageAssembler:
     """Collects the pages of paged messages (``world_state_t``, ``world_t``;
-    ``contacts_t`` with ``item="contact"``).
+    ``contacts_t`` with ``item="contact"``, ``joints_t`` with ``item="joint"``).
+    The joints of ``world_t`` pages are checked as well when present.
 
     Pages belong together when they share ``(utime, step, world_revision)``
     (the server gives all pages of one publication the same values); a group
@@ -405,6 +500,18 @@ class PageAssembler:
         if expected != total:
             self.invalid += 1
             return False
+        if self._items == "bodies" and hasattr(pages[0], "total_joints"):
+            # world_t: its joints are paged too, after the bodies.
+            expected = 0
+            for page in pages:
+                if (page.total_joints != pages[0].total_joints or page.first_joint_index != expected
+                        or page.num_joints != len(page.joints)):
+                    self.invalid += 1
+                    return False
+                expected += page.num_joints
+            if expected != pages[0].total_joints:
+                self.invalid += 1
+                return False
         return True
 
 
@@ -453,6 +560,9 @@ class Client:
         self._contacts_pages = PageAssembler(item="contact")
         self._contacts = None
         self._contacts_count = 0
+        self._joints_pages = PageAssembler(item="joint")
+        self._joints = None
+        self._joints_count = 0
         self._instances = set()  # server instance ids seen in statuses and acks
         self._reported_other = ""  # the latest status's other_instance_id
         self._warned_conflict = False
@@ -465,6 +575,7 @@ class Client:
                 ("WORLD", self._on_world),
                 ("ACK", self._on_ack),
                 ("CONTACTS", self._on_contacts),
+                ("JOINTS", self._on_joints),
             ):
                 self.lcm.subscribe(self.channel(suffix), handler, queue_capacity=10000)
             self.lcm.start()
@@ -550,6 +661,19 @@ class Client:
         with self._cond:
             self._contacts = contacts
             self._contacts_count += 1
+            self._cond.notify_all()
+
+    def _on_joints(self, _channel, data, _recv_utime):
+        message = self._decode(joints_t, data)
+        if message is None:
+            return
+        pages = self._joints_pages.add(message)
+        if pages is None:
+            return
+        joints = JointStates(pages)
+        with self._cond:
+            self._joints = joints
+            self._joints_count += 1
             self._cond.notify_all()
 
     def _on_ack(self, _channel, data, _recv_utime):
@@ -717,6 +841,79 @@ class Client:
 
         return self._wait(ready, timeout, "contacts" if step is None else "contacts of step %d" % step)
 
+    # -- joints ------------------------------------------------------------------------
+
+    @property
+    def joints(self) -> Optional[JointStates]:
+        """The latest complete :class:`JointStates`, or None (a world without
+        joints publishes none)."""
+        return self._joints
+
+    def wait_joints(self, timeout: Optional[float] = None, step: Optional[int] = None,
+                    new: bool = True) -> JointStates:
+        """The next complete joint states (of ``step`` or a later one, if given;
+        the latest already there if ``new`` is False)."""
+        with self._cond:
+            start = self._joints_count if new else self._joints_count - (self._joints is not None)
+
+        def ready():
+            if self._joints is None or (step is None and self._joints_count <= start):
+                return None
+            if step is not None and self._joints.step < step:
+                return None
+            return self._joints
+
+        return self._wait(ready, timeout, "joint states" if step is None else "joint states of step %d" % step)
+
+    def joint_state(self, name: str, timeout: Optional[float] = None) -> JointState:
+        """The latest state of joint ``name`` (waiting for one if none came yet);
+        KeyError if the world has no such joint."""
+        joints = self._joints if self._joints is not None else self.wait_joints(timeout)
+        return joints[name]
+
+    def command_joint(
+        self,
+        joint: str,
+        mode: Union[JointMode, str, int],
+        target: float = 0.0,
+        max_effort: float = 0.0,
+        stiffness: float = 0.0,
+        damping: float = 0.0,
+        apply_at_step: int = -1,
+        wait: bool = True,
+        timeout: Optional[float] = None,
+        check: bool = True,
+    ) -> Union[ack_t, int]:
+        """Sends a ``joint_command_t`` on ``prefix + JOINT_COMMAND`` and returns its ``ack_t``.
+
+        ``mode`` (a :class:`JointMode` or its name) picks the one actuator that
+        acts, turning the others off: "velocity" (the motor drives the rate to
+        ``target``, rad/s or m/s, with at most ``max_effort``, N*m or N),
+        "position" (a spring ``stiffness`` and damper ``damping`` pull the
+        joint to ``target``, rad or m; ``max_effort`` <= 0 is uncapped),
+        "effort" (a constant ``target`` N*m or N along the axis) or "off".
+        ``apply_at_step``: the step from which it acts, -1 = the next.
+
+        Waits for the ack and raises :class:`Rejected` if the server rejected
+        it (``check=False``: returns the rejected ack); ``wait=False`` returns
+        the sequence number at once. The server judges the values.
+        """
+        mode_code = parse_enum(JointMode, mode, "mode")
+        message = joint_command_t()
+        message.joint = joint
+        message.mode = int(mode_code)
+        message.target = float(target)
+        message.max_effort = float(max_effort)
+        message.stiffness = float(stiffness)
+        message.damping = float(damping)
+        message.apply_at_step = int(apply_at_step)
+        message.client = self.client_id
+        message.seq = self._next_seq()
+        message.utime = _wall_utime()
+        self.lcm.publish(self.channel("JOINT_COMMAND"), message.encode())
+        return self._finish(message.seq, "joint_command", wait, timeout, check,
+                            "joint command %s on %r" % (mode_code.name.lower(), joint))
+
     # -- status and world ------------------------------------------------------------
 
     @property
@@ -764,7 +961,7 @@ class Client:
     def wait_ack(self, seq: int, kind: Union[str, int] = "command",
                  timeout: Optional[float] = None) -> ack_t:
         """The ``ack_t`` answering this client's request ``seq`` of ``kind``
-        ("wrench" or "command", or ack_t.KIND_*). Raises TimeoutError."""
+        ("wrench", "command" or "joint_command", or ack_t.KIND_*). Raises TimeoutError."""
         kind = ACK_KINDS.get(kind, kind)
         key = (kind, int(seq))
         return self._wait(lambda: self._acks.get(key), timeout, "ack for seq %d" % seq)

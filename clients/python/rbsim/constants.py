@@ -9,9 +9,9 @@ and prints with its name (``repr(WrenchMode(3))`` is ``<WrenchMode.CLEAR: 3>``).
 from enum import IntEnum
 from typing import Type, TypeVar, Union
 
-from . import ack_t, command_t, contact_t, wrench_t
+from . import ack_t, command_t, contact_t, joint_command_t, wrench_t
 
-__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "ContactKind", "parse_enum"]
+__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "ContactKind", "JointMode", "parse_enum"]
 
 
 class Frame(IntEnum):
@@ -48,6 +48,16 @@ class AckKind(IntEnum):
 
     WRENCH = ack_t.KIND_WRENCH
     COMMAND = ack_t.KIND_COMMAND
+    JOINT_COMMAND = ack_t.KIND_JOINT_COMMAND
+
+
+class JointMode(IntEnum):
+    """joint_command_t.mode: which of the joint's actuators acts (exclusive)."""
+
+    OFF = joint_command_t.MODE_OFF
+    VELOCITY = joint_command_t.MODE_VELOCITY
+    POSITION = joint_command_t.MODE_POSITION
+    EFFORT = joint_command_t.MODE_EFFORT
 
 
 class Command(IntEnum):

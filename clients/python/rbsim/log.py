@@ -8,6 +8,7 @@ Works with logs written by ``lcm-logger`` and by ``rbserver --record FILE``
     log.states.sim_time                 # (n,) s
     log.states["ball"].position         # (n, 3) m, world frame, centre of mass
     log.acks[0].accepted, log.wrenches, log.commands, log.statuses
+    log.joint_commands, log.joints[-1]["axle"].rate   # joint_command_t; JointStates per step
     log.incomplete_steps                # steps of which some page never arrived
 
 States are merged from their pages: one row per distinct ``(world_revision,
@@ -21,8 +22,8 @@ from collections import Counter, OrderedDict
 
 import numpy as np
 
-from . import ack_t, command_t, status_t, world_state_t, world_t, wrench_t
-from .client import WorldDescription
+from . import ack_t, command_t, joint_command_t, joints_t, status_t, world_state_t, world_t, wrench_t
+from .client import JointStates, WorldDescription
 from .lcm_ctypes import EventLog
 
 __all__ = ["load_log", "Log", "StateSeries", "BodyTrajectory"]
@@ -117,7 +118,9 @@ class Log:
     appear only with missing pages; ``incomplete``: the same as
     (world_revision, step) pairs; ``worlds``: complete world descriptions
     (:class:`rbsim.client.WorldDescription`); ``acks``, ``statuses``,
-    ``wrenches``, ``commands``: decoded messages in log order;
+    ``wrenches``, ``commands``, ``joint_commands``: decoded messages in log
+    order; ``joints``: the complete :class:`rbsim.client.JointStates` of each
+    distinct (world_revision, step), in log order (worlds with joints only);
     ``undecodable``: (event, reason) for messages on rbsim channels that did
     not decode (e.g. garbage sent to the server).
     """
@@ -135,6 +138,8 @@ class Log:
         self.statuses = []
         self.wrenches = []
         self.commands = []
+        self.joint_commands = []
+        self.joints = []
         self.undecodable = []
 
     def __repr__(self):
@@ -165,13 +170,17 @@ def _group_pages(messages):
 
 
 def _tiles(pages):
-    """True if the pages' body slices cover 0 .. total_bodies-1 in order."""
+    """True if the pages' item slices (bodies, or joints for joints_t) cover
+    0 .. total-1 in order."""
+    item = "joint" if hasattr(pages[0], "total_joints") and not hasattr(pages[0], "total_bodies") else "body"
+    plural = "joints" if item == "joint" else "bodies"
     expected = 0
     for page in pages:
-        if page.first_body_index != expected or page.num_bodies != len(page.bodies):
+        if getattr(page, "first_%s_index" % item) != expected or getattr(page, "num_" + plural) != len(
+                getattr(page, plural)):
             return False
-        expected += page.num_bodies
-    return expected == pages[0].total_bodies
+        expected += getattr(page, "num_" + plural)
+    return expected == getattr(pages[0], "total_" + plural)
 
 
 def load_log(path, prefix="RBSIM_"):
@@ -189,8 +198,10 @@ def load_log(path, prefix="RBSIM_"):
         prefix + "STATUS": status_t,
         prefix + "WRENCH": wrench_t,
         prefix + "COMMAND": command_t,
+        prefix + "JOINT_COMMAND": joint_command_t,
+        prefix + "JOINTS": joints_t,
     }
-    state_pages, world_pages = [], []
+    state_pages, world_pages, joint_pages = [], [], []
     targets = {
         prefix + "ACK": log.acks,
         prefix + "STATUS": log.statuses,
@@ -198,6 +209,8 @@ def load_log(path, prefix="RBSIM_"):
         prefix + "COMMAND": log.commands,
         prefix + "STATE": state_pages,
         prefix + "WORLD": world_pages,
+        prefix + "JOINT_COMMAND": log.joint_commands,
+        prefix + "JOINTS": joint_pages,
     }
     with EventLog(path, "r") as reader:
         for event in reader:
@@ -223,6 +236,14 @@ def load_log(path, prefix="RBSIM_"):
     log.states = StateSeries(rows)
     log.incomplete = sorted({(rev, step) for (_u, step, rev) in incomplete} - seen)
     log.incomplete_steps = sorted({step for (_rev, step) in log.incomplete})
+
+    joint_groups, _ = _group_pages(joint_pages)
+    seen = set()
+    for pages in joint_groups:
+        key = (pages[0].world_revision, pages[0].step)
+        if key not in seen:
+            seen.add(key)
+            log.joints.append(JointStates(pages))
 
     worlds, _ = _group_pages(world_pages)
     log.worlds = [WorldDescription(pages) for pages in worlds]

@@ -7,8 +7,8 @@ pairs, numbers with 10 significant digits; JSON: the wire field names.
 import json
 from typing import Collection, Iterable, List
 
-__all__ = ["state_lines", "status_lines", "world_lines", "state_json", "status_json", "world_json",
-           "number", "orientation_values"]
+__all__ = ["state_lines", "status_lines", "world_lines", "joint_lines", "state_json", "status_json",
+           "world_json", "number", "orientation_values"]
 
 # Below this a quaternion component is rounding noise of a unit quaternion,
 # beyond what 10 significant digits of the others can show: printed as 0.
@@ -88,6 +88,27 @@ def world_lines(world) -> List[str]:
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
         if b.frozen:
             line += " frozen " + b.frozen
+        lines.append(line)
+    return lines
+
+
+def joint_lines(world, joints=None) -> List[str]:
+    """``world``: an rbsim.client.WorldDescription; ``joints``: the
+    rbsim.client.JointStates of its revision (None when it has no joints)."""
+    lines = ["joints %d step %d world_revision %d" % (
+        len(world.joints), joints.step if joints is not None else world.step, world.world_revision)]
+    for j in world.joints:
+        line = "joint %s type %s body_a %s body_b %s%s" % (j.name, j.type, j.body_a, j.body_b,
+                                                         _vector("axis", j.axis))
+        if j.limit_enabled:
+            line += " limits %s %s" % (number(j.lower_limit), number(j.upper_limit))
+        else:
+            line += " limits none"
+        state = joints.by_name.get(j.name) if joints is not None else None
+        if state is not None:
+            line += " position %s rate %s effort %s at_limit %d active %s" % (
+                number(state.position), number(state.rate), number(state.effort), state.at_limit,
+                "true" if state.active else "false")
         lines.append(line)
     return lines
 

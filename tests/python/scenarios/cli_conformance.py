@@ -1,11 +1,12 @@
 """rbctl and python3 -m rbsim against one specification (docs/cli_spec.json).
 
 For each CLI: a fresh server on the spec's world, then the spec's cases in
-order, each checked for its exit status and the lines it names; then across
-the two CLIs: the cases marked same_stdout / same_json print the same, and
-those marked sends_same_wrench put the same wrench_t on the bus (all fields
-but client, seq and utime), which also checks that the two client libraries
-agree on every default. Every option of the spec must be in each CLI's
+order, each checked for its exit status and the lines it names; the same for
+the joint cases on the spec's joint world; then across the two CLIs: the
+cases marked same_stdout / same_json print the same, and those marked
+sends_same_wrench (sends_same_joint_command) put the same wrench_t
+(joint_command_t) on the bus (all fields but client, seq and utime), which
+also checks that the two client libraries agree on every default. Every option of the spec must be in each CLI's
 `VERB --help`.
 """
 
@@ -16,7 +17,7 @@ import subprocess
 import threading
 
 from harness import BUILD, PYTHON, REPO, Server, run, subprocess_env
-from rbsim import wrench_t
+from rbsim import joint_command_t, wrench_t
 from rbsim.lcm_ctypes import Lcm
 
 SPEC = os.path.join(REPO, "docs", "cli_spec.json")
@@ -49,11 +50,12 @@ def _wrench_fields(message):
             if name not in ("client", "seq", "utime")}
 
 
-def _run_cases(cli, spec, workdir):
-    """Runs every case against a fresh server; returns [(proc, [wrench_t sent])]."""
-    case_dir = os.path.join(workdir, cli)
+def _run_cases(cli, spec, workdir, world_key="world", cases_key="cases"):
+    """Runs every case against a fresh server; returns [(proc, [wrench_t or
+    joint_command_t sent])]."""
+    case_dir = os.path.join(workdir, cli, cases_key)
     os.makedirs(case_dir, exist_ok=True)
-    world = os.path.join(REPO, spec["world"])
+    world = os.path.join(REPO, spec[world_key])
     sent = []
     lock = threading.Lock()
 
@@ -61,8 +63,13 @@ def _run_cases(cli, spec, workdir):
         with lock:
             sent.append(wrench_t.decode(data))
 
+    def on_joint_command(_channel, data, _utime):
+        with lock:
+            sent.append(joint_command_t.decode(data))
+
     lcm = Lcm(None)
     lcm.subscribe("RBSIM_WRENCH", on_wrench)
+    lcm.subscribe("RBSIM_JOINT_COMMAND", on_joint_command)
     lcm.start()
     server = Server(workdir, world, *spec["server_args"])
     results = []
@@ -70,7 +77,7 @@ def _run_cases(cli, spec, workdir):
     try:
         probe = _run(cli, ["state"], case_dir)  # the server is up
         assert probe.returncode == 0, probe.stderr
-        for index, case in enumerate(spec["cases"]):
+        for index, case in enumerate(spec[cases_key]):
             for name, text in case.get("files", {}).items():
                 with open(os.path.join(case_dir, name), "w") as f:
                     f.write(text)
@@ -80,7 +87,7 @@ def _run_cases(cli, spec, workdir):
             with lock:
                 wrenches = sent[before:]
             results.append((proc, wrenches))
-            label = "%s case %d %s" % (cli, index, case["args"])
+            label = "%s %s %d %s" % (cli, cases_key, index, case["args"])
             if proc.returncode != case["exit"]:
                 failures.append("%s: exit %d, expected %d\n%s%s" % (
                     label, proc.returncode, case["exit"], proc.stdout, proc.stderr))
@@ -121,25 +128,32 @@ def cli_conformance(workdir):
             if verb not in top:
                 failures.append("%s --help does not list the verb %s" % (cli, verb))
 
+    for world_key, cases_key in (("world", "cases"), ("joint_world", "joint_cases")):
+        failures += _compare_clis(spec, workdir, world_key, cases_key)
+    assert not failures, "\n\n".join(failures)
+    print("%d cases, %d joint cases, both CLIs" % (len(spec["cases"]), len(spec["joint_cases"])))
+
+
+def _compare_clis(spec, workdir, world_key, cases_key):
+    failures = []
     results = {}
     for cli in CLIS:
-        results[cli], cli_failures = _run_cases(cli, spec, workdir)
+        results[cli], cli_failures = _run_cases(cli, spec, workdir, world_key, cases_key)
         failures += cli_failures
 
-    for index, case in enumerate(spec["cases"]):
+    for index, case in enumerate(spec[cases_key]):
         (a, wa), (b, wb) = results["rbctl"][index], results["python"][index]
-        label = "case %d %s" % (index, case["args"])
+        label = "%s %d %s" % (cases_key, index, case["args"])
         if case.get("same_stdout") and a.stdout != b.stdout:
             failures.append("%s: rbctl and python print differently:\n%s---\n%s" % (label, a.stdout, b.stdout))
         if case.get("same_json") and a.returncode == 0 and b.returncode == 0:
             if json.loads(a.stdout) != json.loads(b.stdout):
                 failures.append("%s: JSON differs:\n%s---\n%s" % (label, a.stdout, b.stdout))
-        if case.get("sends_same_wrench"):
+        if case.get("sends_same_wrench") or case.get("sends_same_joint_command"):
             fa, fb = [_wrench_fields(w) for w in wa], [_wrench_fields(w) for w in wb]
             if len(fa) != 1 or fa != fb:
-                failures.append("%s: wrenches sent differ:\nrbctl  %s\npython %s" % (label, fa, fb))
-    assert not failures, "\n\n".join(failures)
-    print("%d cases, both CLIs" % len(spec["cases"]))
+                failures.append("%s: messages sent differ:\nrbctl  %s\npython %s" % (label, fa, fb))
+    return failures
 
 
 if __name__ == "__main__":

@@ -108,6 +108,30 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
   }
 }
 
+void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints) {
+  std::fprintf(out, "joints %d step %lld world_revision %lld\n", world.total_joints,
+               static_cast<long long>(joints != nullptr ? joints->step : world.step),
+               static_cast<long long>(world.world_revision));
+  for (const auto& j : world.joints) {
+    std::fprintf(out, "joint %s type %s body_a %s body_b %s", j.name.c_str(), j.type.c_str(),
+                 j.body_a.c_str(), j.body_b.c_str());
+    printVector(out, "axis", j.axis, 3);
+    if (j.limit_enabled) {
+      std::fprintf(out, " limits %.10g %.10g", j.lower_limit, j.upper_limit);
+    } else {
+      std::fprintf(out, " limits none");
+    }
+    const rbsim::joint_state_t* state = nullptr;
+    if (joints != nullptr)
+      for (const auto& candidate : joints->joints)
+        if (candidate.name == j.name) state = &candidate;
+    if (state != nullptr)
+      std::fprintf(out, " position %.10g rate %.10g effort %.10g at_limit %d active %s", state->position,
+                   state->rate, state->effort, state->at_limit, state->active ? "true" : "false");
+    std::fputc('\n', out);
+  }
+}
+
 void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
                     const std::vector<std::string>& bodies) {
   json list = json::array();

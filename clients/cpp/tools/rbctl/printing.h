@@ -4,6 +4,7 @@
 // names (--json). python3 -m rbsim prints the same (rbsim/printing.py).
 
 #include <cstdio>
+#include <rbsim/joints_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -21,5 +22,8 @@ void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
                     const std::vector<std::string>& bodies);
 void printStatusJson(std::FILE* out, const rbsim::status_t& status);
 void printWorldJson(std::FILE* out, const rbsim::world_t& world);
+// The world's joints (type, bodies, axis, limits) with their state in
+// `joints` (of the same world revision; nullptr when the world has none).
+void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints);
 
 }  // namespace rbsim::rbctl

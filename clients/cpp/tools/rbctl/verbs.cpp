@@ -131,6 +131,66 @@ int runBodies(Context& context, Arguments& arguments) {
   return kExitOk;
 }
 
+int runJoints(Context& context, Arguments& arguments) {
+  arguments.expectEnd();
+  // Ask for a fresh description, then the joints' state of its revision.
+  context.client.publishWorld();
+  if (!context.client.spinUntil([&] { return context.client.world().has_value(); }, context.timeout))
+    return noAnswer(context, "world description on " + context.client.channel("WORLD"));
+  const rbsim::world_t& world = *context.client.world();
+  if (world.total_joints == 0) {
+    printJoints(stdout, world, nullptr);
+    return kExitOk;
+  }
+  const auto matching = [&] {
+    const auto& joints = context.client.latestJoints();
+    return joints && joints->world_revision == context.client.world()->world_revision;
+  };
+  if (!context.client.spinUntil(matching, context.timeout))
+    return noAnswer(context, "joint states on " + context.client.channel("JOINTS"));
+  printJoints(stdout, *context.client.world(), &*context.client.latestJoints());
+  return kExitOk;
+}
+
+client::JointMode parseJointMode(std::string text) {
+  if (text == "off") return client::JointMode::Off;
+  if (text == "velocity") return client::JointMode::Velocity;
+  if (text == "position") return client::JointMode::Position;
+  if (text == "effort") return client::JointMode::Effort;
+  throw UsageError("joint MODE: expected off, velocity, position or effort, got '" + text + "'");
+}
+
+int runJoint(Context& context, Arguments& arguments) {
+  client::JointCommand command;
+  std::vector<std::string> positional;
+  while (!arguments.empty()) {
+    const std::string option = arguments.next("joint", "an argument");
+    if (option == "--max-effort") {
+      command.maxEffort = arguments.nextNumber(option);
+    } else if (option == "--stiffness") {
+      command.stiffness = arguments.nextNumber(option);
+    } else if (option == "--damping") {
+      command.damping = arguments.nextNumber(option);
+    } else if (option == "--at-step") {
+      command.applyAtStep = arguments.nextInteger(option);
+    } else if (option.rfind("--", 0) == 0) {
+      throw UsageError("joint: unknown option '" + option + "'");
+    } else {
+      positional.push_back(option);
+    }
+  }
+  if (positional.size() < 2) throw UsageError("joint: missing NAME and MODE");
+  if (positional.size() > 3) throw UsageError("joint: unexpected argument '" + positional[3] + "'");
+  command.joint = positional[0];
+  command.mode = parseJointMode(positional[1]);
+  const bool off = command.mode == client::JointMode::Off;
+  if (off && positional.size() == 3) throw UsageError("joint: MODE off takes no TARGET");
+  if (!off && positional.size() < 3) throw UsageError("joint: MODE " + positional[1] + " needs a TARGET");
+  if (!off) command.target = parseNumber(positional[2], "joint TARGET");
+  const auto request = context.client.commandJoint(command);
+  return report(context, request, "joint " + command.joint + " " + positional[1]);
+}
+
 // The spellings of docs/cli.md: hyphens, with underscores accepted too.
 client::WrenchMode parseMode(std::string text) {
   std::replace(text.begin(), text.end(), '_', '-');
@@ -356,6 +416,27 @@ const std::vector<Verb>& verbs() {
        runSpawn},
       {"remove", "remove a body",
        "usage: rbctl remove NAME\n\nSends REMOVE and waits for its ack.\n", runRemove},
+      {"joints", "print the joints (type, bodies, axis, limits) and their state",
+       "usage: rbctl joints\n\n"
+       "Asks the server to publish the world description (PUBLISH_WORLD) and prints a\n"
+       "line \"joints N step S world_revision R\", then per joint \"joint NAME type T\n"
+       "body_a A body_b B axis X Y Z limits LOWER UPPER|none position P rate V effort E\n"
+       "at_limit L active true|false\" (the world is \"world\"; axis in the world frame;\n"
+       "rad, rad/s and N m for revolute joints, m, m/s and N for prismatic ones).\n",
+       runJoints},
+      {"joint", "command a joint's motor, position drive or effort",
+       "usage: rbctl joint NAME off|velocity|position|effort [TARGET] [--max-effort E]\n"
+       "                   [--stiffness K] [--damping D] [--at-step K]\n\n"
+       "The modes are exclusive: each turns the joint's other actuators off.\n"
+       "  off           motor, drive and effort off (no TARGET)\n"
+       "  velocity      the motor drives the rate to TARGET (rad/s or m/s) with at most\n"
+       "                --max-effort E (N m or N, default 0)\n"
+       "  position      a spring --stiffness K (N m/rad or N/m) and damper --damping D\n"
+       "                (N m s/rad or N s/m) pull the joint to TARGET (rad or m);\n"
+       "                --max-effort E caps the effort (default 0: uncapped)\n"
+       "  effort        a constant TARGET (N m or N) along the axis\n"
+       "  --at-step K   the step from which it acts (default: the next)\n",
+       runJoint},
   };
   return kVerbs;
 }

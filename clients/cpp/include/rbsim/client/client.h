@@ -1,6 +1,7 @@
 #pragma once
-// A client of rbserver over LCM: the latest complete state, status and world
-// description, and every wrench and command with its acknowledgement.
+// A client of rbserver over LCM: the latest complete state, joint states,
+// status and world description, and every wrench, command and joint command
+// with its acknowledgement.
 //
 // Threading: none hidden. Messages are received and callbacks run only inside
 // handle() / spinUntil() / waitForAck(), on the calling thread. A Client is
@@ -27,6 +28,7 @@
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
 #include <rbsim/contacts_t.hpp>
+#include <rbsim/joints_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -35,6 +37,7 @@
 #include <vector>
 
 #include "rbsim/client/client_defaults.h"
+#include "rbsim/client/joint_command.h"
 #include "rbsim/client/page_assembler.h"
 #include "rbsim/client/wrench.h"
 
@@ -47,7 +50,7 @@ struct ClientOptions {
 };
 
 // Which channel a request went on, as ack_t::kind says.
-enum class AckKind : int8_t { Wrench = 1, Command = 2 };
+enum class AckKind : int8_t { Wrench = 1, Command = 2, JointCommand = 3 };
 
 // A request sent: what its ack will carry. `sent` is false when LCM could not
 // publish it (no ack will come).
@@ -66,6 +69,7 @@ class Client {
   using StatusCallback = std::function<void(const rbsim::status_t&)>;
   using AckCallback = std::function<void(const rbsim::ack_t&)>;
   using ContactsCallback = std::function<void(const rbsim::contacts_t&)>;
+  using JointsCallback = std::function<void(const rbsim::joints_t&)>;
 
   explicit Client(ClientOptions options = {});
   ~Client();
@@ -107,6 +111,14 @@ class Client {
   // when the server's lcm.contacts_rate is above 0; contact_t has the
   // fields: body ids, point, normal, depth, impulses), pages merged.
   const std::optional<rbsim::contacts_t>& latestContacts() const { return m_contacts; }
+  // The newest complete joint states of a step (<prefix>JOINTS, published
+  // with every state of a world that has joints), pages merged.
+  const std::optional<rbsim::joints_t>& latestJoints() const { return m_joints; }
+  uint64_t jointsCount() const { return m_jointsCount; }
+  // The joint called `name` in latestJoints(), or nullptr.
+  const rbsim::joint_state_t* jointState(const std::string& name) const;
+  // The joint called `name` in world(), or nullptr.
+  const rbsim::joint_description_t* jointDescription(const std::string& name) const;
 
   // The server instance ids seen in statuses and acks (status_t.instance_id).
   const std::set<std::string>& serverInstances() const { return m_instances; }
@@ -124,6 +136,7 @@ class Client {
   CallbackId onStatus(StatusCallback callback);
   CallbackId onAck(AckCallback callback);
   CallbackId onContacts(ContactsCallback callback);
+  CallbackId onJoints(JointsCallback callback);
   void removeCallback(CallbackId id);
 
   // --- requests (each returns at once; wait with waitForAck) ---------------
@@ -144,6 +157,10 @@ class Client {
   Request spawn(const std::string& bodyYaml);  // one `bodies:` entry of the config schema
   Request remove(const std::string& body);
   Request publishWorld();
+
+  // A joint_command_t on <prefix>JOINT_COMMAND, answered by an ack of kind
+  // JointCommand.
+  Request commandJoint(const JointCommand& command);
 
   // The ack answering (this client, seq, kind), handling messages while it is
   // not there yet; nullopt after `timeout`. A rejection is an ack with
@@ -170,6 +187,7 @@ class Client {
   void onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack);
   void onContactsMessage(const lcm::ReceiveBuffer*, const std::string&,
                          const rbsim::contacts_t* page);
+  void onJointsMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::joints_t* page);
   Request sendCommand(int8_t command, const std::function<void(rbsim::command_t&)>& fill);
   template <class Message>
   bool publish(const std::string& suffix, const Message& message);
@@ -185,6 +203,9 @@ class Client {
   PageAssembler<rbsim::contacts_t> m_contactsPages;
   std::optional<rbsim::contacts_t> m_contacts;
   uint64_t m_contactsCount = 0;
+  PageAssembler<rbsim::joints_t> m_jointsPages;
+  std::optional<rbsim::joints_t> m_joints;
+  uint64_t m_jointsCount = 0;
   std::set<std::string> m_instances;
   std::string m_reportedOther;  // status_t.other_instance_id of the latest status
   std::optional<rbsim::world_state_t> m_state;
@@ -204,6 +225,7 @@ class Client {
   std::vector<Registered<StatusCallback>> m_statusCallbacks;
   std::vector<Registered<AckCallback>> m_ackCallbacks;
   std::vector<Registered<ContactsCallback>> m_contactsCallbacks;
+  std::vector<Registered<JointsCallback>> m_jointsCallbacks;
 };
 
 }  // namespace rbsim::client

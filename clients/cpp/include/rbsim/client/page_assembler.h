@@ -1,6 +1,6 @@
 #pragma once
-// Reassembles a paged message (world_state_t, world_t or contacts_t) from its
-// pages.
+// Reassembles a paged message (world_state_t, world_t, contacts_t or
+// joints_t) from its pages.
 //
 // The server splits one step's state (or world description, or contacts)
 // into pages that each fit a UDP datagram; all pages of one publication
@@ -13,6 +13,9 @@
 #include <cstdint>
 #include <optional>
 #include <rbsim/contacts_t.hpp>
+#include <rbsim/joints_t.hpp>
+#include <rbsim/world_t.hpp>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -45,20 +48,42 @@ struct PageItems<rbsim::contacts_t> {
   static int64_t revision(const Page&) { return 0; }
 };
 
+// The joints of joints_t.
+template <>
+struct PageItems<rbsim::joints_t> {
+  using Page = rbsim::joints_t;
+  static auto& items(Page& p) { return p.joints; }
+  static const auto& items(const Page& p) { return p.joints; }
+  static int32_t& first(Page& p) { return p.first_joint_index; }
+  static int32_t& count(Page& p) { return p.num_joints; }
+  static int32_t total(const Page& p) { return p.total_joints; }
+  static int32_t first(const Page& p) { return p.first_joint_index; }
+  static int32_t count(const Page& p) { return p.num_joints; }
+  static int64_t revision(const Page& p) { return p.world_revision; }
+};
+
 template <class Page>
 class PageAssembler {
   using Items = PageItems<Page>;
  public:
   // Takes one page; returns the whole message (as one page: page 0 of 1 with
-  // every body) when this page completes its publication. Inconsistent pages
+  // every body, and for world_t every joint) when this page completes its
+  // publication. Inconsistent pages
   // (bad indices, body counts that do not add up) are dropped.
   std::optional<Page> add(const Page& page) {
     if (page.num_pages < 1 || page.num_pages > kMaxPages || page.page < 0 ||
         page.page >= page.num_pages ||
         Items::count(page) != static_cast<int32_t>(Items::items(page).size()))
       return std::nullopt;
+    if constexpr (std::is_same_v<Page, rbsim::world_t>) {
+      // world_t pages its joints too, after the bodies.
+      if (page.num_joints != static_cast<int32_t>(page.joints.size())) return std::nullopt;
+    }
     if (page.num_pages == 1) {
       if (Items::first(page) != 0 || Items::count(page) != Items::total(page)) return std::nullopt;
+      if constexpr (std::is_same_v<Page, rbsim::world_t>) {
+        if (page.first_joint_index != 0 || page.num_joints != page.total_joints) return std::nullopt;
+      }
       m_pages.clear();
       return page;
     }
@@ -90,16 +115,32 @@ class PageAssembler {
   std::optional<Page> merge() {
     Page whole = std::move(*m_pages.front());
     int32_t next = Items::count(static_cast<const Page&>(whole));
+    [[maybe_unused]] int32_t nextJoint = 0;
+    [[maybe_unused]] bool jointsTile = true;
+    if constexpr (std::is_same_v<Page, rbsim::world_t>) {
+      jointsTile = whole.first_joint_index == 0;
+      nextJoint = whole.num_joints;
+    }
     for (std::size_t i = 1; i < m_pages.size(); ++i) {
       Page& part = *m_pages[i];
       if (Items::first(static_cast<const Page&>(part)) != next) break;
       next += Items::count(static_cast<const Page&>(part));
       for (auto& item : Items::items(part)) Items::items(whole).push_back(std::move(item));
+      if constexpr (std::is_same_v<Page, rbsim::world_t>) {
+        if (part.first_joint_index != nextJoint || part.total_joints != whole.total_joints) jointsTile = false;
+        nextJoint += part.num_joints;
+        for (auto& joint : part.joints) whole.joints.push_back(std::move(joint));
+      }
     }
     m_pages.clear();
     m_key.reset();
     const Page& merged = whole;
     if (Items::first(merged) != 0 || next != Items::total(merged)) return std::nullopt;
+    if constexpr (std::is_same_v<Page, rbsim::world_t>) {
+      if (!jointsTile || nextJoint != whole.total_joints) return std::nullopt;
+      whole.first_joint_index = 0;
+      whole.num_joints = whole.total_joints;
+    }
     whole.page = 0;
     whole.num_pages = 1;
     Items::count(whole) = Items::total(merged);

@@ -156,6 +156,9 @@ class World {
   // invalid id throws std::invalid_argument, as body() does.
   JointState jointState(JointId id) const;
   JointState jointStateAt(int denseIndex) const;
+  // The joint as defined (its limits, motor, drive and effort in force), with
+  // the points and directions of its creation; denseIndex < jointCount().
+  const JointDef& jointDefinitionAt(int denseIndex) const;
 
   // Bodies frozen during the last step, in body order (empty most of the time).
   const std::vector<FreezeEvent>& freezeEvents() const { return m_freezeEvents; }
