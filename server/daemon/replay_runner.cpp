@@ -24,7 +24,7 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
   Session session(std::move(initialWorld), settings.startPaused);
   if (resumed)
     session.resumeFrom(std::move(resumed->world), std::move(resumed->wrenches), resumed->worldRevision,
-                       resumed->paused, resumed->stepsRequested);
+                       resumed->paused, resumed->stepsRequested, std::move(resumed->jointCommands));
   CommandHandler handler(session, replaySettings, spawnMeshDirectory);
 
   EventRecorder file;

@@ -219,7 +219,7 @@ void Server::drainMessages() {
 
 void Server::resumeFrom(SessionState state) {
   m_session.resumeFrom(std::move(state.world), std::move(state.wrenches), state.worldRevision, state.paused,
-                       state.stepsRequested);
+                       state.stepsRequested, std::move(state.jointCommands));
   // --paused (server.start_paused) wins over the pause state saved.
   if (m_settings.startPaused) m_session.pause();
 }

@@ -1,5 +1,7 @@
 #include "persist/session_checkpoint.h"
 
+#include <cmath>
+
 #include "persist/checkpoint_file.h"
 #include "rbsim/physics/byte_stream.h"
 #include "rbsim/physics/world.h"
@@ -9,7 +11,7 @@ namespace rbsim {
 namespace {
 
 constexpr uint32_t kMagic = 0x53534252u;  // "RBSS"
-constexpr uint32_t kVersion = 2;          // 2: a wrench's point frame
+constexpr uint32_t kVersion = 3;          // 2: a wrench's point frame; 3: joint commands scheduled ahead
 constexpr uint32_t kMaxTextLength = 4096;
 
 void writeRequest(const WrenchRequest& r, ByteWriter& out) {
@@ -57,6 +59,44 @@ std::vector<WrenchRequest> readRequests(ByteReader& in, const char* what) {
   return out;
 }
 
+void writeJointCommand(const JointCommandRequest& r, ByteWriter& out) {
+  out.string(r.client);
+  out.i64(r.seq);
+  out.string(r.joint);
+  out.u8(static_cast<uint8_t>(r.mode));
+  out.f64(r.target);
+  out.f64(r.maxEffort);
+  out.f64(r.stiffness);
+  out.f64(r.damping);
+  out.i64(r.firstStep);
+}
+
+std::vector<JointCommandRequest> readJointCommands(ByteReader& in) {
+  std::vector<JointCommandRequest> out;
+  const uint32_t count = in.count("pending joint command count", 50);
+  for (uint32_t i = 0; i < count && !in.failed(); ++i) {
+    JointCommandRequest r;
+    r.client = in.string("joint command client", kMaxTextLength);
+    r.seq = in.i64("joint command seq");
+    r.joint = in.string("joint command joint", kMaxTextLength);
+    const uint8_t mode = in.u8("joint command mode");
+    r.target = in.f64("joint command target");
+    r.maxEffort = in.f64("joint command max effort");
+    r.stiffness = in.f64("joint command stiffness");
+    r.damping = in.f64("joint command damping");
+    r.firstStep = in.i64("joint command step");
+    // Checked as when accepted: a mode, finite numbers (an uncapped
+    // drive's max effort is infinite), gains not negative, a step ahead.
+    if (mode > static_cast<uint8_t>(JointCommandMode::Effort) || !std::isfinite(r.target) ||
+        std::isnan(r.maxEffort) || r.maxEffort < 0.0 || !std::isfinite(r.stiffness) || r.stiffness < 0.0 ||
+        !std::isfinite(r.damping) || r.damping < 0.0 || r.firstStep < 1)
+      in.fail("a joint command of client '" + r.client + "' has an invalid mode, value or step");
+    r.mode = static_cast<JointCommandMode>(mode);
+    out.push_back(r);
+  }
+  return out;
+}
+
 }  // namespace
 
 Expected<std::vector<uint8_t>> encodeSessionCheckpoint(const Session& session) {
@@ -71,6 +111,8 @@ Expected<std::vector<uint8_t>> encodeSessionCheckpoint(const Session& session) {
     out.u32(static_cast<uint32_t>(list->size()));
     for (const WrenchRequest& r : *list) writeRequest(r, out);
   }
+  out.u32(static_cast<uint32_t>(session.jointCommands().pending().size()));
+  for (const JointCommandRequest& r : session.jointCommands().pending()) writeJointCommand(r, out);
   return out.take();
 }
 
@@ -91,12 +133,14 @@ Expected<SessionState> decodeSessionCheckpoint(std::span<const uint8_t> payload,
   if (!world) return world.error();
   auto pending = readRequests(in, "pending wrench count");
   auto active = readRequests(in, "active wrench count");
+  auto jointCommands = readJointCommands(in);
   if (in.failed()) return Error{"session: " + in.error()};
   if (in.remaining() != 0)
     return Error{"session: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
   if (revision < 1 || stepsRequested < 0) return Error{"session: invalid world revision or step count"};
-  SessionState state{std::move(world).value(), {}, revision, paused, stepsRequested};
+  SessionState state{std::move(world).value(), {}, {}, revision, paused, stepsRequested};
   state.wrenches.restore(std::move(pending), std::move(active));
+  state.jointCommands = std::move(jointCommands);
   return state;
 }
 

@@ -2,12 +2,13 @@
 // A whole session as a checkpoint payload: the world (world_snapshot.h),
 // the wrenches pending and acting with all their parameters (an acting
 // wrench whose point was given in the world holds the body point it was
-// fixed to when it first acted), the pause state and STEPs still to take,
-// and the world revision. A session restored from it continues
-// bit-identically.
+// fixed to when it first acted), the joint commands scheduled for later
+// steps, the pause state and STEPs still to take, and the world revision.
+// A session restored from it continues bit-identically.
 //
 // Payload (little-endian): "RBSS", version, world revision, paused, steps
-// requested, the world snapshot, then the pending and the active wrenches.
+// requested, the world snapshot, the pending and the active wrenches, then
+// the pending joint commands.
 
 #include <cstdint>
 #include <span>
@@ -22,6 +23,7 @@ namespace rbsim {
 struct SessionState {
   World world;
   WrenchScheduler wrenches;
+  std::vector<JointCommandRequest> jointCommands;  // accepted, not yet due
   int64_t worldRevision = 1;
   bool paused = false;
   int64_t stepsRequested = 0;

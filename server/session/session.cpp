@@ -46,8 +46,9 @@ void Session::replaceWorld(World world, WrenchScheduler wrenches) {
 }
 
 void Session::resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
-                         int64_t stepsRequested) {
+                         int64_t stepsRequested, std::vector<JointCommandRequest> jointCommands) {
   replaceWorld(std::move(world), std::move(wrenches));
+  for (JointCommandRequest& request : jointCommands) m_jointCommands.add(std::move(request));
   m_worldRevision = worldRevision;
   m_paused = paused;
   m_stepsRequested = stepsRequested;

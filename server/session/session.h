@@ -6,6 +6,7 @@
 // through the same code, so what a recorded session did can be done again.
 
 #include <cstdint>
+#include <vector>
 
 #include "rbsim/physics/world.h"
 #include "session/joint_command_scheduler.h"
@@ -49,7 +50,7 @@ class Session {
   // Continues a checkpointed session: its world, wrenches, pause state and
   // revision (serials continue after both worlds').
   void resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
-                  int64_t stepsRequested);
+                  int64_t stepsRequested, std::vector<JointCommandRequest> jointCommands = {});
 
   // world_t revision: bumped at every change of the set of bodies.
   int64_t worldRevision() const { return m_worldRevision; }

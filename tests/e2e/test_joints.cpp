@@ -65,8 +65,9 @@ class Joints : public ServerTest {
 TEST_F(Joints, EveryJointIsPublishedConsistentWithTheBodiesPoses) {
   stepAndWait(50);
   const rbsim::joints_t& joints = jointsAt(50);
-  const std::vector<std::string> names = {"door_hinge", "shoulder", "elbow", "axle", "lift", "weld"};
-  ASSERT_EQ(joints.total_joints, 6);
+  const std::vector<std::string> names = {"door_hinge", "shoulder", "elbow", "axle", "lift",
+                                          "weld",       "servo",    "lamp_rope", "hip"};
+  ASSERT_EQ(joints.total_joints, 9);
   ASSERT_EQ(joints.joints.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(joints.joints[i].name, names[i]);
   EXPECT_EQ(joints.world_revision, client().latestState()->world_revision);
@@ -149,8 +150,8 @@ TEST_F(Joints, AnEffortOnAFreeHingeAcceleratesItAtTauOverI) {
 
 TEST_F(Joints, TheWorldDescriptionListsTheJoints) {
   const rbsim::world_t& world = *client().world();
-  ASSERT_EQ(world.total_joints, 6);
-  ASSERT_EQ(world.joints.size(), 6u);
+  ASSERT_EQ(world.total_joints, 9);
+  ASSERT_EQ(world.joints.size(), 9u);
   const auto* hinge = client().jointDescription("door_hinge");
   ASSERT_NE(hinge, nullptr);
   EXPECT_EQ(hinge->type, "revolute");

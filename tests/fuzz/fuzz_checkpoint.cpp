@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!state) return 0;
   Session session(fuzz::smallWorld());
   session.resumeFrom(std::move(state->world), std::move(state->wrenches), state->worldRevision,
-                     state->paused, state->stepsRequested);
+                     state->paused, state->stepsRequested, std::move(state->jointCommands));
   for (int i = 0; i < 3; ++i) session.step();
   (void)worldStatePages(session.world(), 0, session.worldRevision());
   (void)worldDescriptionPages(session.world(), 0, session.worldRevision());

@@ -124,6 +124,15 @@ int main(int argc, char** argv) {
   }
   (void)world.removeJoint(world.findJoint("spare"));
   for (int i = 0; i < 20; ++i) jointed.step();
+  JointCommandRequest later;  // scheduled ahead: it is in the checkpoint
+  later.client = "seed";
+  later.seq = 1;
+  later.joint = "hinge";
+  later.mode = JointCommandMode::Velocity;
+  later.target = 1.0;
+  later.maxEffort = 2.0;
+  later.firstStep = 40;
+  jointed.jointCommands().add(later);
   if (!save(jointed, directory / "jointed")) return 1;
   return 0;
 }

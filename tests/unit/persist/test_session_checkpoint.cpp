@@ -5,7 +5,9 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "persist/checkpoint_file.h"
 #include "persist/session_checkpoint.h"
@@ -48,6 +50,57 @@ Session pushedSession() {
   session.pause();
   session.requestSteps(3);
   return session;
+}
+
+TEST(SessionCheckpoint, JointCommandsScheduledAheadRoundTrip) {
+  World world;
+  BodyDef def;
+  def.name = "wheel";
+  def.shape = CylinderShape{0.2, 0.05};
+  def.mass = 2.0;
+  def.position = Vec3(0, 0, 1);
+  const BodyId wheel = *world.createBody(def);
+  JointDef axle;
+  axle.name = "axle";
+  axle.bodyB = wheel;
+  axle.anchor = Vec3(0, 0, 1);
+  ASSERT_TRUE(world.createJoint(axle).ok());
+  Session original(world, false);
+  JointCommandRequest spin;
+  spin.client = "c";
+  spin.seq = 7;
+  spin.joint = "axle";
+  spin.mode = JointCommandMode::Velocity;
+  spin.target = 3.0;
+  spin.maxEffort = 0.5;
+  spin.firstStep = 20;
+  original.jointCommands().add(spin);
+  JointCommandRequest hold = spin;
+  hold.seq = 8;
+  hold.mode = JointCommandMode::Position;
+  hold.target = 1.0;
+  hold.maxEffort = std::numeric_limits<double>::infinity();  // uncapped
+  hold.stiffness = 5.0;
+  hold.damping = 0.5;
+  hold.firstStep = 300;
+  original.jointCommands().add(hold);
+  for (int i = 0; i < 10; ++i) original.step();
+  const auto payload = encodeSessionCheckpoint(original);
+  ASSERT_TRUE(payload.ok()) << payload.error().message;
+  auto state = decodeSessionCheckpoint(*payload, original.world().settings());
+  ASSERT_TRUE(state.ok()) << state.error().message;
+  ASSERT_EQ(state->jointCommands.size(), 2u);
+  EXPECT_EQ(state->jointCommands[1].mode, JointCommandMode::Position);
+  EXPECT_TRUE(std::isinf(state->jointCommands[1].maxEffort));
+  Session restored(original.initialWorld(), false);
+  restored.resumeFrom(std::move(state->world), std::move(state->wrenches), state->worldRevision, state->paused,
+                      state->stepsRequested, std::move(state->jointCommands));
+  for (int i = 0; i < 500; ++i) {
+    original.step();
+    restored.step();
+    ASSERT_EQ(restored.world().stateHash(), original.world().stateHash()) << "step " << i;
+  }
+  EXPECT_NE(original.world().body(wheel).angularVelocity().z(), 0.0) << "the commands acted";
 }
 
 TEST(SessionCheckpoint, WrenchesAndPauseStateRoundTrip) {
