@@ -1,5 +1,7 @@
 #include "physics/joint/joint_velocity_projection.h"
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -16,7 +18,7 @@ constexpr double kAtBound = 1e-9;  // m or rad
 JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& links,
                                                  const std::vector<JointBody>& bodies,
                                                  std::vector<std::size_t> solverIndex)
-    : m_bodies(bodies), m_solverIndex(std::move(solverIndex)) {
+    : m_solverIndex(std::move(solverIndex)) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     const JointSidePose a = sidePose(link, bodies, false, true);
@@ -33,8 +35,42 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
     link.joint->limitRow(a, b, limit.row.jacobian);
     m_limits.push_back(limit);
   }
-  m_inverseInertia.reserve(bodies.size());
-  for (const JointBody& body : bodies) m_inverseInertia.push_back(body.startInverseInertia);
+  std::vector<Mat3> inverseInertia;
+  inverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) inverseInertia.push_back(body.startInverseInertia);
+  if (!m_rows.empty()) m_system.factor(m_rows, bodies, inverseInertia);
+  if (m_limits.empty()) return;
+
+  // The scratch bodies for the limits' response: their inverse mass and
+  // inertia at the start.
+  std::size_t scratchSize = 0;
+  for (const std::size_t index : m_solverIndex) scratchSize = std::max(scratchSize, index + 1);
+  m_scratch.resize(scratchSize);
+  for (std::size_t local = 0; local < bodies.size(); ++local) {
+    SolverBody& body = m_scratch[m_solverIndex[local]];
+    body.inverseMass = bodies[local].inverseMass;
+    body.inverseInertia = bodies[local].startInverseInertia;
+    m_localBodies.push_back(m_solverIndex[local]);
+  }
+  const auto n = static_cast<Eigen::Index>(m_limits.size());
+  m_limitResponse.setZero(n, n);
+  m_haveColumn.assign(m_limits.size(), 0);
+}
+
+Eigen::VectorXd JointVelocityProjection::responseColumn(std::size_t j) const {
+  const auto jj = static_cast<Eigen::Index>(j);
+  if (!m_haveColumn[j]) {
+    for (const std::size_t index : m_localBodies) {
+      m_scratch[index].linearVelocity.setZero();
+      m_scratch[index].angularVelocity.setZero();
+    }
+    push(m_limits[j].row, 1.0, m_scratch);
+    projectJoints(m_scratch);
+    for (std::size_t i = 0; i < m_limits.size(); ++i)
+      m_limitResponse(static_cast<Eigen::Index>(i), jj) = rate(m_limits[i].row, m_scratch);
+    m_haveColumn[j] = 1;
+  }
+  return m_limitResponse.col(jj);
 }
 
 double JointVelocityProjection::rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies) const {
@@ -63,58 +99,94 @@ void JointVelocityProjection::push(const JointSolverRow& row, double lambda, std
   }
 }
 
-void JointVelocityProjection::factorFor(const std::vector<char>& active) const {
-  if (m_factored && active == m_factoredActive) return;
-  std::vector<JointSolverRow> rows = m_rows;
-  for (std::size_t k = 0; k < m_limits.size(); ++k)
-    if (active[k]) rows.push_back(m_limits[k].row);
-  m_system.factor(rows, m_bodies, m_inverseInertia);
-  m_factoredActive = active;
-  m_factored = true;
+void JointVelocityProjection::projectJoints(std::vector<SolverBody>& bodies) const {
+  if (m_rows.empty() || !m_system.ok()) return;
+  const auto count = static_cast<Eigen::Index>(m_rows.size());
+  Eigen::VectorXd rates(count);
+  for (Eigen::Index r = 0; r < count; ++r) rates[r] = rate(m_rows[static_cast<std::size_t>(r)], bodies);
+  const Eigen::VectorXd impulse = m_system.solve(-rates);
+  for (Eigen::Index r = 0; r < count; ++r) push(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
 }
 
 void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
-  if (m_rows.empty() && m_limits.empty()) return;
-  // Start from the set the last sweep ended with (all the limits at first).
-  std::vector<char> active = m_factored ? m_factoredActive : std::vector<char>(m_limits.size(), 1);
-  const std::vector<SolverBody> start = bodies;
-  for (std::size_t round = 0; round <= m_limits.size(); ++round) {
-    factorFor(active);
-    std::vector<const JointSolverRow*> rows;
-    for (const JointSolverRow& row : m_rows) rows.push_back(&row);
-    std::vector<std::size_t> limitOf;  // per limit row, its limit
-    for (std::size_t k = 0; k < m_limits.size(); ++k) {
-      if (!active[k]) continue;
-      rows.push_back(&m_limits[k].row);
-      limitOf.push_back(k);
+  projectJoints(bodies);
+  if (m_limits.empty()) return;
+  // With s = −side (a lower bound pushes up), μ = s Λ ≥ 0 the limits'
+  // pushes and u = s w their rates away from the bounds: u = q + M μ with
+  // q = s w now and M = S A S, u ≥ 0, μ ≥ 0, u·μ = 0. Pivoting on the set
+  // of limits that push: each round solves M_PP μ_P = −q_P, drops a push
+  // that came out negative or takes in a limit still moved into.
+  const auto n = static_cast<Eigen::Index>(m_limits.size());
+  Eigen::VectorXd q(n);
+  Eigen::VectorXd s(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s[i] = -m_limits[static_cast<std::size_t>(i)].side;
+    q[i] = s[i] * rate(m_limits[static_cast<std::size_t>(i)].row, bodies);
+  }
+  std::vector<char> pushing(static_cast<std::size_t>(n), 0);
+  bool anyInto = false;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    pushing[static_cast<std::size_t>(i)] = q[i] < 0.0;
+    anyInto = anyInto || q[i] < 0.0;
+  }
+  if (!anyInto) return;  // every limit free to leave its bound: nothing to do
+  // M's columns as the pushing set needs them (the others stay zero, and
+  // only enter M μ through μ = 0).
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  std::vector<char> haveColumn(static_cast<std::size_t>(n), 0);
+  const auto needColumn = [&](Eigen::Index j) {
+    if (haveColumn[static_cast<std::size_t>(j)]) return;
+    m.col(j) = s.asDiagonal() * responseColumn(static_cast<std::size_t>(j)) * s[j];
+    haveColumn[static_cast<std::size_t>(j)] = 1;
+  };
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index round = 0; round <= 2 * n; ++round) {
+    std::vector<Eigen::Index> set;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (pushing[static_cast<std::size_t>(i)]) {
+        set.push_back(i);
+        needColumn(i);
+      }
+    mu.setZero();
+    if (!set.empty()) {
+      const auto k = static_cast<Eigen::Index>(set.size());
+      Eigen::MatrixXd mPP(k, k);
+      Eigen::VectorXd qP(k);
+      for (Eigen::Index a = 0; a < k; ++a) {
+        qP[a] = q[set[static_cast<std::size_t>(a)]];
+        for (Eigen::Index b = 0; b < k; ++b) mPP(a, b) = m(set[static_cast<std::size_t>(a)], set[static_cast<std::size_t>(b)]);
+      }
+      // A tiny relative regularisation, as K's: limits that constrain one
+      // motion twice stay solvable.
+      mPP.diagonal() *= 1.0 + 1e-10;
+      const Eigen::VectorXd solved = mPP.ldlt().solve(-qP);
+      for (Eigen::Index a = 0; a < k; ++a) mu[set[static_cast<std::size_t>(a)]] = solved[a];
     }
-    if (rows.empty() || !m_system.ok()) return;
-    const auto count = static_cast<Eigen::Index>(rows.size());
-    Eigen::VectorXd rates(count);
-    for (Eigen::Index r = 0; r < count; ++r) rates[r] = rate(*rows[static_cast<std::size_t>(r)], bodies);
-    const Eigen::VectorXd impulse = m_system.solve(-rates);
-    // A lower bound pushes the coordinate up (λ >= 0), an upper one down:
-    // a limit row that pulls is dropped and the projection made again.
-    bool dropped = false;
-    for (std::size_t i = 0; i < limitOf.size(); ++i) {
-      const double lambda = impulse[static_cast<Eigen::Index>(m_rows.size() + i)];
-      if (lambda * m_limits[limitOf[i]].side > 0.0) {
-        active[limitOf[i]] = 0;
-        dropped = true;
+    const Eigen::VectorXd u = q + m * mu;
+    bool changed = false;
+    for (Eigen::Index i = 0; i < n && !changed; ++i) {
+      char& p = pushing[static_cast<std::size_t>(i)];
+      if (p && mu[i] < 0.0) {
+        p = 0;
+        changed = true;
       }
     }
-    if (dropped) continue;
-    for (Eigen::Index r = 0; r < count; ++r) push(*rows[static_cast<std::size_t>(r)], impulse[r], bodies);
-    // A dropped limit's joint may now move into it: take it back.
-    bool retaken = false;
-    for (std::size_t k = 0; k < m_limits.size(); ++k) {
-      if (active[k] || rate(m_limits[k].row, bodies) * m_limits[k].side <= 0.0) continue;
-      active[k] = 1;
-      retaken = true;
+    for (Eigen::Index i = 0; i < n && !changed; ++i) {
+      char& p = pushing[static_cast<std::size_t>(i)];
+      if (!p && u[i] < -1e-14 * (1.0 + std::abs(q[i]))) {
+        p = 1;
+        changed = true;
+      }
     }
-    if (!retaken) return;
-    bodies = start;
+    if (!changed) break;
   }
+  bool any = false;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (mu[i] <= 0.0) continue;
+    push(m_limits[static_cast<std::size_t>(i)].row, s[i] * mu[i], bodies);
+    any = true;
+  }
+  if (any) projectJoints(bodies);  // the joints' reply to the limits' pushes, as A has it
 }
 
 }  // namespace rbsim

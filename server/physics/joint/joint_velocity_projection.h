@@ -2,14 +2,16 @@
 // The joints' velocity rows inside the contact solve: after every contact
 // sweep, the velocities of the jointed bodies are projected exactly onto
 // J₀ v = 0 (J₀ the joints' rows at the step's start, K₀ = J₀ M₀⁻¹ J₀ᵀ
-// factorised), and off the limits the joints sit at: a joint at a bound
+// factorised once), and off the limits the joints sit at: a joint at a bound
 // at the step's start (a knee straight, a foot at its ankle's stop) gets
-// its limit row, held only while it pushes (an active set: a row that would
-// pull is dropped and the projection made again). Alternating the contact
-// sweeps with this exact projection is block Gauss–Seidel between the
-// contact set and the joint set: the step's velocities satisfy both, and
-// the position projection that follows (joint/joint_solver.h) only closes
-// the drift's O(h²).
+// its limit row, which may only push. The limits are a small linear
+// complementarity problem on their rows with the joints holding (A = the
+// limit rows' response through K₀, made as the limits need it), solved exactly by
+// pivoting; then the joints' rows are projected again. Alternating the
+// contact sweeps with this exact projection is block Gauss–Seidel between
+// the contact set and the joint set: the step's velocities satisfy both,
+// and the position projection that follows (joint/joint_solver.h) only
+// closes the drift's O(h²).
 
 #include <cstddef>
 #include <vector>
@@ -34,22 +36,26 @@ class JointVelocityProjection final : public VelocityProjection {
     JointSolverRow row;
     int side = 0;
   };
-  // The rows' rates from the solver's velocities, and impulses along them.
+  // A row's rate from the solver's velocities (or from velocity changes
+  // kept per local body), and an impulse along a row.
   double rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies) const;
   void push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies) const;
-  // Factors K for the equality rows and the limits marked active, unless
-  // it is factored for them already.
-  void factorFor(const std::vector<char>& active) const;
+  // Removes the rates along the joints' rows (K₀).
+  void projectJoints(std::vector<SolverBody>& bodies) const;
 
   std::vector<JointSolverRow> m_rows;  // the joints' equality rows
   std::vector<Limit> m_limits;
-  std::vector<JointBody> m_bodies;     // for factorising with limits
-  std::vector<Mat3> m_inverseInertia;
   std::vector<std::size_t> m_solverIndex;
-  // The system of the last active set (the next sweep usually has the same).
-  mutable RowSystem m_system;
-  mutable std::vector<char> m_factoredActive;
-  mutable bool m_factored = false;
+  RowSystem m_system;                  // K₀ of the equality rows
+  // Column j of A: the limit rows' rates per unit impulse along limit row
+  // j, with the joints' rows holding; made when limit j first pushes (most
+  // limits at a bound are never moved into), on a scratch copy of the
+  // solver's view of the jointed bodies.
+  Eigen::VectorXd responseColumn(std::size_t j) const;
+  mutable Eigen::MatrixXd m_limitResponse;
+  mutable std::vector<char> m_haveColumn;
+  mutable std::vector<SolverBody> m_scratch;
+  std::vector<std::size_t> m_localBodies;  // the scratch's bodies, by solver index
 };
 
 }  // namespace rbsim
