@@ -82,6 +82,10 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
                           std::vector<SolvedManifold>& result, const std::vector<int>& levels,
                           const VelocityProjection* equalities) {
   prepare(contacts, materials, bodies, serials, previous, settings, dt, levels);
+  // Collisions in chains first, from the velocities after the forces: a
+  // warm start would add last step's impulses, which the sweeps below may
+  // take back but the pairwise pass could not.
+  propagateCollisions(bodies, settings, dt, equalities);
   if (settings.warmStarting) warmStart(bodies);
   if (equalities) equalities->project(bodies);
   const bool shock = settings.shockPropagation && !levels.empty();
@@ -129,7 +133,8 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
     solved.frictionImpulse = c.tangentImpulse[0] * c.tangent1 + c.tangentImpulse[1] * c.tangent2;
     solved.twistImpulse = c.twistImpulse;
     double totalNormal = 0.0;
-    for (int p = 0; p < c.pointCount; ++p) totalNormal += c.points[p].normalImpulse;
+    for (int p = 0; p < c.pointCount; ++p)
+      totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
     // Sticking: the patch does not slip (after the solve) while it carries load.
     const double slip1 = c.tangentRows[0].velocity(a.linearVelocity, a.angularVelocity,
                                                    b.linearVelocity, b.angularVelocity);
@@ -143,9 +148,9 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
       SolvedContactPoint& out = solved.points[p];
       out.point = 0.5 * (raw.pointA + raw.pointB);
       out.depth = pc.depth;
-      out.normalImpulse = pc.normalImpulse;
+      out.normalImpulse = pc.normalImpulse + pc.collisionImpulse;
       out.tangentImpulse =
-          totalNormal > 0.0 ? Vec3(solved.frictionImpulse * (pc.normalImpulse / totalNormal)) : Vec3::Zero();
+          totalNormal > 0.0 ? Vec3(solved.frictionImpulse * (out.normalImpulse / totalNormal)) : Vec3::Zero();
       out.relativeNormalVelocity = pc.relativeNormalVelocity;
       out.featureId = pc.featureId;
       out.sticking = solved.sticking;
@@ -187,6 +192,12 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
     const SolvedManifold* old = previousManifold(previous, key, previousIndex);
     setPointTargets(c, contact.manifold, a, b, material.restitution,
                     settings.warmStarting ? old : nullptr, settings, dt);
+    c.restitution = material.restitution;
+    c.propagated = false;
+    c.gap = c.pointCount > 0 ? -c.points[0].depth : 0.0;
+    for (int p = 1; p < c.pointCount; ++p) c.gap = std::min(c.gap, -c.points[p].depth);
+    c.blockInvertible = inverses.regular;
+    c.shockBlockInvertible = inverses.shock;
     setBlockGoals(c, inverses, settings, dt);
     setFrictionPatch(c, a, b, hold, material, old, settings.warmStarting);
   }
@@ -372,11 +383,17 @@ void ContactSolver::setPointTargets(ManifoldConstraint& c, const ContactManifold
     pc.positionTarget =
         std::min(settings.baumgarte * std::max(error, 0.0) / dt, settings.maxCorrectionVelocity);
 
+    // A warm start carries a load over from last step; a bounce's impulse
+    // is no load (the collision is over), and a chain of touching bodies
+    // would take it back only over many sweeps.
     pc.normalImpulse = 0.0;
+    pc.collisionImpulse = 0.0;
     if (old != nullptr) {
       for (int q = 0; q < old->pointCount; ++q) {
         if (old->points[q].featureId != raw.featureId) continue;
-        pc.normalImpulse = old->points[q].normalImpulse;
+        const bool bounced = restitution > 0.0 &&
+                             old->points[q].relativeNormalVelocity < -settings.restitutionThreshold;
+        if (!bounced) pc.normalImpulse = old->points[q].normalImpulse;
         break;
       }
     }
@@ -464,6 +481,7 @@ void ContactSolver::setFrictionPatch(ManifoldConstraint& c, const SolverBody& a,
 
 void ContactSolver::warmStart(std::vector<SolverBody>& bodies) const {
   for (const ManifoldConstraint& c : m_constraints) {
+    if (c.propagated) continue;  // its impulses are the pass's, and applied
     SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
     double lambda[3] = {0.0, 0.0, 0.0};
@@ -561,7 +579,8 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock)
     // Friction first, limited by the normal impulses of the previous
     // iteration, then the normal impulses (non-penetration has the last word).
     double totalNormal = 0.0;
-    for (int p = 0; p < c.pointCount; ++p) totalNormal += c.points[p].normalImpulse;
+    for (int p = 0; p < c.pointCount; ++p)
+      totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
     {
       const double* mass = oneSided ? c.shockTangentMass : c.tangentMass;
       const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];

@@ -26,6 +26,14 @@
 //    mode). A separate pseudo-velocity solve pushes penetrations beyond the
 //    slop out, and only positions see it: correcting the error adds no
 //    kinetic energy, so resting stacks do not jitter or pop.
+//  - Chains of touching bodies (Newton's cradle, a ball dropped on a ball
+//    resting on the ground): a simultaneous solve of their restitution
+//    targets shares the impact among all of them, where real impacts pass
+//    from body to body. When a colliding contact touches a body that has
+//    another touching contact with restitution, the collisions are first
+//    resolved pair by pair with the velocities of the moment (the
+//    propagation model of Guendelman, Bridson and Fedkiw 2003, §5), and the
+//    solve then holds what they left (see propagateCollisions).
 //  - Stacks: the points of one manifold are solved together, as a block
 //    (see NormalBlock below), so a face contact is pushed evenly instead of
 //    corner after corner; and the last velocity sweep uses shock propagation
@@ -105,11 +113,12 @@ class ContactSolver {
     double normalMass = 0.0;         // kg: 1 / (a_iᵀ K a_i); 0: neither body can move along it
     double shockNormalMass = 0.0;    // kg: the same with the lower body held still
     double normalImpulse = 0.0;      // N·s, accumulated
+    double collisionImpulse = 0.0;   // N·s the propagation pass gave it: spent, the sweeps add to it
     double targetVelocity = 0.0;     // m/s: v_n the normal impulse aims for
     double pseudoImpulse = 0.0;      // N·s of the split-impulse solve
     double positionTarget = 0.0;     // m/s: pseudo-velocity that removes the penetration
     double depth = 0.0;              // m
-    double relativeNormalVelocity = 0.0;  // m/s at the step's start state (for classification)
+    double relativeNormalVelocity = 0.0;  // m/s at the step's start, or as a chain collision met it (classification, warm start)
     uint32_t featureId = 0;
   };
   // Which body of a contact the shock sweep holds still (the lower one).
@@ -158,6 +167,11 @@ class ContactSolver {
     double twistImpulse = 0.0;
     double twistRadius = 0.0;           // m: mean distance of the points from the centroid
     double friction = 0.5;              // μ this step: static if it was sticking, else kinetic
+    double restitution = 0.0;           // e of the pair
+    double gap = 0.0;                   // m: the smallest gap among the points (< 0: overlap)
+    bool propagated = false;            // the propagation pass gave it an impulse this step
+    bool blockInvertible = false;       // K could be inverted
+    bool shockBlockInvertible = false;  // K with the held body still could be inverted
   };
   // The impulses a shock sweep must not keep (see solve()).
   struct AccumulatedImpulses {
@@ -193,6 +207,20 @@ class ContactSolver {
                                ShockHold hold, const PairMaterial& material,
                                const SolvedManifold* old, bool warmStarting);
   void warmStart(std::vector<SolverBody>& bodies) const;
+  // The propagation pass (see the header's comment; a no-op unless a
+  // colliding contact has a moving body with another contact that bounces):
+  // sweeps over the contacts with restitution, giving each one that
+  // approaches faster than the threshold and whose gap closes within the
+  // step the impulse along its normal that makes it leave at −e v_rel,
+  // v_rel as it is then (with the equalities projected after each, and the
+  // pair settled again, so that a jointed body's effective mass is the one
+  // its joints give it). Its impulses are kept apart (collisionImpulse:
+  // reported, and friction's budget, but not the sweeps' to take back); the
+  // sweeps then treat every contact of the chain as resting on the
+  // velocities the pass left. Runs before the warm start; a contact it
+  // changed is not warm-started.
+  void propagateCollisions(std::vector<SolverBody>& bodies, const ContactSolverSettings& settings,
+                           double dt, const VelocityProjection* equalities);
   // One Gauss–Seidel sweep over all contacts; a shock sweep holds the lower
   // body of each contact still.
   void solveVelocities(std::vector<SolverBody>& bodies, bool shock);

@@ -45,9 +45,15 @@ std::string describeFreeze(const FreezeEvent& event) {
       why = "no reason";
       break;
   }
+  std::string joints;
+  for (std::size_t i = 0; i < event.droppedJoints.size(); ++i)
+    joints += (i == 0 ? "'" : ", '") + event.droppedJoints[i] + "'";
+  if (!joints.empty())
+    joints = "; its joint" + std::string(event.droppedJoints.size() > 1 ? "s " : " ") + joints +
+             (event.droppedJoints.size() > 1 ? " were" : " was") + " removed";
   return "body '" + event.name + "' frozen at step " + std::to_string(event.step) + ": " + why +
-         "; it is held at its last good pose with zero velocity and no longer stepped or collided"
-         " (RESET or REMOVE clears it)";
+         "; it is held at its last good pose with zero velocity and no longer stepped or collided" +
+         joints + " (RESET restores the world; REMOVE clears the body)";
 }
 
 }  // namespace rbsim

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "physics/body/freeze_reason.h"
 #include "physics/body/rigid_state.h"
@@ -50,6 +51,7 @@ struct FreezeEvent {
   std::string name;
   int64_t step = 0;  // the step that went bad (numbered as on the wire)
   StateVerdict verdict;
+  std::vector<std::string> droppedJoints;  // the joints it had, removed with the freeze
 };
 
 // The guard's test on the stepping path: true when the state is healthy.

@@ -474,8 +474,10 @@ void World::guardStates() {
     ++m_frozenBodies;
     body.holdAtLastGoodPose();
     m_loads[i].clear();
-    m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict});
+    m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict, {}});
   }
+  // A frozen body cannot hold a joint: its joints go (the server logs them).
+  for (FreezeEvent& event : m_freezeEvents) event.droppedJoints = removeJointsOf(event.id);
 }
 
 Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
@@ -488,6 +490,7 @@ Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
   ++m_frozenBodies;
   frozen.holdAtLastGoodPose();
   m_loads[denseIndexOf(id)].clear();
+  (void)removeJointsOf(id);
   return true;
 }
 

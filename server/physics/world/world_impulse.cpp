@@ -114,13 +114,13 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
   const std::size_t n = m_bodies.size();
   m_solverBodies.assign(n, SolverBody{});
   step.fast.assign(n, 0);
+  step.jointed = jointed;
   for (std::size_t i = 0; i < n; ++i) {
     const Body& body = m_bodies[i];
     SolverBody& sb = m_solverBodies[i];
     sb.position = body.state().position;
     if (!step.solving[i]) continue;
     const ForceInputs inputs = forcesOn(i);
-    const bool isJointed = !jointed.empty() && jointed[i];
     const Momenta momenta = integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
     sb.inverseMass = body.dynamics().inverseMass;
     sb.inverseInertia = body.inverseInertiaWorld();
@@ -134,8 +134,7 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
       const double radius = colliderRadius(*body.description().collider);
       speed2 += spin2 * radius * radius;
     }
-    // No time of impact for a jointed body: its free flight is not free.
-    step.fast[i] = !isJointed && speed2 >= slow2;
+    step.fast[i] = speed2 >= slow2;
     step.anyFast = step.anyFast || step.fast[i];
   }
 }
@@ -176,6 +175,19 @@ void World::findImpacts(ContactStep& step) {
       }
     }
     if (!colliding) continue;
+    const auto isJointed = [&](int body) {
+      return !step.jointed.empty() && step.jointed[static_cast<std::size_t>(body)];
+    };
+    if (isJointed(c.bodyA) || isJointed(c.bodyB)) {
+      BodyContact bounced = c;
+      if (!speculativeBounce(bounced)) continue;
+      if (step.contacts != &step.own) {
+        step.own = contacts;
+        step.contacts = &step.own;
+      }
+      step.own[k] = bounced;
+      continue;
+    }
     const std::optional<Impact> impact =
         findImpact(flying(static_cast<std::size_t>(c.bodyA)), flying(static_cast<std::size_t>(c.bodyB)), c,
                    search, dt, predictedTime);
@@ -210,6 +222,32 @@ void World::findImpacts(ContactStep& step) {
     sb.startLinearVelocity = sb.linearVelocity;
     sb.startAngularVelocity = sb.angularVelocity;
   }
+}
+
+bool World::speculativeBounce(BodyContact& contact) const {
+  const double restitution =
+      combineMaterials(m_bodies[static_cast<std::size_t>(contact.bodyA)].description().material,
+                       m_bodies[static_cast<std::size_t>(contact.bodyB)].description().material)
+          .restitution;
+  if (!(restitution > 0.0)) return false;  // plastic: the gap closes, and no further
+  const double dt = m_settings.dt;
+  const double threshold = m_settings.contact.solver.restitutionThreshold;
+  const SolverBody& a = m_solverBodies[static_cast<std::size_t>(contact.bodyA)];
+  const SolverBody& b = m_solverBodies[static_cast<std::size_t>(contact.bodyB)];
+  bool changed = false;
+  for (int p = 0; p < contact.manifold.pointCount; ++p) {
+    ContactPoint& point = contact.manifold.points[static_cast<std::size_t>(p)];
+    if (point.depth >= 0.0) continue;  // already touching
+    const Vec3 x = 0.5 * (point.pointA + point.pointB);
+    const Vec3 vRel = b.linearVelocity + b.angularVelocity.cross(x - b.position) -
+                      a.linearVelocity - a.angularVelocity.cross(x - a.position);
+    const double vn = vRel.dot(contact.manifold.normal);
+    if (vn < -threshold && -point.depth + vn * dt < 0.0) {
+      point.depth = 0.0;
+      changed = true;
+    }
+  }
+  return changed;
 }
 
 void World::solveContacts(const std::vector<BodyContact>& active,

@@ -123,11 +123,18 @@ void World::wakeJointBodies(const JointDef& def) {
   m_maybeAsleep = true;
 }
 
-void World::removeJointsOf(BodyId body) {
-  for (std::size_t i = m_joints.size(); i-- > 0;) {
+std::vector<std::string> World::removeJointsOf(BodyId body) {
+  std::vector<std::string> removed;
+  for (std::size_t i = 0; i < m_joints.size();) {
     const JointDef& def = m_joints[i].def;
-    if (def.bodyA == body || def.bodyB == body) (void)removeJoint(m_jointIds[i]);
+    if (def.bodyA != body && def.bodyB != body) {
+      ++i;
+      continue;
+    }
+    removed.push_back(def.name);
+    (void)removeJoint(m_jointIds[i]);
   }
+  return removed;
 }
 
 JointId World::findJoint(std::string_view name) const {

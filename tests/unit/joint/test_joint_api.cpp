@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "joint/joint_test_worlds.h"
 
@@ -168,20 +169,47 @@ TEST(JointApi, AFrozenBodyDropsItsJointsAndACheckpointKeepsThemSo) {
   World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));
   const BodyId a = addBody(world, "a", SphereShape{0.05}, 1.0, Vec3(0.5, 0, 0));
   const BodyId b = addBody(world, "b", SphereShape{0.05}, 1.0, Vec3(1.0, 0, 0));
+  const BodyId c = addBody(world, "c", SphereShape{0.05}, 1.0, Vec3(1.5, 0, 0));
   addJoint(world, hinge("shoulder", BodyId{}, a, Vec3::Zero(), Vec3::UnitY()));
-  const JointId elbow = addJoint(world, hinge("elbow", a, b, Vec3(0.5, 0, 0), Vec3::UnitY()));
+  addJoint(world, hinge("elbow", a, b, Vec3(0.5, 0, 0), Vec3::UnitY()));
+  addJoint(world, hinge("wrist", b, c, Vec3(1.0, 0, 0), Vec3::UnitY()));
   ASSERT_TRUE(world.freezeBody(a).ok());
-  EXPECT_FALSE(world.jointState(elbow).active);
+  EXPECT_EQ(world.jointCount(), 1);
+  EXPECT_TRUE(world.findJoint("shoulder").isNull());
+  EXPECT_TRUE(world.findJoint("elbow").isNull());
+  EXPECT_FALSE(world.findJoint("wrist").isNull()) << "a joint of other bodies stays";
   world.step();
   EXPECT_NEAR(world.body(b).linearVelocity().z(), -testing::kGravity * 1e-3, 1e-15) << "b falls free";
   const Expected<std::vector<uint8_t>> snapshot = world.encodeSnapshot();
   ASSERT_TRUE(snapshot.ok()) << snapshot.error().message;
   Expected<World> restored = World::decodeSnapshot(*snapshot, world.settings());
   ASSERT_TRUE(restored.ok()) << restored.error().message;
-  EXPECT_FALSE(restored->jointState(restored->findJoint("elbow")).active) << "still dropped";
+  EXPECT_EQ(restored->jointCount(), 1) << "still dropped";
   world.step();
   restored->step();
   EXPECT_EQ(restored->stateHash(), world.stateHash());
+}
+
+// The guard's freeze (here: a speed above the limit) removes the body's
+// joints in the step it froze, and its event names them for the log.
+TEST(JointApi, TheGuardsFreezeNamesTheJointsItRemoved) {
+  World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));
+  const BodyId a = addBody(world, "a", SphereShape{0.05}, 1.0, Vec3(0.5, 0, 0));
+  const BodyId b = addBody(world, "b", SphereShape{0.05}, 1.0, Vec3(1.0, 0, 0));
+  addJoint(world, hinge("shoulder", BodyId{}, a, Vec3::Zero(), Vec3::UnitY()));
+  addJoint(world, hinge("elbow", a, b, Vec3(0.5, 0, 0), Vec3::UnitY()));
+  StateLimits limits = world.settings().limits;
+  limits.maxLinearSpeed = 10.0;
+  world.setStateLimits(limits);
+  ASSERT_TRUE(world.setBodyVelocities(b, Vec3(0, 0, 50.0), Vec3::Zero()).ok());
+  world.step();
+  ASSERT_EQ(world.freezeEvents().size(), 1u);
+  const FreezeEvent& event = world.freezeEvents().front();
+  EXPECT_EQ(event.name, "b");
+  EXPECT_EQ(event.droppedJoints, std::vector<std::string>{"elbow"});
+  EXPECT_NE(describeFreeze(event).find("its joint 'elbow' was removed"), std::string::npos) << describeFreeze(event);
+  EXPECT_EQ(world.jointCount(), 1);
+  EXPECT_FALSE(world.findJoint("shoulder").isNull());
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "unit/solver/contact_test_worlds.h"
@@ -124,6 +125,43 @@ TEST(Restitution, HeadOnSpheresMatchTheClosedForm) {
     EXPECT_NEAR(r.v1.y(), 0.0, 1e-12);
     // Momentum is conserved exactly.
     EXPECT_NEAR(m1 * r.v1.x() + m2 * r.v2.x(), m1 * u1 + m2 * u2, 1e-12);
+  }
+}
+
+// A row of touching balls hit end-on (a cradle without strings, no
+// gravity): the impact passes from ball to ball, each collision between
+// equal masses passing on (1 + e)/2 of the speed, so the far ball leaves
+// with ((1 + e)/2)⁴ of the striker's. The four left behind move at
+// (1 − e)/2 of what reached them, slower than the restitution threshold
+// apart: they meet without bouncing and go on together, with the rest of
+// the momentum. A simultaneous solve of the row would send all four off
+// together at 2/5 of the striker's speed (e = 1).
+TEST(Restitution, ARowOfTouchingBallsPassesAnImpactAlong) {
+  for (const double e : {1.0, 0.9}) {
+    for (const double dt : {1e-3, 5e-4}) {
+      SCOPED_TRACE("e " + std::to_string(e) + ", dt " + std::to_string(dt));
+      WorldSettings settings = contactSettings(e, 0.0);
+      settings.dt = dt;
+      settings.gravity = Vec3::Zero();
+      World world(settings);
+      const double radius = 0.05, speed = 2.0;
+      std::vector<BodyId> balls;
+      balls.push_back(addSphere(world, "striker", radius, Vec3(-0.05, 0, 0), Vec3(speed, 0, 0)));
+      for (int i = 1; i < 5; ++i)
+        balls.push_back(addSphere(world, "ball" + std::to_string(i), radius, Vec3(0.1 * i, 0, 0)));
+      for (int s = 0; s < static_cast<int>(0.05 / dt); ++s) world.step();
+      const double far = speed * std::pow(0.5 * (1.0 + e), 4);
+      EXPECT_NEAR(world.body(balls[4]).linearVelocity().x(), far, 1e-12 * speed);
+      // Momentum to rounding; the four behind share theirs to what ten
+      // sweeps over a row of plastic contacts settle (1e-5 of the speed).
+      double momentum = 0.0;
+      for (const BodyId b : balls) momentum += world.body(b).linearVelocity().x();
+      EXPECT_NEAR(momentum, speed, 1e-12 * speed);
+      for (int i = 0; i < 4; ++i)
+        EXPECT_NEAR(world.body(balls[static_cast<std::size_t>(i)]).linearVelocity().x(), 0.25 * (speed - far),
+                    e == 1.0 ? 1e-12 * speed : 1e-5 * speed)
+            << "ball " << i;
+    }
   }
 }
 

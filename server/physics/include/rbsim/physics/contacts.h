@@ -16,7 +16,10 @@ struct SolvedContactPoint {
   double depth = 0.0;                // m
   double normalImpulse = 0.0;        // N·s, accumulated this step
   Vec3 tangentImpulse = Vec3::Zero();  // N·s, world: the patch's friction shared by normal load
-  double relativeNormalVelocity = 0.0;  // m/s at the step's start state (negative: approaching)
+  // m/s, negative: approaching. At the step's start state; for a contact
+  // that a collision reached through a chain of touching bodies, as it
+  // reached it (the solver's propagation pass).
+  double relativeNormalVelocity = 0.0;
   bool sticking = false;
   uint32_t featureId = 0;
 };

@@ -139,7 +139,8 @@ class World {
   //    bodies wake.
   //  - removeJoint: an error for an invalid id; its bodies wake.
   //  - removeBody also removes the body's joints.
-  // A joint with a body frozen by the numerical guard is not enforced.
+  // A body frozen by the numerical guard (or freezeBody) loses its joints:
+  // they are removed, and the freeze event names them.
   Expected<JointId> createJoint(const JointDef& def);
   // A joint's actuation, changed between steps (as commands do): the motor
   // or the drive (off: enabled false; enabling one turns the other off) and
@@ -160,12 +161,13 @@ class World {
   // the points and directions of its creation; denseIndex < jointCount().
   const JointDef& jointDefinitionAt(int denseIndex) const;
 
-  // Bodies frozen during the last step, in body order (empty most of the time).
+  // Bodies frozen during the last step, in body order (empty most of the
+  // time), each with the joints it lost.
   const std::vector<FreezeEvent>& freezeEvents() const { return m_freezeEvents; }
   int frozenBodyCount() const { return m_frozenBodies; }
   // Freezes a dynamic body at its last good pose now (for tests and for
   // restoring a saved world); false for a null, stale, static or already
-  // frozen body. Not reported in freezeEvents().
+  // frozen body. Not reported in freezeEvents(); its joints are removed.
   Expected<bool> freezeBody(BodyId id, FreezeReason reason = FreezeReason::Requested);
   void setStateLimits(const StateLimits& limits) { m_settings.limits = limits; }
 
@@ -262,6 +264,7 @@ class World {
     std::vector<char> inContact;   // per dense index: in one of `contacts`
     std::vector<char> solving;     // in contact and awake: the solver moves it
     std::vector<char> fast;        // solving, and fast enough to collide (loadSolverBodies)
+    std::vector<char> jointed;     // per dense index: moved by its joints (empty: no joints)
     bool anyFast = false;
     // Per dense index: the time of impact (s into the step) of the body's
     // first collision this step, or < 0 for none; empty when nothing collides.
@@ -270,12 +273,18 @@ class World {
   ContactStep selectContacts(const std::vector<BodyContact>& detected) const;
   // The solver's bodies: velocities after the forces of h (semi-implicit
   // Euler's first half); marks the fast ones.
-  // Jointed bodies (`jointed`, empty: none) are never fast (their flight is
-  // not free: no time of impact).
+  // Keeps `jointed` (empty: none) in the step for findImpacts.
   void loadSolverBodies(ContactStep& step, double h, const std::vector<char>& jointed);
   // Colliding contacts (world/impacts.h): each is moved to its time of
   // impact, with the manifold there, and its bodies' solver data with it.
+  // A jointed body's flight is not free, so it has no time of impact: its
+  // colliding contacts bounce where they are (see speculativeBounce).
   void findImpacts(ContactStep& step);
+  // A colliding contact of a jointed body, if its pair bounces: the points
+  // whose gap closes within the step are made touching, so that the solver
+  // gives them −e v_rel now rather than stopping them at the gap (which is
+  // a plastic collision). True when it changed the manifold.
+  bool speculativeBounce(BodyContact& contact) const;
   void solveContacts(const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
                      double h, std::vector<SolvedManifold>& solved, const VelocityProjection* equalities);
   // Puts every jointed body of an island that touches something into
@@ -324,7 +333,7 @@ class World {
   const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const std::vector<BodyContact>& detected,
                                                                 std::vector<BodyContact>& storage) const;
   // Removes the joints of a body about to be removed (its dense index).
-  void removeJointsOf(BodyId body);
+  std::vector<std::string> removeJointsOf(BodyId body);  // their names, in creation order
   bool jointIsEnforced(const JointConstraint& joint) const;
   void wakeJointBodies(const JointDef& def);
 
