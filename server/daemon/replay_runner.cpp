@@ -74,8 +74,9 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
     return 1;
   }
   if (options.verify)
-    std::printf("replay identical to the log: %lld state pages compared, up to step %lld\n",
-                static_cast<long long>(report->pagesCompared), static_cast<long long>(report->lastStep));
+    std::printf("replay identical to the log: %lld state pages and %lld joint pages compared, up to step %lld\n",
+                static_cast<long long>(report->pagesCompared), static_cast<long long>(report->jointPagesCompared),
+                static_cast<long long>(report->lastStep));
   return 0;
 }
 

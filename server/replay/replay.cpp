@@ -9,6 +9,7 @@
 #include <rbsim/command_t.hpp>
 #include <rbsim/handled_t.hpp>
 #include <rbsim/joint_command_t.hpp>
+#include <rbsim/joints_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
 #include <rbsim/wrench_t.hpp>
@@ -87,7 +88,8 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
   emitWorld(0);
   const std::string wrench = m_prefix + "WRENCH", command = m_prefix + "COMMAND",
                     jointCommand = m_prefix + "JOINT_COMMAND",
-                    handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE";
+                    handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE",
+                    joints = m_prefix + "JOINTS";
   while (!m_report.difference) {
     auto event = reader.next();
     if (!event) return event.error();
@@ -108,6 +110,8 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
       done = onAck(e);
     } else if (e.channel == state) {
       done = onState(e);
+    } else if (e.channel == joints) {
+      done = onJoints(e);
     }
     if (!done) return Error{"log '" + logPath + "', event " + std::to_string(e.eventNumber) + " (" +
                             e.channel + "): " + done.error().message};
@@ -254,6 +258,28 @@ Expected<bool> Replay::onState(const LogEvent& event) {
       return true;
     }
     m_report.difference = firstStateDifference(*recorded, pages[index]);
+    if (m_report.difference) return true;
+  }
+  if (m_output && recorded->page >= 0 && index < pages.size())
+    m_output(event.channel, encode(pages[index]), event.timestamp);
+  return true;
+}
+
+Expected<bool> Replay::onJoints(const LogEvent& event) {
+  const auto recorded = decodeWhole<rbsim::joints_t>(event.data);
+  if (!recorded) return Error{"undecodable joints_t"};
+  if (auto advanced = advanceTo(recorded->step, "the joints' state"); !advanced) return advanced;
+  const auto pages = jointStatePages(m_session.world(), recorded->utime, m_session.worldRevision());
+  const auto index = static_cast<std::size_t>(recorded->page);
+  if (m_verify) {
+    ++m_report.jointPagesCompared;
+    if (recorded->page < 0 || index >= pages.size()) {
+      m_report.difference = "step " + std::to_string(recorded->step) + ": the log has joints page " +
+                            std::to_string(recorded->page) + " of " + std::to_string(recorded->num_pages) +
+                            ", the replay's joints have " + std::to_string(pages.size()) + " pages";
+      return true;
+    }
+    m_report.difference = firstJointsDifference(*recorded, pages[index]);
     if (m_report.difference) return true;
   }
   if (m_output && recorded->page >= 0 && index < pages.size())

@@ -36,7 +36,8 @@ struct ReplayReport {
   int64_t eventsRead = 0;
   int64_t messagesApplied = 0;  // accepted wrenches and commands re-applied
   int64_t stepsSimulated = 0;
-  int64_t pagesCompared = 0;
+  int64_t pagesCompared = 0;       // world_state_t pages
+  int64_t jointPagesCompared = 0;  // joints_t pages
   int64_t lastStep = 0;         // of the last recorded state
   // The first difference (verify), or the first decision the replay took
   // differently from the recorded server; nullopt: identical.
@@ -45,8 +46,9 @@ struct ReplayReport {
 
 class Replay {
  public:
-  // Receives every message the replay produces: state pages (at the steps the
-  // log has states) and world descriptions (at start and at every change),
+  // Receives every message the replay produces: state and joints pages (at
+  // the steps the log has them) and world descriptions (at start and at
+  // every change),
   // already encoded, with the recorded event's timestamp.
   using Output = std::function<void(const std::string& channel, const std::vector<uint8_t>& data,
                                     int64_t timestamp)>;
@@ -69,6 +71,7 @@ class Replay {
   Expected<bool> onHandled(const LogEvent& event);
   Expected<bool> onAck(const LogEvent& event);
   Expected<bool> onState(const LogEvent& event);
+  Expected<bool> onJoints(const LogEvent& event);  // compared and re-emitted as the states are
   Expected<bool> advanceTo(int64_t step, const std::string& why);
   void emitWorld(int64_t timestamp);
 

@@ -79,4 +79,49 @@ std::optional<std::string> firstStateDifference(const rbsim::world_state_t& reco
   return std::nullopt;
 }
 
+std::optional<std::string> firstJointsDifference(const rbsim::joints_t& recorded,
+                                                 const rbsim::joints_t& replayed) {
+  const std::string atStep = "step " + std::to_string(recorded.step);
+  const auto header = [&](const char* field, int64_t log, int64_t replay) -> std::optional<std::string> {
+    if (log == replay) return std::nullopt;
+    return atStep + ", joints page " + std::to_string(recorded.page) + ": " + field + " is " +
+           std::to_string(log) + " in the log, " + std::to_string(replay) + " in the replay";
+  };
+  if (auto d = header("step", recorded.step, replayed.step)) return d;
+  if (auto d = header("world_revision", recorded.world_revision, replayed.world_revision)) return d;
+  if (auto d = header("num_pages", recorded.num_pages, replayed.num_pages)) return d;
+  if (auto d = header("total_joints", recorded.total_joints, replayed.total_joints)) return d;
+  if (auto d = header("first_joint_index", recorded.first_joint_index, replayed.first_joint_index)) return d;
+  if (auto d = header("num_joints", recorded.num_joints, replayed.num_joints)) return d;
+  if (std::memcmp(&recorded.sim_time, &replayed.sim_time, sizeof(double)) != 0)
+    return atStep + ": the joints' sim_time is " + exact(recorded.sim_time) + " s in the log, " +
+           exact(replayed.sim_time) + " s in the replay";
+
+  for (std::size_t i = 0; i < recorded.joints.size() && i < replayed.joints.size(); ++i) {
+    const rbsim::joint_state_t& log = recorded.joints[i];
+    const rbsim::joint_state_t& replay = replayed.joints[i];
+    const std::string joint = atStep + ", joint '" + log.name + "'";
+    if (log.name != replay.name) return joint + ": the replay has joint '" + replay.name + "' in its place";
+    const auto compare = [&](const char* what, const char* unit, const auto& a,
+                             const auto& b) -> std::optional<std::string> {
+      if (sameBits(a, b)) return std::nullopt;
+      return joint + ": " + what + " differs by " + exact(largestDifference(a, b)) + " " + unit +
+             ": log " + listOf(a) + ", replay " + listOf(b);
+    };
+    const double logScalars[4] = {log.position, log.rate, log.effort, log.error};
+    const double replayScalars[4] = {replay.position, replay.rate, replay.effort, replay.error};
+    if (auto d = compare("(position, rate, effort, error)", "(rad or m, per s, N·m or N, m or rad)",
+                         logScalars, replayScalars))
+      return d;
+    if (auto d = compare("rotation", "(quaternion components)", log.rotation, replay.rotation)) return d;
+    if (auto d = compare("force", "N", log.force, replay.force)) return d;
+    if (auto d = compare("torque", "N·m", log.torque, replay.torque)) return d;
+    if (log.at_limit != replay.at_limit || log.active != replay.active)
+      return joint + ": at_limit/active are " + std::to_string(log.at_limit) + "/" +
+             std::to_string(log.active) + " in the log, " + std::to_string(replay.at_limit) + "/" +
+             std::to_string(replay.active) + " in the replay";
+  }
+  return std::nullopt;
+}
+
 }  // namespace rbsim

@@ -284,6 +284,15 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
   ASSERT_TRUE(replay.status.has_value());
   EXPECT_EQ(*replay.status, 0) << replay.output;
   EXPECT_NE(replay.output.find("replay identical"), std::string::npos) << replay.output;
+  // The joints' pages were compared too, not only the bodies'.
+  long long statePages = 0, jointPages = 0;
+  const std::size_t at = replay.output.find("replay identical to the log: ");
+  ASSERT_NE(at, std::string::npos) << replay.output;
+  ASSERT_EQ(std::sscanf(replay.output.c_str() + at, "replay identical to the log: %lld state pages and %lld joint pages",
+                        &statePages, &jointPages), 2)
+      << replay.output;
+  EXPECT_GT(jointPages, 0) << replay.output;
+  EXPECT_GE(statePages, jointPages) << replay.output;
   if (logger) {
     // UDP may drop a datagram on the way to the logger: the replay must then
     // say so (exit 3) rather than diverge.
