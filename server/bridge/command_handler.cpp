@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <rbsim/command_t.hpp>
 #include <rbsim/joint_command_t.hpp>
@@ -46,6 +48,44 @@ CommandOutcome accepted(rbsim::ack_t ack, int64_t effectiveStep, std::string not
   outcome.ack.reason = std::move(note);
   outcome.ack.effective_step = effectiveStep;
   return outcome;
+}
+
+// The names of the joints that hold `body`.
+std::vector<std::string> jointsOf(const World& world, BodyId body) {
+  std::vector<std::string> names;
+  for (int i = 0; i < world.jointCount(); ++i) {
+    const JointDef& def = world.jointDefinitionAt(i);
+    if (def.bodyA == body || def.bodyB == body) names.push_back(def.name);
+  }
+  return names;
+}
+
+// Adds a parsed spawn to the world, all or nothing: the World's own checks
+// (a joint's length, two joints of one name, ...) can still refuse a part,
+// and then what was added is taken out again, joints first. The reason names
+// the part as the spawn's text does ("spawn_yaml:4:5: joints[0]: ...").
+std::optional<std::string> addSpawn(World& world, const SpawnDef& spawn) {
+  std::vector<BodyId> bodies;
+  std::vector<JointId> joints;
+  const auto undo = [&](std::string reason) {
+    for (auto joint = joints.rbegin(); joint != joints.rend(); ++joint) world.removeJoint(*joint);
+    for (auto body = bodies.rbegin(); body != bodies.rend(); ++body) world.removeBody(*body);
+    return std::optional<std::string>(std::move(reason));
+  };
+  for (const BodyDef& def : spawn.bodies) {
+    const auto id = world.createBody(def);
+    if (!id) return undo(id.error().message);
+    bodies.push_back(*id);
+  }
+  for (const NamedJointDef& named : spawn.joints) {
+    JointDef def = named.def;
+    def.bodyA = named.bodyA == "world" ? BodyId{} : world.findBody(named.bodyA);
+    def.bodyB = named.bodyB == "world" ? BodyId{} : world.findBody(named.bodyB);
+    const auto id = world.createJoint(def);
+    if (!id) return undo(named.source + ": " + id.error().message);
+    joints.push_back(*id);
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -191,23 +231,43 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       return outcome;
     }
     case rbsim::command_t::SPAWN: {
-      if (world.bodyCount() >= m_settings.maxBodies)
-        return reject("the world has " + std::to_string(world.bodyCount()) + " bodies, as many as " +
-                      "limits.max_bodies allows");
-      const auto def = parseSpawnedBodyDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory);
-      if (!def) return reject(def.error().message);
-      const auto id = world.createBody(*def);
-      if (!id) return reject(id.error().message);
+      const auto existing = [&world](const std::string& name) -> std::optional<bool> {
+        const BodyId id = world.findBody(name);
+        if (id.isNull()) return std::nullopt;
+        return !world.body(id).isStatic();
+      };
+      const auto spawn = parseSpawnDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory, existing);
+      if (!spawn) return reject(spawn.error().message);
+      if (static_cast<int64_t>(world.bodyCount()) + static_cast<int64_t>(spawn->bodies.size()) > m_settings.maxBodies)
+        return reject("the world has " + std::to_string(world.bodyCount()) + " bodies; " +
+                      std::to_string(spawn->bodies.size()) + " more would exceed limits.max_bodies (" +
+                      std::to_string(m_settings.maxBodies) + ")");
+      if (static_cast<int64_t>(world.jointCount()) + static_cast<int64_t>(spawn->joints.size()) > m_settings.maxJoints)
+        return reject("the world has " + std::to_string(world.jointCount()) + " joints; " +
+                      std::to_string(spawn->joints.size()) + " more would exceed limits.max_joints (" +
+                      std::to_string(m_settings.maxJoints) + ")");
+      if (auto refusal = addSpawn(world, *spawn)) return reject(std::move(*refusal));
       m_session.noteWorldChanged();
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.publishWorld = true;
       return outcome;
     }
     case rbsim::command_t::REMOVE: {
-      const BodyId id = world.findBody(message.body);
-      if (id.isNull()) return reject("unknown body '" + message.body + "'");
-      world.removeBody(id);
-      m_session.wrenches().removeBody(message.body);
+      if (message.body.empty() == message.joint.empty())
+        return reject("REMOVE names a body (body) or a joint (joint), exactly one of the two");
+      if (!message.joint.empty()) {
+        const JointId id = world.findJoint(message.joint);
+        if (id.isNull()) return reject("unknown joint '" + message.joint + "'");
+        world.removeJoint(id);
+        m_session.jointCommands().removeJoint(message.joint);
+      } else {
+        const BodyId id = world.findBody(message.body);
+        if (id.isNull()) return reject("unknown body '" + message.body + "'");
+        // Its joints go with it, and so do the commands waiting for them.
+        for (const std::string& joint : jointsOf(world, id)) m_session.jointCommands().removeJoint(joint);
+        world.removeBody(id);
+        m_session.wrenches().removeBody(message.body);
+      }
       m_session.noteWorldChanged();
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.publishWorld = true;

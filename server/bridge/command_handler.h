@@ -12,7 +12,7 @@
 // (server.read_only), the sender's rate (limits.client_rate/client_burst),
 // then per message: bodies that accept wrenches (limits.wrench_bodies),
 // the wrench limits (which bound joint efforts too), and the number of
-// bodies for SPAWN (limits.max_bodies).
+// bodies and joints for SPAWN (limits.max_bodies, limits.max_joints).
 
 #include <cstddef>
 #include <cstdint>
@@ -41,7 +41,7 @@ struct CommandOutcome {
 class CommandHandler {
  public:
   // `settings` gives the channel prefix and the limits; mesh files of spawned
-  // bodies must lie under `spawnMeshDirectory` (see parseSpawnedBodyDef). The
+  // bodies must lie under `spawnMeshDirectory` (see parseSpawnDef). The
   // session must outlive the handler.
   CommandHandler(Session& session, ServerSettings settings, std::string spawnMeshDirectory);
 

@@ -167,6 +167,9 @@ rbsim::joint_description_t jointDescription(const World& world, int denseIndex) 
   out.limit_enabled = def.limit.enabled;
   out.lower_limit = def.limit.lower;
   out.upper_limit = def.limit.upper;
+  // createJoint resolved a rod's length from its anchors where none was given.
+  out.length = state.type == JointType::Distance && !def.limit.enabled ? def.length : 0.0;
+  out.cone_angle = state.type == JointType::Spherical ? def.coneAngle : 0.0;
   return out;
 }
 

@@ -46,6 +46,7 @@ constexpr std::array<std::string_view, 7> kTopLevelKeys = {
     "world", "bodies", "joints", "contact",
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
+constexpr std::array<std::string_view, 2> kSpawnKeys = {"bodies", "joints"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
 constexpr std::array<std::string_view, 15> kBodyKeys = {
@@ -93,8 +94,14 @@ class ConfigParser {
   // The world, then the server's sections, of one document.
   Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
+  Expected<SpawnDef> parseSpawn(const YamlNode& root, const JointBodyLookup& existing) const;
 
  private:
+  // A `bodies:` list, appended to `bodies` (indexByName: name -> index in
+  // `bodies`); with `existing`, a name the world already has is an error.
+  std::optional<Error> parseBodies(const YamlNode& node, const JointBodyLookup* existing,
+                                   std::vector<BodyDef>& bodies,
+                                   std::map<std::string, std::size_t, std::less<>>& indexByName) const;
   Expected<WorldSettings> parseSettings(const YamlNode& node) const;
   Expected<IntegratorKind> parseIntegrator(const YamlNode& node) const;
   // Reads {linear, angular} into the two outputs, which keep their values
@@ -139,27 +146,69 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
       return m_reader.error(joints->value, "joints need bodies to join (there is no bodies: list)");
     return world;
   }
-  Expected<std::vector<YamlNode>> items = m_reader.list(bodies->value);
-  if (!items) return items.error();
-  // name -> index of the body that has it, for the duplicate message
   std::map<std::string, std::size_t, std::less<>> indexByName;
+  if (auto error = parseBodies(bodies->value, nullptr, world.bodies, indexByName)) return *error;
+  if (const YamlMap::Entry* joints = top->find("joints")) {
+    const JointBodyLookup lookup = [&](const std::string& name) -> std::optional<bool> {
+      const auto found = indexByName.find(name);
+      if (found == indexByName.end()) return std::nullopt;
+      return !world.bodies[found->second].isStatic;
+    };
+    if (auto error = parseJoints(m_reader, joints->value, lookup, world.joints)) return *error;
+  }
+  return world;
+}
+
+std::optional<Error> ConfigParser::parseBodies(const YamlNode& node, const JointBodyLookup* existing,
+                                               std::vector<BodyDef>& bodies,
+                                               std::map<std::string, std::size_t, std::less<>>& indexByName) const {
+  Expected<std::vector<YamlNode>> items = m_reader.list(node);
+  if (!items) return items.error();
   for (std::size_t i = 0; i < items->size(); ++i) {
     const YamlNode& item = (*items)[i];
     Expected<BodyDef> body = parseBody(item);
     if (!body) return body.error();
-    const auto [existing, inserted] = indexByName.emplace(body->name, i);
-    if (!inserted) {
-      const YAML::Node& itemNode = item.node;
+    const YAML::Node& itemNode = item.node;
+    if (existing != nullptr && (*existing)(body->name))
       return m_reader.error(itemNode["name"].Mark(), item.path + ".name",
-                            "duplicate body name \"" + body->name + "\" (also the name of " +
-                                bodies->value.path + "[" + std::to_string(existing->second) + "])");
-    }
-    world.bodies.push_back(std::move(*body));
+                            "the world already has a body named \"" + body->name + "\"");
+    const auto [previous, inserted] = indexByName.emplace(body->name, bodies.size());
+    if (!inserted)
+      return m_reader.error(itemNode["name"].Mark(), item.path + ".name",
+                            "duplicate body name \"" + body->name + "\" (also the name of " + node.path + "[" +
+                                std::to_string(previous->second) + "])");
+    bodies.push_back(std::move(*body));
+  }
+  return std::nullopt;
+}
+
+Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBodyLookup& existing) const {
+  Expected<YamlMap> top = m_reader.map(root);
+  if (!top) return top.error();
+  SpawnDef spawn;
+  if (top->find("bodies") == nullptr && top->find("joints") == nullptr) {
+    // One body, as a `bodies:` entry.
+    Expected<BodyDef> body = parseBody(root);
+    if (!body) return body.error();
+    if (existing(body->name))
+      return m_reader.error(root.node["name"].Mark(), "name", "the world already has a body named \"" + body->name + "\"");
+    spawn.bodies.push_back(std::move(*body));
+    return spawn;
+  }
+  if (auto error = m_reader.checkKeys(*top, kSpawnKeys, "a spawn of bodies and joints")) return *error;
+  std::map<std::string, std::size_t, std::less<>> indexByName;
+  if (const YamlMap::Entry* bodies = top->find("bodies")) {
+    if (auto error = parseBodies(bodies->value, &existing, spawn.bodies, indexByName)) return *error;
   }
   if (const YamlMap::Entry* joints = top->find("joints")) {
-    if (auto error = parseJoints(m_reader, joints->value, world.bodies, world.joints)) return *error;
+    const JointBodyLookup lookup = [&](const std::string& name) -> std::optional<bool> {
+      const auto found = indexByName.find(name);
+      if (found != indexByName.end()) return !spawn.bodies[found->second].isStatic;
+      return existing(name);
+    };
+    if (auto error = parseJoints(m_reader, joints->value, lookup, spawn.joints)) return *error;
   }
-  return world;
+  return spawn;
 }
 
 Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
@@ -585,11 +634,11 @@ Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& s
                                 [&](const YamlNode& root) { return parser.parseBody(root); });
 }
 
-Expected<BodyDef> parseSpawnedBodyDef(const std::string& yamlText, const std::string& sourceName,
-                                      const std::string& meshDirectory) {
+Expected<SpawnDef> parseSpawnDef(const std::string& yamlText, const std::string& sourceName,
+                                 const std::string& meshDirectory, const JointBodyLookup& existing) {
   const ConfigParser parser(sourceName, meshDirectory, ConfigParser::MeshPaths::InsideBaseDirectory);
-  return parseDocument<BodyDef>(yamlText, sourceName,
-                                [&](const YamlNode& root) { return parser.parseBody(root); });
+  return parseDocument<SpawnDef>(yamlText, sourceName,
+                                 [&](const YamlNode& root) { return parser.parseSpawn(root, existing); });
 }
 
 Expected<Config> parseConfig(const std::string& yamlText, const std::string& sourceName,

@@ -8,7 +8,9 @@
 // Loading stops at the first error.
 
 #include <string>
+#include <vector>
 
+#include "config/joint_config.h"
 #include "config/server_settings.h"
 #include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/types.h"
@@ -54,12 +56,22 @@ Expected<WorldDef> parseWorldConfig(const std::string& yamlText, const std::stri
 Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& sourceName,
                                const std::string& baseDirectory);
 
-// The same for a body spawned over the network (SPAWN's spawn_yaml), whose
-// sender is not trusted with the server's file system: a mesh file must be a
-// relative path to a regular file under `meshDirectory`, with no '..' and no
-// symbolic link leading out (config/contained_path.h has the rules). Messages
-// name the mesh as the sender did, never by the host's path.
-Expected<BodyDef> parseSpawnedBodyDef(const std::string& yamlText, const std::string& sourceName,
-                                      const std::string& meshDirectory);
+// What one SPAWN adds (command_t.spawn_yaml): bodies, and joints among them,
+// the world's bodies and the world.
+struct SpawnDef {
+  std::vector<BodyDef> bodies;
+  std::vector<NamedJointDef> joints;
+};
+
+// Parses a spawn: either one body (a mapping in the schema of a `bodies:`
+// entry) or a mapping with a `bodies:` list and a `joints:` list, as a world
+// file has them (either may be absent). `existing` names the world's bodies:
+// a new body may not take one of their names, and a joint may join them.
+// The sender is not trusted with the server's file system: a mesh file must
+// be a relative path to a regular file under `meshDirectory`, with no '..'
+// and no symbolic link leading out (config/contained_path.h has the rules).
+// Messages name the mesh as the sender did, never by the host's path.
+Expected<SpawnDef> parseSpawnDef(const std::string& yamlText, const std::string& sourceName,
+                                 const std::string& meshDirectory, const JointBodyLookup& existing);
 
 }  // namespace rbsim

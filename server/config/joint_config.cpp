@@ -39,7 +39,7 @@ constexpr std::array<TypeName, 5> kTypes = {{{"fixed", JointType::Fixed},
 
 class JointParser {
  public:
-  JointParser(const YamlReader& reader, const std::vector<BodyDef>& bodies) : m_reader(reader), m_bodies(bodies) {}
+  JointParser(const YamlReader& reader, const JointBodyLookup& bodies) : m_reader(reader), m_bodies(bodies) {}
 
   Expected<NamedJointDef> parse(const YamlNode& node) const {
     Expected<YamlMap> map = m_reader.map(node);
@@ -101,10 +101,10 @@ class JointParser {
       Expected<std::string> body = m_reader.string(*bodyNode);
       if (!body) return body.error();
       if (*body != "world") {
-        const auto found = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const BodyDef& b) { return b.name == *body; });
-        if (found == m_bodies.end())
+        const std::optional<bool> bodyMoves = m_bodies(*body);
+        if (!bodyMoves)
           return m_reader.error(*bodyNode, "no body named \"" + *body + "\" (a body's name, or world)");
-        moves[sideB ? 1 : 0] = !found->isStatic;
+        moves[sideB ? 1 : 0] = *bodyMoves;
       }
       (sideB ? out.bodyB : out.bodyA) = *body;
     }
@@ -278,12 +278,12 @@ class JointParser {
   }
 
   const YamlReader& m_reader;
-  const std::vector<BodyDef>& m_bodies;
+  const JointBodyLookup& m_bodies;
 };
 
 }  // namespace
 
-std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const std::vector<BodyDef>& bodies,
+std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
                                  std::vector<NamedJointDef>& joints) {
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();

@@ -3,23 +3,28 @@
 // (rbsim/physics/joint_definition.h), checked here so that every mistake is
 // reported at its file, line, column and key.
 
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "config/yaml_reader.h"
-#include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/joint_definition.h"
 
 namespace rbsim {
 
-// Reads the list `node` into `joints`; `bodies` are the world's bodies (for
-// the names and which are static). Errors: an unknown key or type, a body
-// that is not there, a joint naming one body twice or joining nothing that
-// moves, a zero axis, lower > upper, a negative effort cap, a key that the
-// joint's type does not take, a duplicate joint name, a motor and a drive
-// on one joint, a drive with both stiffness and frequency, and negative
-// gains, damping or friction.
-std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const std::vector<BodyDef>& bodies,
+// Which bodies a joint may name: for a name, whether that body moves (false:
+// static), or nullopt when there is no body of that name.
+using JointBodyLookup = std::function<std::optional<bool>(const std::string& name)>;
+
+// Reads the list `node` into `joints`; `bodies` says which bodies there are
+// (a world file's, or a spawn's with the world's). Errors: an unknown key or
+// type, a body that is not there, a joint naming one body twice or joining
+// nothing that moves, a zero axis, lower > upper, a negative effort cap, a
+// key that the joint's type does not take, a duplicate joint name, a motor
+// and a drive on one joint, a drive with both stiffness and frequency, and
+// negative gains, damping or friction.
+std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
                                  std::vector<NamedJointDef>& joints);
 
 }  // namespace rbsim

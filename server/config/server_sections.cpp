@@ -121,10 +121,10 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
 
 std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 14> kKeys = {
+  static constexpr std::array<std::string_view, 15> kKeys = {
       "max_force", "max_torque", "max_lever_arm", "max_duration", "max_steps_ahead",
       "max_real_time_factor", "max_steps_per_command", "wrench_bodies", "client_rate", "client_burst",
-      "max_message_bytes", "max_bodies", "max_linear_speed", "max_angular_speed"};
+      "max_message_bytes", "max_bodies", "max_joints", "max_linear_speed", "max_angular_speed"};
   if (auto error = reader.checkKeys(limits, kKeys, "the limits section")) return error;
   struct Field {
     std::string_view key;
@@ -172,6 +172,10 @@ std::optional<Error> readLimits(const YamlReader& reader, const YamlMap& limits,
                                     static_cast<double>(out.maxBodies));
   if (!bodies) return bodies.error();
   out.maxBodies = static_cast<int64_t>(*bodies);
+  const auto joints = reader.number(limits, "max_joints", NumberRule::positive(1e9),
+                                    static_cast<double>(out.maxJoints));
+  if (!joints) return joints.error();
+  out.maxJoints = static_cast<int64_t>(*joints);
   out.limits.maxStepsAhead = static_cast<int64_t>(stepsAhead);
   out.maxStepsPerCommand = static_cast<int64_t>(stepsPerCommand);
   return std::nullopt;

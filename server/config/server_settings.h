@@ -76,7 +76,8 @@ struct ServerSettings {
   double clientRate = 5000.0;            // wrenches + commands per second per client id; 0 = unlimited
   double clientBurst = 5000.0;           // messages a client may send at once (token bucket size)
   int64_t maxMessageBytes = 262144;      // bytes; larger wrench/command messages are rejected undecoded
-  int64_t maxBodies = 100000;            // SPAWN is rejected when the world has this many bodies
+  int64_t maxBodies = 100000;            // SPAWN is rejected when the world would have more bodies
+  int64_t maxJoints = 100000;            // ... or more joints than this
 };
 
 }  // namespace rbsim

@@ -55,4 +55,10 @@ void JointCommandScheduler::applyForStep(World& world, int64_t step) {
   m_pending.erase(due, m_pending.end());
 }
 
+void JointCommandScheduler::removeJoint(const std::string& name) {
+  m_pending.erase(std::remove_if(m_pending.begin(), m_pending.end(),
+                                 [&](const JointCommandRequest& request) { return request.joint == name; }),
+                  m_pending.end());
+}
+
 }  // namespace rbsim

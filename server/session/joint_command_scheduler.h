@@ -57,6 +57,9 @@ class JointCommandScheduler {
   // was removed) is dropped.
   void applyForStep(World& world, int64_t step);
 
+  // Drops the commands waiting for joint `name` (REMOVE took it away), so
+  // that a later joint of the same name does not receive them.
+  void removeJoint(const std::string& name);
   void clearAll() { m_pending.clear(); }
   int pendingCount() const { return static_cast<int>(m_pending.size()); }
   const std::vector<JointCommandRequest>& pending() const { return m_pending; }

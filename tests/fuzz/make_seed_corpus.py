@@ -99,6 +99,8 @@ def messages(types_dir):
     command("save", 9, path="/tmp/x")
     for name, yaml in BODIES.items():
         command("spawn_" + name, 6, spawn_yaml=yaml)
+    command("spawn_joints", 6, spawn_yaml=SPAWN_WITH_JOINTS)
+    command("remove_joint", 7, joint="hinge")
 
     # Sessions for the command handler: messages with steps in between.
     corpus = os.path.join(CORPUS, "command_message")
@@ -124,6 +126,9 @@ def messages(types_dir):
     def joint_command(name):
         with open(os.path.join(joint_commands, name), "rb") as f:
             return f.read()
+    write("command_handler", "spawn_joints_remove_joint",
+          record(1, message("spawn_joints")) + step(3) + record(1, message("remove_joint")) + step(2) +
+          record(1, message("remove")) + step(2))
     write("command_handler", "joint_commands",
           record(6, joint_command("velocity")) + step(2) + record(6, joint_command("position")) +
           record(0, wrench("one_step_world")) + step(3))
@@ -159,6 +164,15 @@ def messages(types_dir):
     write("replay_log", "lcm_logger",
           b"".join(log_event(i, ch, data) for i, (ch, data) in enumerate(logger)))
 
+
+# A SPAWN of bodies and joints: a bob hinged to the small world's drum, and
+# a rod from the world.
+SPAWN_WITH_JOINTS = """bodies:
+  - {name: bob, shape: {type: sphere, radius: 0.05}, mass: 1, position: [-1, 0, 0.5]}
+joints:
+  - {name: hinge, type: revolute, body_a: drum, body_b: bob, anchor: [-1, 0, 1], axis: [0, 1, 0]}
+  - {name: rod, type: distance, body_a: world, body_b: ball, anchor: [0, 0, 1], anchor_b: [0, 0, 0.3]}
+"""
 
 BODIES = {
     "sphere": "{name: s, shape: {type: sphere, radius: 0.1}, position: [0, 0, 1], mass: 2}",

@@ -3,3 +3,7 @@
 
 def test_joint_commands_and_states(scenario):
     assert scenario("joints.py", "wheel").returncode == 0
+
+
+def test_joints_spawned_and_removed(scenario):
+    assert scenario("joints.py", "spawned").returncode == 0

@@ -318,13 +318,17 @@ Request Client::setRealTimeFactor(double factor) {
                      [&](rbsim::command_t& m) { m.real_time_factor = factor; });
 }
 
-Request Client::spawn(const std::string& bodyYaml) {
+Request Client::spawn(const std::string& yaml) {
   return sendCommand(rbsim::command_t::SPAWN,
-                     [&](rbsim::command_t& m) { m.spawn_yaml = bodyYaml; });
+                     [&](rbsim::command_t& m) { m.spawn_yaml = yaml; });
 }
 
 Request Client::remove(const std::string& body) {
   return sendCommand(rbsim::command_t::REMOVE, [&](rbsim::command_t& m) { m.body = body; });
+}
+
+Request Client::removeJoint(const std::string& joint) {
+  return sendCommand(rbsim::command_t::REMOVE, [&](rbsim::command_t& m) { m.joint = joint; });
 }
 
 Request Client::publishWorld() {

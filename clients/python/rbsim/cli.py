@@ -11,7 +11,7 @@
     python3 -m rbsim step [N] [--no-wait]
     python3 -m rbsim rtf X
     python3 -m rbsim spawn FILE | - | --yaml TEXT
-    python3 -m rbsim remove NAME
+    python3 -m rbsim remove NAME | --joint NAME
     python3 -m rbsim joints                     print the joints and their state
     python3 -m rbsim joint NAME off|velocity|position|effort [TARGET]
                            [--max-effort E] [--stiffness K] [--damping D] [--at-step K]
@@ -178,9 +178,15 @@ def cmd_spawn(args):
 
 
 def cmd_remove(args):
+    if (args.name is None) == (args.joint is None):
+        raise CliError("give a body NAME or --joint NAME, one of the two", EXIT_USAGE)
     with _client(args) as sim:
-        ack = sim.remove(args.name, timeout=args.timeout)
-    _report(ack, "remove %s" % args.name)
+        if args.joint is not None:
+            ack = sim.remove_joint(args.joint, timeout=args.timeout)
+            _report(ack, "remove joint %s" % args.joint)
+        else:
+            ack = sim.remove(args.name, timeout=args.timeout)
+            _report(ack, "remove %s" % args.name)
 
 
 def cmd_joints(args):
@@ -330,13 +336,15 @@ def build_parser():
                      help="simulated s per wall-clock s: X > 0 paces the simulation, 0 runs it as "
                           "fast as possible")
 
-    sub = verb("spawn", cmd_spawn, "add a body described in YAML (a bodies: entry of a world file)")
+    sub = verb("spawn", cmd_spawn, "add bodies and joints described in YAML (a bodies: entry of a world "
+                                   "file, or bodies: and joints: lists as a world file has them)")
     sub.add_argument("source", nargs="?", default=None, metavar="FILE",
                      help="a YAML file, or '-' for standard input")
     sub.add_argument("--yaml", default=None, metavar="TEXT", help="the body's YAML given inline")
 
-    sub = verb("remove", cmd_remove, "remove a body")
-    sub.add_argument("name", help="body name")
+    sub = verb("remove", cmd_remove, "remove a body (with its joints) or a joint")
+    sub.add_argument("name", nargs="?", default=None, help="body name")
+    sub.add_argument("--joint", default=None, metavar="NAME", help="remove this joint instead (its bodies stay)")
 
     sub = verb("joints", cmd_joints, "print the joints (type, bodies, axis, limits) and their state "
                                      "(asks the server to publish the world description)")

@@ -1090,7 +1090,7 @@ class Client:
     def send_command(self, command: Union[Command, int], wait: bool = True, timeout: Optional[float] = None,
                      check: bool = False, **fields) -> Union[ack_t, int]:
         """Sends a ``command_t`` (``command`` = command_t.PAUSE, ...; other fields
-        by keyword: num_steps, real_time_factor, body, spawn_yaml, path).
+        by keyword: num_steps, real_time_factor, body, joint, spawn_yaml, path).
 
         Returns the ``ack_t`` (``wait=True``) or the sequence number;
         ``check=True`` raises :class:`Rejected` on rejection.
@@ -1141,12 +1141,19 @@ class Client:
         return self.send_command(command_t.SET_REAL_TIME_FACTOR, real_time_factor=float(factor), **kw)
 
     def spawn(self, yaml_text: str, **kw) -> Union[ack_t, int]:
-        """Adds one body described in YAML like a ``bodies:`` entry of a world file."""
+        """Adds one body described in YAML like a ``bodies:`` entry of a world
+        file, or a mapping with ``bodies:`` and ``joints:`` lists as a world
+        file has them (its joints may join the world's bodies; all are added
+        or none)."""
         return self.send_command(command_t.SPAWN, spawn_yaml=str(yaml_text), **kw)
 
     def remove(self, name: str, **kw) -> Union[ack_t, int]:
-        """Removes the body called ``name``."""
+        """Removes the body called ``name``, and its joints."""
         return self.send_command(command_t.REMOVE, body=str(name), **kw)
+
+    def remove_joint(self, name: str, **kw) -> Union[ack_t, int]:
+        """Removes the joint called ``name`` (its bodies stay)."""
+        return self.send_command(command_t.REMOVE, joint=str(name), **kw)
 
     def publish_world(self, **kw) -> Union[ack_t, int]:
         """Asks for a ``world_t`` now (see :meth:`request_world` to also wait for it)."""

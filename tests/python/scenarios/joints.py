@@ -3,7 +3,8 @@ stepped): the joints of the world description, RBSIM_JOINTS consistent with
 the state's poses, a velocity command spinning the wheel at max_effort / I
 to its target, an effort on the free hinge giving tau / I, and rejections
 raised as Rejected with the server's reason. The same numbers as
-tests/e2e/test_joints.cpp, from the other client library."""
+tests/e2e/test_joints.cpp, from the other client library. Then a pendulum
+spawned with its joints, swinging on its rod, and its hinge removed."""
 
 import math
 import os
@@ -65,5 +66,55 @@ def wheel(workdir):
         assert server.stop() == 0
 
 
+# Two bobs spawned with their joints, well away from the world's bodies: a
+# rod of 1 m from the world, and a hinge between the bobs.
+PENDULUM = """bodies:
+  - {name: bob, shape: {type: sphere, radius: 0.05}, mass: 2.0, position: [11, 10, 3]}
+  - {name: bob2, shape: {type: sphere, radius: 0.05}, mass: 1.0, position: [12, 10, 3]}
+joints:
+  - {name: rod, type: distance, body_a: world, body_b: bob, anchor: [10, 10, 3], anchor_b: [11, 10, 3]}
+  - {name: bob_hinge, type: revolute, body_a: bob, body_b: bob2, anchor: [11, 10, 3], axis: [0, 1, 0]}
+"""
+
+
+def spawned(workdir):
+    sim = Client(timeout=CLIENT_TIMEOUT)
+    server = Server(workdir, WORLD, "--paused", "--state-rate", "0")
+    try:
+        sim.wait_state()
+        sim.spawn(PENDULUM, check=True)
+        world = sim.request_world()
+        assert [j.name for j in world.joints][-2:] == ["rod", "bob_hinge"]
+        assert world.joint("rod").length == 1.0 and world.joint("rod").body_a == "world"
+        assert world.joint("hip").cone_angle == 0.3
+        sim.step(300, sync=True, check=True)
+        state = sim.state_at(300)
+        bob = state["bob"].position
+        assert abs(math.dist(bob, (10, 10, 3)) - 1.0) < 1e-9, bob
+        assert bob[2] < 2.9, bob  # it swings down
+        joints = sim.wait_joints(step=300, new=False)
+        assert abs(joints["rod"].position - 1.0) < 1e-9 and joints["bob_hinge"].error < 1e-9
+
+        sim.remove_joint("bob_hinge", check=True)
+        world = sim.request_world()
+        assert "bob_hinge" not in [j.name for j in world.joints] and "bob2" in [b.name for b in world.bodies]
+        try:
+            sim.remove_joint("bob_hinge", check=True)
+            raise AssertionError("a removed joint was removed again")
+        except Rejected as exc:
+            assert exc.ack.reason == "unknown joint 'bob_hinge'", exc.ack.reason
+        # Half the spawn is refused: nothing of it is added.
+        try:
+            sim.spawn(PENDULUM.replace("bob", "other").replace("world, body_b: other", "world, body_b: ghost"),
+                      check=True)
+            raise AssertionError("a spawn with an unknown body was accepted")
+        except Rejected as exc:
+            assert "no body named \"ghost\"" in exc.ack.reason, exc.ack.reason
+        assert "other" not in [b.name for b in sim.request_world().bodies]
+    finally:
+        sim.close()
+        assert server.stop() == 0
+
+
 if __name__ == "__main__":
-    run({"wheel": wheel})
+    run({"wheel": wheel, "spawned": spawned})

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -53,13 +54,13 @@ TEST(GivenMassProperties, DiagonalTensorWithoutCentreOfMass) {
 }
 
 TEST(GivenMassProperties, SpawnYamlGoesThroughTheSameRules) {
-  const Expected<BodyDef> good = parseSpawnedBodyDef(
-      "{name: s, shape: {type: sphere, radius: 1}, mass: 2, inertia: [1, 1, 1.5]}", "spawn_yaml",
-      "");
+  const auto noBodies = [](const std::string&) { return std::optional<bool>(); };
+  const Expected<SpawnDef> good = parseSpawnDef(
+      "{name: s, shape: {type: sphere, radius: 1}, mass: 2, inertia: [1, 1, 1.5]}", "spawn_yaml", "", noBodies);
   ASSERT_TRUE(good.ok()) << good.error().message;
-  EXPECT_TRUE(good->inertia.has_value());
-  const Expected<BodyDef> bad = parseSpawnedBodyDef(
-      "{name: s, shape: {type: sphere, radius: 1}, mass: 2, inertia: [1, 1, 3]}", "spawn_yaml", "");
+  EXPECT_TRUE(good->bodies.at(0).inertia.has_value());
+  const Expected<SpawnDef> bad = parseSpawnDef(
+      "{name: s, shape: {type: sphere, radius: 1}, mass: 2, inertia: [1, 1, 3]}", "spawn_yaml", "", noBodies);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(
       bad.error().message,

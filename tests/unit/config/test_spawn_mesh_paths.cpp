@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "config/config_loader.h"
@@ -41,7 +42,10 @@ class SpawnMeshDirectory : public ::testing::Test {
   void TearDown() override { fs::remove_all(m_root); }
 
   Expected<BodyDef> spawn(const std::string& file) const {
-    return parseSpawnedBodyDef(spawnYaml(file), "spawn_yaml", m_root.string());
+    const auto noBodies = [](const std::string&) { return std::optional<bool>(); };
+    const Expected<SpawnDef> parsed = parseSpawnDef(spawnYaml(file), "spawn_yaml", m_root.string(), noBodies);
+    if (!parsed) return parsed.error();
+    return parsed->bodies.at(0);
   }
   // The rejection reason, which must not name the host's directories.
   std::string rejection(const std::string& file) const {

@@ -335,9 +335,14 @@ int runSpawn(Context& context, Arguments& arguments) {
 }
 
 int runRemove(Context& context, Arguments& arguments) {
-  const std::string body = arguments.next("remove", "a body name");
+  const std::string name = arguments.next("remove", "a body name or --joint NAME");
+  if (name == "--joint") {
+    const std::string joint = arguments.next("--joint", "a joint name");
+    arguments.expectEnd();
+    return report(context, context.client.removeJoint(joint), "remove joint " + joint);
+  }
   arguments.expectEnd();
-  return report(context, context.client.remove(body), "remove " + body);
+  return report(context, context.client.remove(name), "remove " + name);
 }
 
 }  // namespace
@@ -407,15 +412,20 @@ const std::vector<Verb>& verbs() {
        "usage: rbctl rtf X\n\nSimulated s per wall-clock s: X > 0 paces the simulation,\n"
        "0 runs it as fast as possible.\n",
        runRealTimeFactor},
-      {"spawn", "add a body",
+      {"spawn", "add bodies and joints",
        "usage: rbctl spawn FILE | - | --yaml TEXT\n\n"
        "Sends SPAWN with one body in the YAML schema of a `bodies:` entry of the\n"
-       "config file, read from FILE, from standard input (-) or given inline, e.g.\n"
+       "config file, or a mapping with `bodies:` and `joints:` lists as a world\n"
+       "file has them (joints may join the world's bodies; all are added or none),\n"
+       "read from FILE, from standard input (-) or given inline, e.g.\n"
        "  rbctl spawn --yaml '{name: probe, shape: {type: sphere, radius: 0.1}, mass: 1,\n"
        "                      position: [0, 0, 2]}'\n",
        runSpawn},
-      {"remove", "remove a body",
-       "usage: rbctl remove NAME\n\nSends REMOVE and waits for its ack.\n", runRemove},
+      {"remove", "remove a body (with its joints) or a joint",
+       "usage: rbctl remove NAME | --joint NAME\n\n"
+       "Sends REMOVE for the body NAME (its joints go with it) or the joint NAME\n"
+       "and waits for its ack.\n",
+       runRemove},
       {"joints", "print the joints (type, bodies, axis, limits) and their state",
        "usage: rbctl joints\n\n"
        "Asks the server to publish the world description (PUBLISH_WORLD) and prints a\n"

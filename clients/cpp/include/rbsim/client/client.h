@@ -154,8 +154,11 @@ class Client {
   Request step(int64_t numSteps);              // the server must be paused
   Request reset();                             // back to the world loaded at start, step 0
   Request setRealTimeFactor(double factor);    // 0 = as fast as possible
-  Request spawn(const std::string& bodyYaml);  // one `bodies:` entry of the config schema
-  Request remove(const std::string& body);
+  // One `bodies:` entry of the config schema, or a mapping with `bodies:`
+  // and `joints:` lists as a world file has them (command_t.spawn_yaml).
+  Request spawn(const std::string& yaml);
+  Request remove(const std::string& body);        // the body and its joints
+  Request removeJoint(const std::string& joint);  // the joint alone
   Request publishWorld();
 
   // A joint_command_t on <prefix>JOINT_COMMAND, answered by an ack of kind
