@@ -168,7 +168,9 @@ rbsim::joint_description_t jointDescription(const World& world, int denseIndex) 
   out.lower_limit = def.limit.lower;
   out.upper_limit = def.limit.upper;
   // createJoint resolved a rod's length from its anchors where none was given.
-  out.length = state.type == JointType::Distance && !def.limit.enabled ? def.length : 0.0;
+  const bool spring = state.type == JointType::Distance && def.drive.enabled;
+  out.length = state.type == JointType::Distance && (!def.limit.enabled || spring) ? def.length : 0.0;
+  out.spring = spring;
   out.cone_angle = state.type == JointType::Spherical ? def.coneAngle : 0.0;
   return out;
 }

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -17,13 +18,17 @@ constexpr double kMaxEffort = 1e12;  // N or N·m
 constexpr double kMaxRate = 1e6;     // rad/s or m/s
 constexpr std::size_t kMaxNameLength = 128;
 
-constexpr std::array<std::string_view, 16> kJointKeys = {
+constexpr std::array<std::string_view, 17> kJointKeys = {
     "name",   "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
-    "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit"};
+    "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit",
+    "spring"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
 constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
                                                         "max_effort"};
+// A distance joint's spring: a drive whose target is the joint's `length`.
+constexpr std::array<std::string_view, 5> kSpringKeys = {"stiffness", "damping", "frequency", "damping_ratio",
+                                                         "max_effort"};
 constexpr double kMaxGain = 1e12;       // N·m/rad, N/m, N·m·s/rad or N·s/m
 constexpr double kMaxFrequency = 1e6;   // Hz
 
@@ -79,9 +84,12 @@ class JointParser {
       if (key == "axis" && spherical && !map->find("cone_limit"))
         return m_reader.error(entry.keyMark, entry.value.path, "a spherical joint takes an axis only with cone_limit (the cone's axis)");
       if (key == "limits" && distance) continue;  // a rope's lengths
-      if (key == "length" && distance && map->find("limits"))
+      if (key == "spring" && !distance)
+        return m_reader.error(entry.keyMark, entry.value.path, "only distance joints take a spring, this one is " + *typeName);
+      if (key == "length" && distance && map->find("limits") && !map->find("spring"))
         return m_reader.error(entry.keyMark, entry.value.path,
-                              "a distance joint has a length (a rod) or limits (a rope: free between them), not both");
+                              "a distance joint has a length (a rod) or limits (a rope: free between them), not both "
+                              "(a spring takes both: its rest length and its stops)");
       if (((key == "axis" && !spherical) || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
            key == "damping" || key == "friction") &&
           !axial)
@@ -150,7 +158,7 @@ class JointParser {
         if (def.motor.enabled)
           return m_reader.error(drive->keyMark, drive->value.path,
                                 "a joint takes a motor or a drive, not both (the drive is a position servo, the motor a velocity one)");
-        Expected<JointDrive> parsed = parseDrive(drive->value);
+        Expected<JointDrive> parsed = parseDrive(drive->value, kDriveKeys, "a drive");
         if (!parsed) return parsed.error();
         def.drive = *parsed;
       }
@@ -184,14 +192,27 @@ class JointParser {
       Expected<Vec3> anchorB = m_reader.vec3(*otherAnchor, NumberRule::any(kMaxLength));
       if (!anchorB) return anchorB.error();
       def.anchorB = *anchorB;
-      if (const YamlMap::Entry* limits = map->find("limits")) {
+      const double apart = (def.anchorB - def.anchor).norm();
+      const YamlMap::Entry* limits = map->find("limits");
+      if (limits) {
         Expected<JointLimit> limit = parseLimit(limits->value, NumberRule::nonNegative(kMaxLength));
         if (!limit) return limit.error();
         if (!(limit->upper > 0.0)) return m_reader.error(limits->value, "a rope's upper length must be positive");
         def.limit = *limit;
+      }
+      if (const YamlMap::Entry* spring = map->find("spring")) {
+        // A spring between the anchors, its rest length `length` (the
+        // anchors' distance by default), between the limits' stops if any.
+        Expected<JointDrive> drive = parseDrive(spring->value, kSpringKeys, "a spring");
+        if (!drive) return drive.error();
+        Expected<double> rest = m_reader.number(*map, "length", NumberRule::nonNegative(kMaxLength), apart);
+        if (!rest) return rest.error();
+        drive->target = *rest;
+        def.drive = *drive;
+        def.length = *rest;
         return finish(*map, out);
       }
-      const double apart = (def.anchorB - def.anchor).norm();
+      if (limits) return finish(*map, out);
       Expected<double> length = m_reader.number(*map, "length", NumberRule::positive(kMaxLength), apart);
       if (!length) return length.error();
       if (!(*length > 0.0))
@@ -231,10 +252,12 @@ class JointParser {
 
   // drive: {target, stiffness, damping} or {target, frequency,
   // damping_ratio}, with an optional max_effort.
-  Expected<JointDrive> parseDrive(const YamlNode& node) const {
+  // The same keys but target make a distance joint's spring (`keys` and
+  // `what` say which).
+  Expected<JointDrive> parseDrive(const YamlNode& node, std::span<const std::string_view> keys, const char* what) const {
     Expected<YamlMap> map = m_reader.map(node);
     if (!map) return map.error();
-    if (auto error = m_reader.checkKeys(*map, kDriveKeys, "a drive")) return *error;
+    if (auto error = m_reader.checkKeys(*map, keys, what)) return *error;
     JointDrive drive;
     drive.enabled = true;
     Expected<double> target = m_reader.number(*map, "target", NumberRule::any(kMaxLength), 0.0);

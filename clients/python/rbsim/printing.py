@@ -104,8 +104,10 @@ def joint_lines(world, joints=None) -> List[str]:
             line += " limits %s %s" % (number(j.lower_limit), number(j.upper_limit))
         else:
             line += " limits none"
-        if j.type == "distance" and not j.limit_enabled:
+        if j.type == "distance" and (not j.limit_enabled or j.spring):
             line += " length %s" % number(j.length)
+        if j.spring:
+            line += " spring"
         if j.type == "spherical" and j.cone_angle > 0:
             line += " cone %s" % number(j.cone_angle)
         state = joints.by_name.get(j.name) if joints is not None else None

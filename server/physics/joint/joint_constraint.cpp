@@ -74,7 +74,7 @@ int JointConstraint::rowCount() const {
     case JointType::Revolute: return 5;
     case JointType::Prismatic: return 5;
     case JointType::Fixed: return 6;
-    case JointType::Distance: return def.limit.enabled ? 0 : 1;
+    case JointType::Distance: return def.limit.enabled || hasSpring() ? 0 : 1;
   }
   return 0;
 }
@@ -133,7 +133,8 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
       return Error{where + ": the motor needs a finite target rate and a finite, non-negative max effort"};
   }
   if (def.drive.enabled) {
-    if (!axial) return Error{where + ": only revolute and prismatic joints take a drive"};
+    if (!axial && def.type != JointType::Distance)
+      return Error{where + ": only revolute and prismatic joints take a drive (and distance joints a spring)"};
     if (def.motor.enabled) return Error{where + ": a joint takes a motor or a drive, not both"};
     if (const std::string why = invalidDriveReason(def.drive); !why.empty()) return Error{where + ": " + why};
   }
@@ -150,11 +151,19 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
     if (!finite(def.anchorB)) return Error{where + ": anchor_b is not finite"};
     joint.anchorB = toB(def.anchorB);
     const double initial = (def.anchorB - def.anchor).norm();
-    joint.length = def.length < 0.0 ? initial : def.length;
-    if (def.limit.enabled) joint.length = def.limit.upper;  // a rope: its longest
-    if (!std::isfinite(joint.length) || joint.length < 1e-9)
-      return Error{where + ": the length must be positive and finite (the anchors are " +
-                   std::to_string(initial) + " m apart)"};
+    if (joint.hasSpring()) {
+      // The spring's rest length is its drive's target (checked above).
+      if (def.drive.target < 0.0)
+        return Error{where + ": the spring's rest length must not be negative (got " +
+                     std::to_string(def.drive.target) + ")"};
+      joint.length = def.drive.target;
+    } else {
+      joint.length = def.length < 0.0 ? initial : def.length;
+      if (def.limit.enabled) joint.length = def.limit.upper;  // a rope: its longest
+      if (!std::isfinite(joint.length) || joint.length < 1e-9)
+        return Error{where + ": the length must be positive and finite (the anchors are " +
+                     std::to_string(initial) + " m apart)"};
+    }
     joint.def.length = joint.length;
   }
   return joint;

@@ -11,7 +11,8 @@
 //                 carried by A: (p_B − p_A)·t_k, t_k perpendicular to it (2)
 //   fixed      6: the anchors coincide (3), no relative rotation (3)
 //   distance   1: |p_B − p_A| − length; none for a rope (a distance joint
-//                 with a limit: only its bounds, as inequalities)
+//                 with a limit: only its bounds, as inequalities) or a
+//                 spring (its drive acts along the anchors' line)
 // "No relative rotation" is the error rotation e = q_B r₀⁻¹ q_A⁻¹ (r₀ the
 // relative orientation at creation) as the 3 numbers 2·vec(e), whose rate is
 // ω_B − ω_A near e = 1.
@@ -85,6 +86,9 @@ struct JointConstraint {
   // efforts act. False for the other types.
   bool axisRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const;
   bool hasAxis() const { return def.type == JointType::Revolute || def.type == JointType::Prismatic; }
+  // A distance joint with a drive: a spring–damper between the anchors,
+  // rest length def.drive.target, acting along limitRow().
+  bool hasSpring() const { return def.type == JointType::Distance && def.drive.enabled; }
 
   // A bound on coordinate() held as an inequality: a revolute's or
   // prismatic's limit, a rope's (a distance joint with a limit) lengths, a

@@ -282,10 +282,12 @@ void pushAlongRow(const JointSolverRow& row, double lambda, std::vector<JointBod
   }
 }
 
-// Whether a joint has anything acting along its axis besides its limit.
+// Whether a joint has anything acting along its axis besides its limit (a
+// distance joint's spring acts along the anchors' line as a drive does).
 bool axisActs(const JointConstraint& joint) {
   const JointDef& def = joint.def;
-  return joint.hasAxis() && (def.motor.enabled || def.drive.enabled || def.damping > 0.0 || def.friction > 0.0);
+  return (joint.hasAxis() && (def.motor.enabled || def.drive.enabled || def.damping > 0.0 || def.friction > 0.0)) ||
+         joint.hasSpring();
 }
 
 // The drive's position error, the short way round for a revolute joint
@@ -353,7 +355,7 @@ void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<J
     Axis axis{l, {link.bodyA, link.bodyB, static_cast<int>(l), {}}, law, {}};
     const JointSidePose a = sidePose(link, bodies, false, !atEnd);
     const JointSidePose b = sidePose(link, bodies, true, !atEnd);
-    joint.axisRow(a, b, axis.row.jacobian);
+    joint.limitRow(a, b, axis.row.jacobian);  // the coordinate's row: the axis, or a spring's line
     if (law.drive) axis.law.driveError = driveError(joint, joint.coordinate(a, b));
     axes.push_back(axis);
   }
@@ -467,7 +469,8 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     body.orientation = body.startOrientation;
   }
   const bool anyLimit = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return l.joint->hasLimit(); });
-  if (m_rows.empty() && !anyLimit) return true;
+  const bool anyAxis = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return axisActs(*l.joint); });
+  if (m_rows.empty() && !anyLimit && !anyAxis) return true;
   const std::size_t jointRows = m_rows.size();
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());

@@ -126,17 +126,23 @@ TEST(SpawnJoints, AJointAloneMayJoinTheWorldsBodies) {
   EXPECT_NEAR((box - Vec3(5, 0, 3.5)).norm(), 0.5, 1e-9);
 }
 
-// A viewer draws a shoulder's cone from the description.
-TEST(SpawnJoints, TheDescriptionCarriesAConesAngle) {
+// A viewer draws a shoulder's cone and a spring from the description.
+TEST(SpawnJoints, TheDescriptionCarriesAConesAngleAndASpring) {
   Fixture f;
   ASSERT_TRUE(f.spawn("joints:\n  - {name: shoulder, type: spherical, body_a: post, body_b: box, anchor: [5, 0, 3.5], "
-                      "axis: [0, 0, -1], cone_limit: 0.7}\n")
+                      "axis: [0, 0, -1], cone_limit: 0.7}\n"
+                      "  - {name: bungee, type: distance, body_a: world, body_b: box, anchor: [5, 0, 4], "
+                      "anchor_b: [5, 0, 3], spring: {stiffness: 50}, length: 0.75}\n")
                   .ack.accepted);
   const auto pages = worldDescriptionPages(f.world(), 0, 2);
-  ASSERT_EQ(pages[0].num_joints, 1);
+  ASSERT_EQ(pages[0].num_joints, 2);
   EXPECT_EQ(pages[0].joints[0].cone_angle, 0.7);
   EXPECT_NEAR(pages[0].joints[0].axis[2], -1.0, 1e-15);
   EXPECT_EQ(pages[0].joints[0].length, 0.0);
+  EXPECT_FALSE(pages[0].joints[0].spring);
+  EXPECT_TRUE(pages[0].joints[1].spring);
+  EXPECT_EQ(pages[0].joints[1].length, 0.75) << "its rest length";
+  EXPECT_FALSE(pages[0].joints[1].limit_enabled);
 }
 
 TEST(SpawnJoints, OneBodyIsStillASpawnAsBefore) {

@@ -138,6 +138,41 @@ TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
   EXPECT_NEAR(world->jointState(world->findJoint("hip")).position, 0.3, 1e-9) << "the leg rests on the hip's cone";
 }
 
+TEST(JointConfig, SpringsAreReadAsWritten) {
+  const Expected<WorldDef> def = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - {name: bungee, type: distance, body_a: base, body_b: arm, anchor: [0, 0, 0], anchor_b: [0.5, 0, 0],\n"
+          "     spring: {stiffness: 40, damping: 2}, length: 0.4, limits: {lower: 0.1, upper: 0.9}}\n"
+          "  - {name: soft, type: distance, body_a: arm, body_b: tip, anchor: [0.5, 0, 0], anchor_b: [1, 0, 0],\n"
+          "     spring: {frequency: 3, damping_ratio: 0.5}}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  const JointDef& bungee = def->joints[0].def;
+  EXPECT_TRUE(bungee.drive.enabled);
+  EXPECT_EQ(bungee.drive.target, 0.4) << "the rest length";
+  EXPECT_EQ(bungee.drive.stiffness, 40.0);
+  EXPECT_EQ(bungee.drive.damping, 2.0);
+  EXPECT_TRUE(bungee.limit.enabled);
+  EXPECT_EQ(bungee.limit.upper, 0.9);
+  const JointDef& soft = def->joints[1].def;
+  EXPECT_EQ(soft.drive.frequency, 3.0);
+  EXPECT_EQ(soft.drive.dampingRatio, 0.5);
+  EXPECT_DOUBLE_EQ(soft.drive.target, 0.5) << "by default the anchors' distance";
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+
+  const std::string rod = "  - {name: j, type: distance, body_a: world, body_b: arm, anchor: [0, 0, 0], anchor_b: [0.5, 0, 0]";
+  EXPECT_NE(errorOf(rod + ", spring: {stiffness: 1, target: 2}}\n").find("joints[0].spring.target: unknown key"),
+            std::string::npos);
+  EXPECT_NE(errorOf(rod + ", spring: {stiffness: -1}}\n").find("joints[0].spring.stiffness"), std::string::npos);
+  EXPECT_NE(errorOf(rod + ", spring: {stiffness: 1}, length: -1}\n").find("joints[0].length"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0], "
+                    "spring: {stiffness: 1}}\n")
+                .find("only distance joints take a spring"),
+            std::string::npos);
+}
+
 TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
   const std::string base = "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]";
   EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: ghost, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")

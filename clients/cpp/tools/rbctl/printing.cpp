@@ -121,7 +121,8 @@ void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joint
     } else {
       std::fprintf(out, " limits none");
     }
-    if (j.type == "distance" && !j.limit_enabled) std::fprintf(out, " length %.10g", j.length);
+    if (j.type == "distance" && (!j.limit_enabled || j.spring)) std::fprintf(out, " length %.10g", j.length);
+    if (j.spring) std::fprintf(out, " spring");
     if (j.type == "spherical" && j.cone_angle > 0.0) std::fprintf(out, " cone %.10g", j.cone_angle);
     const rbsim::joint_state_t* state = nullptr;
     if (joints != nullptr)

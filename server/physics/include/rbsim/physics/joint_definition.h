@@ -57,6 +57,9 @@ struct JointMotor {
 // controller): effort = −stiffness (position − target) − damping rate,
 // capped at `maxEffort`. The spring and damper are implicit in the step
 // (as Box2D's and Jolt's soft constraints), so any stiffness is stable.
+// On a distance joint the drive is a spring between the anchors: `target`
+// is its rest length (m, >= 0), and the joint has no rigid length (only
+// its limits, if any, as stops).
 // Instead of stiffness and damping, a drive may give its natural frequency
 // and damping ratio: the stiffness and damping then follow each step from
 // the effective mass or inertia the axis moves (m ω², 2 ζ m ω).
@@ -85,13 +88,13 @@ struct JointDef {
   // do not: the links of a chain overlap at their joints).
   bool collideConnected = false;
   // Revolute, prismatic and distance joints (a distance joint with a limit
-  // has no `length`: it is free between the bounds).
+  // has no `length`: it is free between the bounds, or its spring pulls).
   JointLimit limit;
   // Spherical joints: > 0 limits the swing, the angle between `axis` as A
   // carries it and as B carries it, to at most this (a shoulder, a hip).
   double coneAngle = 0.0;  // rad, < π
   // The motor and the drive are two ways to command the axis: at most one
-  // is enabled.
+  // is enabled (a distance joint takes only the drive, as its spring).
   JointMotor motor;
   JointDrive drive;
   // The joint's own losses, as URDF's <dynamics>: viscous damping (an
