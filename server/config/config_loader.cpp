@@ -386,6 +386,9 @@ Expected<std::string> ConfigParser::parseName(const YamlNode& node) const {
       return m_reader.error(node, "expected a name without control characters");
     }
   }
+  // Joints (and world_t's joint descriptions) call the world itself "world".
+  if (*name == "world")
+    return m_reader.error(node, "\"world\" is reserved: joints name the world itself so; give the body another name");
   return name;
 }
 

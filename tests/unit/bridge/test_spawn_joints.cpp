@@ -171,6 +171,8 @@ TEST(SpawnJoints, ARefusedSpawnAddsNothingAndSaysWhere) {
             "spawn_yaml:2:12: bodies[0].name: the world already has a body named \"box\"");
   EXPECT_EQ(refused("{name: box, shape: {type: sphere, radius: 0.1}, mass: 1}"),
             "spawn_yaml:1:8: name: the world already has a body named \"box\"");
+  EXPECT_EQ(refused("{name: world, shape: {type: sphere, radius: 0.1}, mass: 1}"),
+            "spawn_yaml:1:8: name: \"world\" is reserved: joints name the world itself so; give the body another name");
   EXPECT_EQ(refused("bodies: []\nworld: {dt: 0.001}\n"),
             "spawn_yaml:2:1: world: unknown key; a spawn of bodies and joints has: bodies, joints");
   EXPECT_EQ(refused("joints:\n  - {name: j, type: revolute, body_a: world, body_b: post, anchor: [0, 0, 0], "
