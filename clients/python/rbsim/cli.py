@@ -204,7 +204,7 @@ def cmd_joints(args):
                     lambda: sim.joints if sim.joints is not None
                     and sim.joints.world_revision == world.world_revision else None,
                     args.timeout, "joint states on %s" % sim.channel("JOINTS"))
-    print("\n".join(printing.joint_lines(world, joints)))
+    print(printing.joints_json(world, joints) if args.json else "\n".join(printing.joint_lines(world, joints)))
 
 
 def cmd_joint(args):
@@ -348,6 +348,7 @@ def build_parser():
 
     sub = verb("joints", cmd_joints, "print the joints (type, bodies, axis, limits) and their state "
                                      "(asks the server to publish the world description)")
+    sub.add_argument("--json", action="store_true", help="print JSON")
 
     sub = verb("joint", cmd_joint, "command a joint's motor, position drive or effort (the modes are "
                                    "exclusive: each turns the joint's other actuators off)")

@@ -8,7 +8,7 @@ import json
 from typing import Collection, Iterable, List
 
 __all__ = ["state_lines", "status_lines", "world_lines", "joint_lines", "state_json", "status_json",
-           "world_json", "number", "orientation_values"]
+           "world_json", "joints_json", "number", "orientation_values"]
 
 # Below this a quaternion component is rounding noise of a unit quaternion,
 # beyond what 10 significant digits of the others can show: printed as 0.
@@ -140,6 +140,26 @@ def status_json(status) -> str:
         value = getattr(status, name)
         out[name] = bool(value) if name == "paused" else value
     return _dumps(out)
+
+
+def joints_json(world, joints=None) -> str:
+    """The joints as ``joint_lines`` has them, as one JSON object."""
+    out = []
+    for j in world.joints:
+        entry = {"name": j.name, "type": j.type, "body_a": j.body_a, "body_b": j.body_b,
+                 "anchor_a": [float(v) for v in j.anchor_a], "anchor_b": [float(v) for v in j.anchor_b],
+                 "axis": [float(v) for v in j.axis], "limit_enabled": bool(j.limit_enabled),
+                 "lower_limit": j.lower_limit, "upper_limit": j.upper_limit, "length": j.length,
+                 "spring": bool(j.spring), "cone_angle": j.cone_angle}
+        state = joints.by_name.get(j.name) if joints is not None else None
+        if state is not None:
+            entry.update({"position": state.position, "rate": state.rate,
+                          "rotation": state.rotation.tolist(), "force": state.force.tolist(),
+                          "torque": state.torque.tolist(), "effort": state.effort,
+                          "at_limit": state.at_limit, "error": state.error, "active": bool(state.active)})
+        out.append(entry)
+    return _dumps({"step": joints.step if joints is not None else world.step,
+                   "world_revision": world.world_revision, "joints": out})
 
 
 def world_json(world) -> str:

@@ -179,6 +179,45 @@ void printStatusJson(std::FILE* out, const rbsim::status_t& s) {
   std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
+void printJointsJson(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints) {
+  json list = json::array();
+  for (const auto& j : world.joints) {
+    json entry = {{"name", j.name},
+                  {"type", j.type},
+                  {"body_a", j.body_a},
+                  {"body_b", j.body_b},
+                  {"anchor_a", array(j.anchor_a)},
+                  {"anchor_b", array(j.anchor_b)},
+                  {"axis", array(j.axis)},
+                  {"limit_enabled", static_cast<bool>(j.limit_enabled)},
+                  {"lower_limit", j.lower_limit},
+                  {"upper_limit", j.upper_limit},
+                  {"length", j.length},
+                  {"spring", static_cast<bool>(j.spring)},
+                  {"cone_angle", j.cone_angle}};
+    const rbsim::joint_state_t* state = nullptr;
+    if (joints != nullptr)
+      for (const auto& candidate : joints->joints)
+        if (candidate.name == j.name) state = &candidate;
+    if (state != nullptr) {
+      entry["position"] = state->position;
+      entry["rate"] = state->rate;
+      entry["rotation"] = array(state->rotation);
+      entry["force"] = array(state->force);
+      entry["torque"] = array(state->torque);
+      entry["effort"] = state->effort;
+      entry["at_limit"] = state->at_limit;
+      entry["error"] = state->error;
+      entry["active"] = static_cast<bool>(state->active);
+    }
+    list.push_back(entry);
+  }
+  const json document = {{"step", joints != nullptr ? joints->step : world.step},
+                         {"world_revision", world.world_revision},
+                         {"joints", list}};
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+}
+
 void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
   json list = json::array();
   for (const auto& b : world.bodies)

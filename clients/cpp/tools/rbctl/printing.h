@@ -22,6 +22,9 @@ void printStateJson(std::FILE* out, const rbsim::world_state_t& state,
                     const std::vector<std::string>& bodies);
 void printStatusJson(std::FILE* out, const rbsim::status_t& status);
 void printWorldJson(std::FILE* out, const rbsim::world_t& world);
+// The joints of `world` with their state from `joints` (none: null), as one
+// JSON object: step, world_revision, joints.
+void printJointsJson(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints);
 // The world's joints (type, bodies, axis, limits) with their state in
 // `joints` (of the same world revision; nullptr when the world has none).
 void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints);

@@ -61,7 +61,7 @@ bool waitForState(Context& context) {
                                   context.timeout);
 }
 
-// Reads the only option of status and bodies; true with --json.
+// Reads the only option of status, bodies and joints; true with --json.
 bool jsonOption(Arguments& arguments, const char* verb) {
   bool json = false;
   while (!arguments.empty()) {
@@ -132,14 +132,21 @@ int runBodies(Context& context, Arguments& arguments) {
 }
 
 int runJoints(Context& context, Arguments& arguments) {
-  arguments.expectEnd();
+  const bool json = jsonOption(arguments, "joints");
+  const auto print = [&](const rbsim::joints_t* joints) {
+    if (json) {
+      printJointsJson(stdout, *context.client.world(), joints);
+    } else {
+      printJoints(stdout, *context.client.world(), joints);
+    }
+  };
   // Ask for a fresh description, then the joints' state of its revision.
   context.client.publishWorld();
   if (!context.client.spinUntil([&] { return context.client.world().has_value(); }, context.timeout))
     return noAnswer(context, "world description on " + context.client.channel("WORLD"));
   const rbsim::world_t& world = *context.client.world();
   if (world.total_joints == 0) {
-    printJoints(stdout, world, nullptr);
+    print(nullptr);
     return kExitOk;
   }
   const auto matching = [&] {
@@ -148,7 +155,7 @@ int runJoints(Context& context, Arguments& arguments) {
   };
   if (!context.client.spinUntil(matching, context.timeout))
     return noAnswer(context, "joint states on " + context.client.channel("JOINTS"));
-  printJoints(stdout, *context.client.world(), &*context.client.latestJoints());
+  print(&*context.client.latestJoints());
   return kExitOk;
 }
 
@@ -427,12 +434,15 @@ const std::vector<Verb>& verbs() {
        "and waits for its ack.\n",
        runRemove},
       {"joints", "print the joints (type, bodies, axis, limits) and their state",
-       "usage: rbctl joints\n\n"
+       "usage: rbctl joints [--json]\n\n"
        "Asks the server to publish the world description (PUBLISH_WORLD) and prints a\n"
        "line \"joints N step S world_revision R\", then per joint \"joint NAME type T\n"
-       "body_a A body_b B axis X Y Z limits LOWER UPPER|none position P rate V effort E\n"
-       "at_limit L active true|false\" (the world is \"world\"; axis in the world frame;\n"
-       "rad, rad/s and N m for revolute joints, m, m/s and N for prismatic ones).\n",
+       "body_a A body_b B axis X Y Z limits LOWER UPPER|none [length L] [spring]\n"
+       "[cone C] position P rate V effort E at_limit L active true|false\" (the world\n"
+       "is \"world\"; axis in the world frame; rad, rad/s and N m for revolute joints,\n"
+       "m, m/s and N for prismatic and distance ones).\n"
+       "  --json   one JSON object: step, world_revision, joints (each with its\n"
+       "           description and state fields)\n",
        runJoints},
       {"joint", "command a joint's motor, position drive or effort",
        "usage: rbctl joint NAME off|velocity|position|effort [TARGET] [--max-effort E]\n"
