@@ -131,4 +131,11 @@ AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass
   return out;
 }
 
+double actuationAtRate(const AxisLaw& law, double rate) {
+  double actuation = 0.0;
+  if (law.motor && rate != law.motorTarget) actuation += rate < law.motorTarget ? law.motorCap : -law.motorCap;
+  if (law.drive) actuation += std::clamp(uncappedDrive(law).at(rate), -law.driveCap, law.driveCap);
+  return actuation;
+}
+
 }  // namespace rbsim

@@ -53,4 +53,10 @@ struct AxisImpulse {
 // inverseMass > 0.
 AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass);
 
+// The motor's and the drive's impulse over law.h on an axis held at `rate`
+// by something else (a stop, a loop: the laws cannot move it): the drive's
+// spring and damper there, capped, and the motor's cap towards its target
+// (nothing at its target).
+double actuationAtRate(const AxisLaw& law, double rate);
+
 }  // namespace rbsim

@@ -388,12 +388,14 @@ void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<J
   for (std::size_t i = 0; i < n; ++i) freeRate[static_cast<Eigen::Index>(i)] = rowRate(axes[i].row, bodies, inverseInertia);
 
   // A drive given as a frequency and damping ratio: k = m ω², c = 2 ζ m ω
-  // with m the axis's effective mass or inertia, 1 / A_ii.
+  // with m the axis's effective mass or inertia, 1 / A_ii (none on a
+  // locked axis).
   for (std::size_t i = 0; i < n; ++i) {
     const JointDrive& drive = links[axes[i].link].joint->def.drive;
     AxisLaw& law = axes[i].law;
-    if (!law.drive || locked[i]) continue;
+    if (!law.drive) continue;
     if (drive.frequency > 0.0) {
+      if (locked[i]) continue;
       const double mass = 1.0 / response(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
       const double omega = 2.0 * 3.14159265358979323846 * drive.frequency;
       law.driveStiffness = mass * omega * omega;
@@ -432,6 +434,14 @@ void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<J
     result.linearImpulse += axis.impulse.total * axis.row.jacobian.linearB;
     result.angularImpulse += axis.impulse.total * axis.row.jacobian.angularB;
   }
+  // A locked axis moves nothing, but its actuator still pushes (a servo or a
+  // spring against its stop, a motor stalled): its push at the rate the
+  // lock holds is reported as its effort. The lock carries it, so the
+  // bodies and the joint's force are the same as without it. (A drive given
+  // as a frequency has no gains on an axis of infinite mass: it reports
+  // nothing.)
+  for (std::size_t i = 0; i < n; ++i)
+    if (locked[i]) results[axes[i].link].axisImpulse += actuationAtRate(axes[i].law, freeRate[static_cast<Eigen::Index>(i)]);
 }
 
 bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
