@@ -309,15 +309,17 @@ BodyId World::findBody(std::string_view name) const {
 bool World::isValid(BodyId id) const { return invalidIdReason(id).empty(); }
 
 std::string World::invalidIdReason(BodyId id) const {
-  const std::string named = "body id (index " + std::to_string(id.index) + ", generation " +
-                            std::to_string(id.generation) + ", world " + std::to_string(id.world) + ")";
+  // The message is made only for an id that fails: a valid one (every body
+  // lookup of every step) costs no string.
+  const auto named = [&] {
+    return "body id (index " + std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
+           ", world " + std::to_string(id.world) + ")";
+  };
   if (id.isNull()) return "a null body id";
-  if (id.world != m_tag) return named + " is of another world";
-  if (id.index < 0 || static_cast<size_t>(id.index) > m_slots.size())
-    return named + " names no slot of this world";
+  if (id.world != m_tag) return named() + " is of another world";
+  if (id.index < 1 || static_cast<size_t>(id.index) > m_slots.size()) return named() + " names no slot of this world";
   const Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
-  if (slot.denseIndex < 0 || slot.generation != id.generation)
-    return named + " is stale: its body was removed";
+  if (slot.denseIndex < 0 || slot.generation != id.generation) return named() + " is stale: its body was removed";
   return {};
 }
 
