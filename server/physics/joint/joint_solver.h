@@ -132,10 +132,6 @@ class JointSolver {
   // drives', damping's and friction's impulses over the step h.
   void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                          const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
-  // The system the contact solve's joint projection (JointVelocityProjection)
-  // factorises its K₀ in, kept here so that its analysis lasts from step
-  // to step like this solver's own.
-  RowSystem& contactSystem() { return m_contactSystem; }
 
  private:
   using Row = JointSolverRow;
@@ -178,7 +174,6 @@ class JointSolver {
   std::vector<Row> m_rows;
   std::vector<LimitRow> m_limits;
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
-  RowSystem m_contactSystem;
 };
 
 // The side poses of a link from the bodies' current poses (or start poses).

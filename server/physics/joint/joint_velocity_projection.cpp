@@ -17,8 +17,8 @@ constexpr double kAtBound = 1e-9;  // m or rad
 
 JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& links,
                                                  const std::vector<JointBody>& bodies,
-                                                 std::vector<std::size_t> solverIndex, RowSystem& system)
-    : m_solverIndex(std::move(solverIndex)), m_system(system) {
+                                                 std::vector<std::size_t> solverIndex)
+    : m_solverIndex(std::move(solverIndex)) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     const JointSidePose a = sidePose(link, bodies, false, true);

@@ -25,11 +25,8 @@ class JointVelocityProjection final : public VelocityProjection {
  public:
   // `links` name their sides by index into `bodies` (start poses, inverse
   // mass and inertia), and `solverIndex` maps those to the solver's bodies.
-  // `system` is where K₀ is factorised: one kept from step to step keeps
-  // its ordering and symbolic analysis while the joints' pattern stays
-  // (the same bits either way).
   JointVelocityProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                          std::vector<std::size_t> solverIndex, RowSystem& system);
+                          std::vector<std::size_t> solverIndex);
   void project(std::vector<SolverBody>& bodies) const override;
 
  private:
@@ -49,7 +46,7 @@ class JointVelocityProjection final : public VelocityProjection {
   std::vector<JointSolverRow> m_rows;  // the joints' equality rows
   std::vector<Limit> m_limits;
   std::vector<std::size_t> m_solverIndex;
-  RowSystem& m_system;                 // K₀ of the equality rows
+  RowSystem m_system;                  // K₀ of the equality rows
   // Column j of A: the limit rows' rates per unit impulse along limit row
   // j, with the joints' rows holding; made when limit j first pushes (most
   // limits at a bound are never moved into), on a scratch copy of the

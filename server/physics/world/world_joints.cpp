@@ -327,10 +327,7 @@ std::unique_ptr<VelocityProjection> World::addJointedIslandsInContact(ContactSte
   std::vector<JointLink> inContact;
   for (const JointLink& link : links)
     if (link.bodyA >= 0 || link.bodyB >= 0) inContact.push_back(link);
-  // The solver's kept system: a cache (its results do not depend on it),
-  // so using it from this const step is no change of the world's state.
-  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex),
-                                                   m_jointSolver->contactSystem());
+  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
 }
 
 void World::stepJointedBodies(const std::vector<char>& jointed, const std::vector<char>& solving,
