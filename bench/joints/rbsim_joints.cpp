@@ -92,7 +92,7 @@ class RbsimEngine final : public jb::Engine {
   std::string settings() const override {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "joints at the position level (exact sparse solve, tolerance 1e-12); contact velocity "
+                  "joints at the position level (exact block-sparse solve, tolerance 1e-12); contact velocity "
                   "iterations=%d; friction 0.5, restitution 0; no sleeping",
                   m_world->settings().contact.solver.velocityIterations);
     return text;

@@ -1,6 +1,5 @@
 #include "physics/joint/joint_solver.h"
 
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -77,62 +76,11 @@ Mat3 turnResponse(const Quaternion& from, const Vec3& omega, double h) {
 
 }  // namespace
 
-void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
-                     const std::vector<Mat3>& inverseInertia) {
-  const auto count = static_cast<Eigen::Index>(rows.size());
-  if (count == 0) {  // nothing to hold (ropes, all slack): no system
-    m_ok = false;
-    return;
-  }
-  // The rows touching each body, in row order.
-  std::vector<std::vector<std::pair<int, bool>>> touching(bodies.size());
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (rows[r].bodyA >= 0) touching[static_cast<std::size_t>(rows[r].bodyA)].push_back({static_cast<int>(r), false});
-    if (rows[r].bodyB >= 0) touching[static_cast<std::size_t>(rows[r].bodyB)].push_back({static_cast<int>(r), true});
-  }
-  std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t body = 0; body < bodies.size(); ++body) {
-    const double inverseMass = bodies[body].inverseMass;
-    const Mat3& inverseI = inverseInertia[body];
-    const auto& list = touching[body];
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const JointRow& ri = rows[static_cast<std::size_t>(list[i].first)].jacobian;
-      const Vec3& linI = list[i].second ? ri.linearB : ri.linearA;
-      const Vec3 responseI = inverseI * (list[i].second ? ri.angularB : ri.angularA);
-      for (std::size_t j = 0; j <= i; ++j) {
-        const JointRow& rj = rows[static_cast<std::size_t>(list[j].first)].jacobian;
-        const Vec3& linJ = list[j].second ? rj.linearB : rj.linearA;
-        const Vec3& angJ = list[j].second ? rj.angularB : rj.angularA;
-        const double k = inverseMass * linI.dot(linJ) + angJ.dot(responseI);
-        // Lower triangle: row index >= column index.
-        const int a = std::max(list[i].first, list[j].first);
-        const int b = std::min(list[i].first, list[j].first);
-        entries.emplace_back(a, b, k);
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> k(count, count);
-  k.setFromTriplets(entries.begin(), entries.end());
-  // A tiny relative regularisation keeps K definite when joints are
-  // redundant (a four-bar's hinges constrain one motion twice). It only
-  // changes how fast the iteration converges, not what it converges to:
-  // the iteration stops on the constraint errors themselves.
-  for (Eigen::Index r = 0; r < count; ++r) k.coeffRef(r, r) *= 1.0 + 1e-10;
-  k.makeCompressed();
-  const int* outer = k.outerIndexPtr();
-  const int* inner = k.innerIndexPtr();
-  const bool samePattern = m_ok && m_size == count &&
-                           std::equal(m_outer.begin(), m_outer.end(), outer, outer + count + 1) &&
-                           static_cast<Eigen::Index>(m_inner.size()) == k.nonZeros() &&
-                           std::equal(m_inner.begin(), m_inner.end(), inner);
-  if (!samePattern) {
-    m_ldlt.analyzePattern(k);
-    m_outer.assign(outer, outer + count + 1);
-    m_inner.assign(inner, inner + k.nonZeros());
-    m_size = count;
-  }
-  m_ldlt.factorize(k);
-  m_ok = m_ldlt.info() == Eigen::Success;
+std::vector<double> inverseMasses(const std::vector<JointBody>& bodies) {
+  std::vector<double> out;
+  out.reserve(bodies.size());
+  for (const JointBody& body : bodies) out.push_back(body.inverseMass);
+  return out;
 }
 
 JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB, bool atStart) {
@@ -485,7 +433,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  m_system.factor(m_rows, bodies, startInverseInertia);
+  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
 
   // The motors, drives, damping and friction: their first half, on the
   // velocities the drift will use.
@@ -559,7 +507,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
       m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
     }
-    m_system.factor(m_rows, bodies, startInverseInertia);
+    m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
@@ -655,7 +603,7 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     bool reuse = round == 0 && !axesAct && m_system.ok() && m_system.size() == count &&
                  endLimits.size() == m_limits.size();
     for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
-    if (!reuse) m_system.factor(m_rows, bodies, inverseInertia);  // none for no rows
+    if (!reuse) m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);  // none for no rows
     if (m_rows.empty() || !m_system.ok()) break;
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
     Eigen::VectorXd rate(count);

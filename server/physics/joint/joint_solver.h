@@ -9,9 +9,8 @@
 //     semi-implicit integrator, body/integrator.h);
 //  2. SHAKE: constraint impulses along the rows of J at the step's start
 //     change P and L until C(x) = C(x₀) at the drifted poses. Each
-//     iteration solves J₀ M₀⁻¹ J₀ᵀ Δλ = −ΔC / h exactly (a sparse LDLᵀ
-//     factorisation made once per step, as in Baraff, "Linear-Time Dynamics
-//     using Lagrange Multipliers", SIGGRAPH 1996), so a heavy tip on a long
+//     iteration solves J₀ M₀⁻¹ J₀ᵀ Δλ = −ΔC / h exactly (a block Cholesky
+//     factorisation made once per step, joint/row_system.h), so a heavy tip on a long
 //     chain costs no more iterations than a pendulum; the iteration is a
 //     quasi-Newton one that converges in a few steps;
 //  3. positions only: the contacts' split-impulse pseudo-velocities and any
@@ -25,11 +24,11 @@
 // symplectic: a frictionless pendulum keeps its energy, its period is
 // right to O(h²).
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
+#include <Eigen/Core>
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
+#include "physics/joint/row_system.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
 
@@ -76,45 +75,6 @@ struct JointLinkResult {
   double error = 0.0;                  // largest |C| at the end poses
   double axisImpulse = 0.0;            // the motor's or drive's, along the axis (N·s or N·m·s)
   int atLimit = 0;                     // -1, +1: held at the lower or upper limit
-};
-
-// One scalar row of the step's system: the link it belongs to and its sides.
-struct JointSolverRow {
-  int bodyA = -1, bodyB = -1;  // JointBody indices, -1: a fixed side
-  int link = 0;
-  JointRow jacobian;
-};
-
-// K = J M⁻¹ Jᵀ over the rows, factorised (sparse LDLᵀ with a fill-reducing
-// ordering): two rows couple only through a body they share, so a chain's K
-// is block tridiagonal and its factorisation costs O(rows).
-//
-// The fill-reducing ordering and the symbolic factorisation depend only on
-// which rows share bodies, so they are kept and reused while that pattern
-// stays (a grid of joints step after step); they are a function of the
-// pattern, so results are the same bits whether they were kept or made
-// anew (a copy starts without them).
-class RowSystem {
- public:
-  RowSystem() = default;
-  RowSystem(const RowSystem&) {}
-  RowSystem& operator=(const RowSystem&) {
-    m_ok = false;
-    m_outer.clear();
-    m_inner.clear();
-    return *this;
-  }
-  void factor(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
-              const std::vector<Mat3>& inverseInertia);
-  bool ok() const { return m_ok; }
-  Eigen::Index size() const { return m_size; }
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return m_ldlt.solve(rhs); }
-
- private:
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> m_ldlt;
-  std::vector<int> m_outer, m_inner;  // the pattern the kept analysis is of
-  Eigen::Index m_size = 0;
-  bool m_ok = false;
 };
 
 class JointSolver {
@@ -175,6 +135,9 @@ class JointSolver {
   std::vector<LimitRow> m_limits;
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
 };
+
+// The bodies' inverse masses, for RowSystem::factor.
+std::vector<double> inverseMasses(const std::vector<JointBody>& bodies);
 
 // The side poses of a link from the bodies' current poses (or start poses).
 JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB,

@@ -38,7 +38,7 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
   std::vector<Mat3> inverseInertia;
   inverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) inverseInertia.push_back(body.startInverseInertia);
-  if (!m_rows.empty()) m_system.factor(m_rows, bodies, inverseInertia);
+  if (!m_rows.empty()) m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);
   if (m_limits.empty()) return;
 
   // The scratch bodies for the limits' response: their inverse mass and
@@ -102,10 +102,30 @@ void JointVelocityProjection::push(const JointSolverRow& row, double lambda, std
 void JointVelocityProjection::projectJoints(std::vector<SolverBody>& bodies) const {
   if (m_rows.empty() || !m_system.ok()) return;
   const auto count = static_cast<Eigen::Index>(m_rows.size());
-  Eigen::VectorXd rates(count);
-  for (Eigen::Index r = 0; r < count; ++r) rates[r] = rate(m_rows[static_cast<std::size_t>(r)], bodies);
-  const Eigen::VectorXd impulse = m_system.solve(-rates);
-  for (Eigen::Index r = 0; r < count; ++r) push(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
+  m_impulse.resize(count);
+  for (Eigen::Index r = 0; r < count; ++r) m_impulse[r] = -rate(m_rows[static_cast<std::size_t>(r)], bodies);
+  m_system.solveInPlace(m_impulse);
+  // The rows' impulses summed per body, then through its inverse mass and
+  // inertia once.
+  m_linearImpulse.assign(m_solverIndex.size(), Vec3::Zero());
+  m_angularImpulse.assign(m_solverIndex.size(), Vec3::Zero());
+  for (Eigen::Index r = 0; r < count; ++r) {
+    const JointSolverRow& row = m_rows[static_cast<std::size_t>(r)];
+    const double lambda = m_impulse[r];
+    if (row.bodyA >= 0) {
+      m_linearImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.linearA;
+      m_angularImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.angularA;
+    }
+    if (row.bodyB >= 0) {
+      m_linearImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.linearB;
+      m_angularImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.angularB;
+    }
+  }
+  for (std::size_t local = 0; local < m_solverIndex.size(); ++local) {
+    SolverBody& body = bodies[m_solverIndex[local]];
+    body.linearVelocity += body.inverseMass * m_linearImpulse[local];
+    body.angularVelocity += body.inverseInertia * m_angularImpulse[local];
+  }
 }
 
 void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {

@@ -56,6 +56,9 @@ class JointVelocityProjection final : public VelocityProjection {
   mutable std::vector<char> m_haveColumn;
   mutable std::vector<SolverBody> m_scratch;
   std::vector<std::size_t> m_localBodies;  // the scratch's bodies, by solver index
+  // projectJoints' scratch: the rows' impulses, and their sums per body.
+  mutable Eigen::VectorXd m_impulse;
+  mutable std::vector<Vec3> m_linearImpulse, m_angularImpulse;
 };
 
 }  // namespace rbsim

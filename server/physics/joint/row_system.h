@@ -1,0 +1,103 @@
+#pragma once
+// K = J M⁻¹ Jᵀ over the joints' rows, factorised K = L Lᵀ by blocks: one
+// block per joint, holding all of its rows (and its limit's row, when the
+// step holds one). Two blocks couple only through a body they share, so the
+// block pattern is the joint graph's: for a tree of joints (a chain, an arm,
+// a ragdoll) an elimination from the leaves makes no fill, and the factor
+// and each solve cost O(joints) (Baraff, "Linear-Time Dynamics using
+// Lagrange Multipliers", SIGGRAPH 1996); a loop (a four-bar, a grid of
+// joints) fills in what its ordering makes it fill.
+//
+// The elimination order (approximate minimum degree on the block pattern:
+// Amestoy, Davis and Duff, SIAM J. Matrix Anal. Appl. 17, 1996) and the
+// symbolic factorisation (which blocks L has, which updates each column
+// makes) depend only on which joints there are and which bodies they join,
+// not on their rows' values or on how many rows a block has. They are kept
+// while that graph stays (step after step, and while limits come and go)
+// and are a pure function of it, so a kept analysis and a fresh one give
+// the same bits.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "physics/joint/joint_constraint.h"
+#include "physics/math/types.h"
+
+namespace rbsim {
+
+// One scalar row of the joint step's system: the link (joint) it belongs to
+// and its sides.
+struct JointSolverRow {
+  int bodyA = -1, bodyB = -1;  // body indices, -1: a fixed side
+  int link = 0;
+  JointRow jacobian;
+};
+
+class RowSystem {
+ public:
+  // K of the rows for bodies of these inverse masses and (world) inverse
+  // inertias, factorised. The rows of one link share a block; a link's rows
+  // need not be next to each other (its limit's row may follow the rest).
+  void factor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
+              const std::vector<Mat3>& inverseInertia);
+  // False when there are no rows or K was not positive definite.
+  bool ok() const { return m_ok; }
+  Eigen::Index size() const { return m_rowCount; }
+  // K⁻¹ rhs, rhs in the rows' order.
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  void solveInPlace(Eigen::VectorXd& x) const;
+
+  // A column's off-diagonal blocks, [first, last) into the analysis' lists.
+  struct Column {
+    int first, last;
+  };
+
+ private:
+  static constexpr int kMaxBlock = kMaxJointRows + 1;  // a joint's rows and its limit's
+
+  // The block graph the analysis is of: per block, its link and bodies.
+  struct BlockKey {
+    int link, bodyA, bodyB;
+    bool operator==(const BlockKey& o) const { return link == o.link && bodyA == o.bodyA && bodyB == o.bodyB; }
+  };
+  void analyse();
+
+  // --- the analysis (a function of m_keys only) ---
+  std::vector<BlockKey> m_keys;  // by block, in link order
+  std::vector<int> m_blockAt;    // elimination position -> block
+  std::vector<int> m_positionOf; // block -> elimination position
+  // L's off-diagonal blocks by column (elimination position): column c's
+  // are m_below[m_columnStart[c] .. m_columnStart[c + 1]), their row
+  // positions ascending.
+  std::vector<int> m_columnStart;
+  std::vector<int> m_below;
+  // Column c's updates: for each pair (a, b), a > b, of its off-diagonal
+  // blocks, the off-diagonal block L_a L_bᵀ goes to (by b, then a).
+  std::vector<int> m_updateTarget;
+  // K's contributions: per body, the blocks touching it (block, side B?).
+  struct Touch {
+    int block;
+    bool sideB;
+  };
+  std::vector<int> m_touchStart;
+  std::vector<Touch> m_touches;
+  // Per pair of touches of one body (first >= second in elimination
+  // order), where their K block goes (as m_updateTarget).
+  std::vector<int> m_assemblyTarget;
+
+  // --- the numbers, per factor ---
+  std::vector<std::array<int, kMaxBlock>> m_rowsOf;  // by block: its rows' indices
+  std::vector<int> m_sizeOf;                          // by block
+  std::vector<int> m_sizeAt;                          // by position
+  std::vector<int> m_rowAtSlot;  // the rows in elimination order
+  mutable Eigen::VectorXd m_scratch;
+  std::vector<int> m_diagonalAt;  // by position: offset of the diagonal block in m_values
+  std::vector<int> m_belowAt;     // by off-diagonal block: offset in m_values
+  std::vector<int> m_segmentAt;   // by position: offset of its rows in the solve's vector
+  std::vector<double> m_values;
+  Eigen::Index m_rowCount = 0;
+  bool m_ok = false;
+};
+
+}  // namespace rbsim
