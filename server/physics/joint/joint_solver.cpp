@@ -97,6 +97,15 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
   const auto count = static_cast<Eigen::Index>(m_rows.size());
   Eigen::VectorXd total = Eigen::VectorXd::Zero(count);
   Eigen::VectorXd residual(count);
+  // The bodies' current rotations, made once per move (a body is the side
+  // of several joints).
+  std::vector<Mat3> rotation(bodies.size());
+  const auto currentSide = [&](const JointLink& link, bool sideB) {
+    const int index = sideB ? link.bodyB : link.bodyA;
+    if (index < 0) return sideB ? link.fixedB : link.fixedA;
+    const JointBody& body = bodies[static_cast<std::size_t>(index)];
+    return JointSidePose{body.position, body.orientation, rotation[static_cast<std::size_t>(index)]};
+  };
   // The errors at the current poses less the targets; returns the largest.
   const auto measure = [&] {
     double worst = 0.0;
@@ -104,7 +113,7 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
     for (std::size_t l = 0; l < links.size(); ++l) {
       const JointLink& link = links[l];
       double errors[kMaxJointRows];
-      link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
+      link.joint->errors(currentSide(link, false), currentSide(link, true), bases[l], errors);
       for (int k = 0; k < link.joint->rowCount(); ++k, ++r) {
         residual[r] = errors[k] - (targets ? (*targets)[static_cast<std::size_t>(r)] : 0.0);
         worst = std::max(worst, std::abs(residual[r]));
@@ -112,8 +121,7 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
     }
     for (const LimitRow& limit : m_limits) {  // the coordinate at its bound
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
-      residual[r] = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false)) -
-                    limit.bound;
+      residual[r] = link.joint->coordinate(currentSide(link, false), currentSide(link, true)) - limit.bound;
       worst = std::max(worst, std::abs(residual[r]));
       ++r;
     }
@@ -129,6 +137,7 @@ Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::v
                        drift.linearVelocity[i] + bodies[i].inverseMass * drift.linearImpulse[i], omegaOf(i), h);
       bodies[i].position = pose.position;
       bodies[i].orientation = pose.orientation;
+      rotation[i] = pose.orientation.toRotationMatrix();
     }
   };
   const auto applyImpulse = [&](const Eigen::VectorXd& impulse, double scale) {

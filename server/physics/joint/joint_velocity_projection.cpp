@@ -55,6 +55,7 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
   const auto n = static_cast<Eigen::Index>(m_limits.size());
   m_limitResponse.setZero(n, n);
   m_haveColumn.assign(m_limits.size(), 0);
+  m_columnVelocities.resize(m_limits.size());
 }
 
 Eigen::VectorXd JointVelocityProjection::responseColumn(std::size_t j) const {
@@ -68,6 +69,12 @@ Eigen::VectorXd JointVelocityProjection::responseColumn(std::size_t j) const {
     projectJoints(m_scratch);
     for (std::size_t i = 0; i < m_limits.size(); ++i)
       m_limitResponse(static_cast<Eigen::Index>(i), jj) = rate(m_limits[i].row, m_scratch);
+    std::vector<Vec3>& velocities = m_columnVelocities[j];
+    velocities.clear();
+    for (const std::size_t index : m_localBodies) {
+      velocities.push_back(m_scratch[index].linearVelocity);
+      velocities.push_back(m_scratch[index].angularVelocity);
+    }
     m_haveColumn[j] = 1;
   }
   return m_limitResponse.col(jj);
@@ -200,13 +207,19 @@ void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
     }
     if (!changed) break;
   }
-  bool any = false;
+  // The limits' pushes with the joints' reply: by linearity, each push's
+  // velocities as its column of A has them (projecting the pushed
+  // velocities again would give the same to rounding, at a solve's cost).
   for (Eigen::Index i = 0; i < n; ++i) {
     if (mu[i] <= 0.0) continue;
-    push(m_limits[static_cast<std::size_t>(i)].row, s[i] * mu[i], bodies);
-    any = true;
+    const double scale = s[i] * mu[i];
+    const std::vector<Vec3>& velocities = m_columnVelocities[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < m_localBodies.size(); ++k) {
+      SolverBody& body = bodies[m_localBodies[k]];
+      body.linearVelocity += scale * velocities[2 * k];
+      body.angularVelocity += scale * velocities[2 * k + 1];
+    }
   }
-  if (any) projectJoints(bodies);  // the joints' reply to the limits' pushes, as A has it
 }
 
 }  // namespace rbsim

@@ -6,8 +6,10 @@
 // at the step's start (a knee straight, a foot at its ankle's stop) gets
 // its limit row, which may only push. The limits are a small linear
 // complementarity problem on their rows with the joints holding (A = the
-// limit rows' response through K₀, made as the limits need it), solved exactly by
-// pivoting; then the joints' rows are projected again. Alternating the
+// limit rows' response through K₀, made as the limits need it), solved
+// exactly by pivoting; the joints' reply to the limits' pushes comes with
+// A's columns (a column is the velocities a unit push leaves with the
+// joints holding). Alternating the
 // contact sweeps with this exact projection is block Gauss–Seidel between
 // the contact set and the joint set: the step's velocities satisfy both,
 // and the position projection that follows (joint/joint_solver.h) only
@@ -54,6 +56,9 @@ class JointVelocityProjection final : public VelocityProjection {
   Eigen::VectorXd responseColumn(std::size_t j) const;
   mutable Eigen::MatrixXd m_limitResponse;
   mutable std::vector<char> m_haveColumn;
+  // With each column, the velocities a unit push along limit j leaves with
+  // the joints holding (linear, angular per body of m_localBodies).
+  mutable std::vector<std::vector<Vec3>> m_columnVelocities;
   mutable std::vector<SolverBody> m_scratch;
   std::vector<std::size_t> m_localBodies;  // the scratch's bodies, by solver index
   // projectJoints' scratch: the rows' impulses, and their sums per body.

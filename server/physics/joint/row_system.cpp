@@ -20,31 +20,33 @@ int findBelow(const std::vector<int>& columnStart, const std::vector<int>& below
 }
 
 // In place, the lower Cholesky factor of the n × n column-major block d
-// (only its lower triangle is read). False if it is not positive definite.
+// (only its lower triangle is read), its diagonal kept as reciprocals (the
+// solves multiply by them: no division on their critical path). False if
+// it is not positive definite.
 bool choleskyInPlace(double* d, int n) {
   for (int k = 0; k < n; ++k) {
     double pivot = d[k + n * k];
     for (int m = 0; m < k; ++m) pivot -= d[k + n * m] * d[k + n * m];
     if (!(pivot > 0.0) || !std::isfinite(pivot)) return false;
-    pivot = std::sqrt(pivot);
-    d[k + n * k] = pivot;
+    const double inverse = 1.0 / std::sqrt(pivot);
+    d[k + n * k] = inverse;
     for (int i = k + 1; i < n; ++i) {
       double v = d[i + n * k];
       for (int m = 0; m < k; ++m) v -= d[i + n * m] * d[k + n * m];
-      d[i + n * k] = v / pivot;
+      d[i + n * k] = v * inverse;
     }
   }
   return true;
 }
 
 // b := b L⁻ᵀ for the rows × n column-major block b and the n × n lower
-// factor l.
+// factor l (its diagonal as reciprocals).
 void solveRightTransposed(const double* l, int n, double* b, int rows) {
   for (int i = 0; i < rows; ++i)
     for (int k = 0; k < n; ++k) {
       double v = b[i + rows * k];
       for (int m = 0; m < k; ++m) v -= l[k + n * m] * b[i + rows * m];
-      b[i + rows * k] = v / l[k + n * k];
+      b[i + rows * k] = v * l[k + n * k];
     }
 }
 
@@ -231,6 +233,19 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
     }
   }
   m_values.assign(static_cast<std::size_t>(offset), 0.0);
+  // The solve's plan: each column's and block's place and size in one
+  // record.
+  m_columnPlan.resize(static_cast<std::size_t>(blocks));
+  m_belowPlan.resize(m_below.size());
+  for (int p = 0; p < blocks; ++p) {
+    const auto position = static_cast<std::size_t>(p);
+    m_columnPlan[position] = {m_diagonalAt[position], m_segmentAt[position], sizeAt(p), m_columnStart[position],
+                              m_columnStart[position + 1]};
+  }
+  for (std::size_t e = 0; e < m_below.size(); ++e) {
+    const auto row = static_cast<std::size_t>(m_below[e]);
+    m_belowPlan[e] = {m_belowAt[e], m_segmentAt[row], m_sizeAt[row]};
+  }
   // A target as an offset, and its row count (its leading dimension).
   const auto targetAt = [&](int target, int& leading) {
     if (target < 0) {
@@ -318,42 +333,46 @@ namespace {
 // One column of L y = z (a diagonal block of S rows, then the blocks below
 // it), and of Lᵀ x = y, S fixed so the small loops unroll.
 template <int S>
-void forwardColumn(const double* l, double* zp, const RowSystem::Column& column, const double* values, double* z,
-                   const int* sizeAt, const int* segmentAt, const int* belowRow, const int* belowAt) {
+void forwardColumn(const double* values, const RowSystem::ColumnPlan& column, const RowSystem::BlockPlan* below,
+                   double* z) {
+  const double* l = values + column.diagonal;
+  double* zp = z + column.segment;
   for (int k = 0; k < S; ++k) {
     double v = zp[k];
     for (int m = 0; m < k; ++m) v -= l[k + S * m] * zp[m];
-    zp[k] = v / l[k + S * k];
+    zp[k] = v * l[k + S * k];
   }
   for (int e = column.first; e < column.last; ++e) {
-    const int r = belowRow[e];
-    const int rows = sizeAt[r];
-    const double* b = values + belowAt[e];
-    double* zr = z + segmentAt[r];
-    for (int k = 0; k < S; ++k)
-      for (int i = 0; i < rows; ++i) zr[i] -= b[i + rows * k] * zp[k];
+    const RowSystem::BlockPlan& block = below[e];
+    const double* b = values + block.values;
+    double* zr = z + block.segment;
+    for (int i = 0; i < block.rows; ++i) {
+      double v = 0.0;
+      for (int k = 0; k < S; ++k) v += b[i + block.rows * k] * zp[k];
+      zr[i] -= v;
+    }
   }
 }
 
 template <int S>
-void backwardColumn(const double* l, double* zp, const RowSystem::Column& column, const double* values,
-                    const double* z, const int* sizeAt, const int* segmentAt, const int* belowRow,
-                    const int* belowAt) {
+void backwardColumn(const double* values, const RowSystem::ColumnPlan& column, const RowSystem::BlockPlan* below,
+                    double* z) {
+  double* zp = z + column.segment;
   for (int e = column.first; e < column.last; ++e) {
-    const int r = belowRow[e];
-    const int rows = sizeAt[r];
-    const double* b = values + belowAt[e];
-    const double* zr = z + segmentAt[r];
+    const RowSystem::BlockPlan& block = below[e];
+    const double* b = values + block.values;
+    const double* zr = z + block.segment;
     for (int k = 0; k < S; ++k) {
       double v = 0.0;
-      for (int i = 0; i < rows; ++i) v += b[i + rows * k] * zr[i];
+      for (int i = 0; i < block.rows; ++i) v += b[i + block.rows * k] * zr[i];
       zp[k] -= v;
     }
   }
+  const double* l = values + column.diagonal;
   for (int k = S - 1; k >= 0; --k) {
     double v = zp[k];
     for (int m = k + 1; m < S; ++m) v -= l[m + S * k] * zp[m];
-    zp[k] = v / l[k + S * k];
+    zp[k] = v * l[k + S * k];
   }
 }
 
@@ -366,37 +385,27 @@ Eigen::VectorXd RowSystem::solve(const Eigen::VectorXd& rhs) const {
 }
 
 void RowSystem::solveInPlace(Eigen::VectorXd& x) const {
-  const int blocks = static_cast<int>(m_keys.size());
   // Into elimination order.
   m_scratch.resize(m_rowCount);
   double* z = m_scratch.data();
   for (Eigen::Index slot = 0; slot < m_rowCount; ++slot) z[slot] = x[m_rowAtSlot[static_cast<std::size_t>(slot)]];
   const double* values = m_values.data();
-  const int* sizeAt = m_sizeAt.data();
-  const int* segmentAt = m_segmentAt.data();
-  const int* belowRow = m_below.data();
-  const int* belowAt = m_belowAt.data();
+  const BlockPlan* below = m_belowPlan.data();
   // L y = z.
-  for (int p = 0; p < blocks; ++p) {
-    const double* l = values + m_diagonalAt[static_cast<std::size_t>(p)];
-    double* zp = z + segmentAt[p];
-    const Column column{m_columnStart[static_cast<std::size_t>(p)], m_columnStart[static_cast<std::size_t>(p) + 1]};
-    switch (sizeAt[p]) {
+  for (const ColumnPlan& column : m_columnPlan) {
+    switch (column.size) {
 #define RBSIM_FORWARD(S) \
-  case S: forwardColumn<S>(l, zp, column, values, z, sizeAt, segmentAt, belowRow, belowAt); break;
+  case S: forwardColumn<S>(values, column, below, z); break;
       RBSIM_FORWARD(1) RBSIM_FORWARD(2) RBSIM_FORWARD(3) RBSIM_FORWARD(4)
       RBSIM_FORWARD(5) RBSIM_FORWARD(6) RBSIM_FORWARD(7)
 #undef RBSIM_FORWARD
     }
   }
   // Lᵀ x = y.
-  for (int p = blocks - 1; p >= 0; --p) {
-    const double* l = values + m_diagonalAt[static_cast<std::size_t>(p)];
-    double* zp = z + segmentAt[p];
-    const Column column{m_columnStart[static_cast<std::size_t>(p)], m_columnStart[static_cast<std::size_t>(p) + 1]};
-    switch (sizeAt[p]) {
+  for (auto column = m_columnPlan.rbegin(); column != m_columnPlan.rend(); ++column) {
+    switch (column->size) {
 #define RBSIM_BACKWARD(S) \
-  case S: backwardColumn<S>(l, zp, column, values, z, sizeAt, segmentAt, belowRow, belowAt); break;
+  case S: backwardColumn<S>(values, *column, below, z); break;
       RBSIM_BACKWARD(1) RBSIM_BACKWARD(2) RBSIM_BACKWARD(3) RBSIM_BACKWARD(4)
       RBSIM_BACKWARD(5) RBSIM_BACKWARD(6) RBSIM_BACKWARD(7)
 #undef RBSIM_BACKWARD

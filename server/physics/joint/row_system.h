@@ -48,9 +48,14 @@ class RowSystem {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   void solveInPlace(Eigen::VectorXd& x) const;
 
-  // A column's off-diagonal blocks, [first, last) into the analysis' lists.
-  struct Column {
-    int first, last;
+  // The solve's view of a column (elimination position) and of a block
+  // below a diagonal: where its numbers and its rows' segment are, its
+  // size; a column's blocks are [first, last) of the blocks' plan.
+  struct ColumnPlan {
+    int diagonal, segment, size, first, last;
+  };
+  struct BlockPlan {
+    int values, segment, rows;
   };
 
  private:
@@ -92,6 +97,8 @@ class RowSystem {
   std::vector<int> m_sizeAt;                          // by position
   std::vector<int> m_rowAtSlot;  // the rows in elimination order
   mutable Eigen::VectorXd m_scratch;
+  std::vector<ColumnPlan> m_columnPlan;  // by position
+  std::vector<BlockPlan> m_belowPlan;    // by off-diagonal block
   std::vector<int> m_diagonalAt;  // by position: offset of the diagonal block in m_values
   std::vector<int> m_belowAt;     // by off-diagonal block: offset in m_values
   std::vector<int> m_segmentAt;   // by position: offset of its rows in the solve's vector
