@@ -90,7 +90,7 @@ JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodi
   return atStart ? poseOf(body.startPosition, body.startOrientation) : poseOf(body.position, body.orientation);
 }
 
-Eigen::VectorXd JointSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                      const std::vector<JointConstraint::Basis>& bases,
                                      const std::vector<double>* targets, Drift& drift, double h,
                                      const JointSolverSettings& settings, double& largest) {
@@ -258,7 +258,7 @@ double driveError(const JointConstraint& joint, double position) {
 
 }  // namespace
 
-void JointSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
+void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
   Eigen::VectorXd rate(count);
   for (Eigen::Index r = 0; r < count; ++r) rate[r] = rowRate(m_rows[static_cast<std::size_t>(r)], bodies, inverseInertia);
@@ -266,7 +266,7 @@ void JointSolver::removeJointRates(std::vector<JointBody>& bodies, const std::ve
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
 }
 
-void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                               const std::vector<Mat3>& inverseInertia, bool atEnd,
                               std::vector<JointLinkResult>& results) {
   // The laws along the axes (axis_actuation.h) act as RATTLE's kicks do:
@@ -401,7 +401,7 @@ void JointSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<J
     if (locked[i]) results[axes[i].link].axisImpulse += actuationAtRate(axes[i].law, freeRate[static_cast<Eigen::Index>(i)]);
 }
 
-bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                  double h, const JointSolverSettings& settings,
                                  std::vector<JointLinkResult>& results) {
   results.assign(links.size(), JointLinkResult{});
@@ -564,7 +564,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
   return left <= settings.tolerance;
 }
 
-void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                     const std::vector<Mat3>& inverseInertia, double h,
                                     std::vector<JointLinkResult>& results) {
   m_rows.clear();
@@ -642,7 +642,7 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
   if (axesAct) actuateAxesAtEnd(links, bodies, inverseInertia, h, results);
 }
 
-void JointSolver::actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+void JointGroupSolver::actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                    const std::vector<Mat3>& inverseInertia, double h,
                                    std::vector<JointLinkResult>& results) {
   // The axes' second half, on the rates the step ends with; its impulses
@@ -655,6 +655,105 @@ void JointSolver::actuateAxesAtEnd(const std::vector<JointLink>& links, std::vec
     results[l].axisImpulse += second[l].axisImpulse;
     results[l].linearImpulse += second[l].linearImpulse;
     results[l].angularImpulse += second[l].angularImpulse - arm.cross(second[l].linearImpulse);
+  }
+}
+
+std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::size_t bodyCount,
+                                    std::vector<int>& localIndex) {
+  // Union–find over the bodies the links join.
+  std::vector<int> parent(bodyCount);
+  for (std::size_t i = 0; i < bodyCount; ++i) parent[i] = static_cast<int>(i);
+  const auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+      i = parent[static_cast<std::size_t>(i)];
+    }
+    return i;
+  };
+  for (const JointLink& link : links)
+    if (link.bodyA >= 0 && link.bodyB >= 0) {
+      const int a = root(link.bodyA), b = root(link.bodyB);
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<int> groupOfRoot(bodyCount, -1);
+  std::vector<JointGroup> groups;
+  localIndex.assign(bodyCount, -1);
+  for (std::size_t i = 0; i < bodyCount; ++i) {
+    int& group = groupOfRoot[static_cast<std::size_t>(root(static_cast<int>(i)))];
+    if (group < 0) {
+      group = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    std::vector<int>& members = groups[static_cast<std::size_t>(group)].bodies;
+    localIndex[i] = static_cast<int>(members.size());
+    members.push_back(static_cast<int>(i));
+  }
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const int any = links[l].bodyA >= 0 ? links[l].bodyA : links[l].bodyB;
+    if (any < 0) continue;  // between two fixed sides: nothing to move
+    groups[static_cast<std::size_t>(groupOfRoot[static_cast<std::size_t>(root(any))])].links.push_back(static_cast<int>(l));
+  }
+  return groups;
+}
+
+JointLink inGroup(JointLink link, const std::vector<int>& localIndex) {
+  if (link.bodyA >= 0) link.bodyA = localIndex[static_cast<std::size_t>(link.bodyA)];
+  if (link.bodyB >= 0) link.bodyB = localIndex[static_cast<std::size_t>(link.bodyB)];
+  return link;
+}
+
+bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                                 const JointSolverSettings& settings, std::vector<JointLinkResult>& results) {
+  m_groups = jointGroups(links, bodies.size(), m_localIndex);
+  m_solvers.resize(std::max<std::size_t>(m_groups.size(), 1));
+  if (m_groups.size() <= 1) {  // one group (a chain, an arm): as it is
+    return m_solvers[0].solvePositions(links, bodies, h, settings, results);
+  }
+  results.assign(links.size(), JointLinkResult{});
+  bool closed = true;
+  for (std::size_t g = 0; g < m_groups.size(); ++g) {
+    const JointGroup& group = m_groups[g];
+    m_groupBodies.clear();
+    for (const int i : group.bodies) m_groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
+    m_groupLinks.clear();
+    for (const int l : group.links) {
+      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_localIndex));
+    }
+    closed = m_solvers[g].solvePositions(m_groupLinks, m_groupBodies, h, settings, m_groupResults) && closed;
+    for (std::size_t k = 0; k < group.bodies.size(); ++k)
+      bodies[static_cast<std::size_t>(group.bodies[k])] = m_groupBodies[k];
+    for (std::size_t k = 0; k < group.links.size(); ++k)
+      results[static_cast<std::size_t>(group.links[k])] = m_groupResults[k];
+  }
+  return closed;
+}
+
+void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                                    const std::vector<Mat3>& inverseInertia, double h,
+                                    std::vector<JointLinkResult>& results) {
+  if (m_groups.size() <= 1) {
+    m_solvers[0].projectVelocities(links, bodies, inverseInertia, h, results);
+    return;
+  }
+  for (std::size_t g = 0; g < m_groups.size(); ++g) {
+    const JointGroup& group = m_groups[g];
+    m_groupBodies.clear();
+    m_groupInertia.clear();
+    for (const int i : group.bodies) {
+      m_groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
+      m_groupInertia.push_back(inverseInertia[static_cast<std::size_t>(i)]);
+    }
+    m_groupLinks.clear();
+    m_groupResults.clear();
+    for (const int l : group.links) {
+      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_localIndex));
+      m_groupResults.push_back(results[static_cast<std::size_t>(l)]);
+    }
+    m_solvers[g].projectVelocities(m_groupLinks, m_groupBodies, m_groupInertia, h, m_groupResults);
+    for (std::size_t k = 0; k < group.bodies.size(); ++k)
+      bodies[static_cast<std::size_t>(group.bodies[k])] = m_groupBodies[k];
+    for (std::size_t k = 0; k < group.links.size(); ++k)
+      results[static_cast<std::size_t>(group.links[k])] = m_groupResults[k];
   }
 }
 

@@ -77,7 +77,9 @@ struct JointLinkResult {
   int atLimit = 0;                     // -1, +1: held at the lower or upper limit
 };
 
-class JointSolver {
+// The step of one group of joints (bodies joined to each other, directly
+// or through others): JointSolver below gives it each group.
+class JointGroupSolver {
  public:
   // Steps 1–3: the bodies' end poses (position, orientation) and the
   // momenta with the constraint impulses of the step. False when the
@@ -134,6 +136,48 @@ class JointSolver {
   std::vector<Row> m_rows;
   std::vector<LimitRow> m_limits;
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
+};
+
+// Bodies joined to each other by links, directly or through others, and
+// those links: indices into a step's bodies and links.
+struct JointGroup {
+  std::vector<int> bodies;
+  std::vector<int> links;
+};
+// The groups of `bodyCount` bodies and the links between them, in the
+// order of their first body (a body no link joins is a group of its own).
+// `localIndex` gets each body's index in its group.
+std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::size_t bodyCount,
+                                    std::vector<int>& localIndex);
+// The link with its sides numbered as in their group.
+JointLink inGroup(JointLink link, const std::vector<int>& localIndex);
+
+// The joint step of a world's joints: each group of joints joined through
+// their bodies (a ragdoll, a chain, a door) is solved alone, with its own
+// system and its own limits' active set: K is block diagonal over the
+// groups, so this is the same step, but a limit that engages in one
+// ragdoll re-solves that ragdoll, not all of them, and each group's
+// iteration stops when its own joints are closed. Groups are numbered by
+// their first body, so a group keeps its solver (and its system's
+// analysis) from step to step while the joints stay.
+class JointSolver {
+ public:
+  // As JointGroupSolver's, for every group; true when every group closed.
+  bool solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                      const JointSolverSettings& settings, std::vector<JointLinkResult>& results);
+  // As JointGroupSolver's; the links and bodies of the last solvePositions.
+  void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
+
+ private:
+  std::vector<JointGroup> m_groups;
+  std::vector<JointGroupSolver> m_solvers;  // by group
+  // A group's links, bodies and results in its own numbering.
+  std::vector<JointLink> m_groupLinks;
+  std::vector<JointBody> m_groupBodies;
+  std::vector<Mat3> m_groupInertia;
+  std::vector<JointLinkResult> m_groupResults;
+  std::vector<int> m_localIndex;  // step body -> group body
 };
 
 // The bodies' inverse masses, for RowSystem::factor.

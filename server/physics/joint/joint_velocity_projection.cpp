@@ -15,9 +15,9 @@ constexpr double kAtBound = 1e-9;  // m or rad
 
 }  // namespace
 
-JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& links,
-                                                 const std::vector<JointBody>& bodies,
-                                                 std::vector<std::size_t> solverIndex)
+JointGroupProjection::JointGroupProjection(const std::vector<JointLink>& links,
+                                           const std::vector<JointBody>& bodies,
+                                           std::vector<std::size_t> solverIndex)
     : m_solverIndex(std::move(solverIndex)) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
@@ -43,14 +43,12 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
 
   // The scratch bodies for the limits' response: their inverse mass and
   // inertia at the start.
-  std::size_t scratchSize = 0;
-  for (const std::size_t index : m_solverIndex) scratchSize = std::max(scratchSize, index + 1);
-  m_scratch.resize(scratchSize);
+  m_scratch.resize(bodies.size());
   for (std::size_t local = 0; local < bodies.size(); ++local) {
-    SolverBody& body = m_scratch[m_solverIndex[local]];
+    SolverBody& body = m_scratch[local];
     body.inverseMass = bodies[local].inverseMass;
     body.inverseInertia = bodies[local].startInverseInertia;
-    m_localBodies.push_back(m_solverIndex[local]);
+    m_scratchIndex.push_back(local);
   }
   const auto n = static_cast<Eigen::Index>(m_limits.size());
   m_limitResponse.setZero(n, n);
@@ -58,64 +56,67 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
   m_columnVelocities.resize(m_limits.size());
 }
 
-Eigen::VectorXd JointVelocityProjection::responseColumn(std::size_t j) const {
+Eigen::VectorXd JointGroupProjection::responseColumn(std::size_t j) const {
   const auto jj = static_cast<Eigen::Index>(j);
   if (!m_haveColumn[j]) {
-    for (const std::size_t index : m_localBodies) {
-      m_scratch[index].linearVelocity.setZero();
-      m_scratch[index].angularVelocity.setZero();
+    for (SolverBody& body : m_scratch) {
+      body.linearVelocity.setZero();
+      body.angularVelocity.setZero();
     }
-    push(m_limits[j].row, 1.0, m_scratch);
-    projectJoints(m_scratch);
+    push(m_limits[j].row, 1.0, m_scratch, m_scratchIndex);
+    projectJoints(m_scratch, m_scratchIndex);
     for (std::size_t i = 0; i < m_limits.size(); ++i)
-      m_limitResponse(static_cast<Eigen::Index>(i), jj) = rate(m_limits[i].row, m_scratch);
+      m_limitResponse(static_cast<Eigen::Index>(i), jj) = rate(m_limits[i].row, m_scratch, m_scratchIndex);
     std::vector<Vec3>& velocities = m_columnVelocities[j];
     velocities.clear();
-    for (const std::size_t index : m_localBodies) {
-      velocities.push_back(m_scratch[index].linearVelocity);
-      velocities.push_back(m_scratch[index].angularVelocity);
+    for (const SolverBody& body : m_scratch) {
+      velocities.push_back(body.linearVelocity);
+      velocities.push_back(body.angularVelocity);
     }
     m_haveColumn[j] = 1;
   }
   return m_limitResponse.col(jj);
 }
 
-double JointVelocityProjection::rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies) const {
+double JointGroupProjection::rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies,
+                                  const std::vector<std::size_t>& index) const {
   double v = 0.0;
   if (row.bodyA >= 0) {
-    const SolverBody& a = bodies[m_solverIndex[static_cast<std::size_t>(row.bodyA)]];
+    const SolverBody& a = bodies[index[static_cast<std::size_t>(row.bodyA)]];
     v += row.jacobian.linearA.dot(a.linearVelocity) + row.jacobian.angularA.dot(a.angularVelocity);
   }
   if (row.bodyB >= 0) {
-    const SolverBody& b = bodies[m_solverIndex[static_cast<std::size_t>(row.bodyB)]];
+    const SolverBody& b = bodies[index[static_cast<std::size_t>(row.bodyB)]];
     v += row.jacobian.linearB.dot(b.linearVelocity) + row.jacobian.angularB.dot(b.angularVelocity);
   }
   return v;
 }
 
-void JointVelocityProjection::push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies) const {
+void JointGroupProjection::push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies,
+                                const std::vector<std::size_t>& index) const {
   if (row.bodyA >= 0) {
-    SolverBody& a = bodies[m_solverIndex[static_cast<std::size_t>(row.bodyA)]];
+    SolverBody& a = bodies[index[static_cast<std::size_t>(row.bodyA)]];
     a.linearVelocity += (lambda * a.inverseMass) * row.jacobian.linearA;
     a.angularVelocity += a.inverseInertia * (lambda * row.jacobian.angularA);
   }
   if (row.bodyB >= 0) {
-    SolverBody& b = bodies[m_solverIndex[static_cast<std::size_t>(row.bodyB)]];
+    SolverBody& b = bodies[index[static_cast<std::size_t>(row.bodyB)]];
     b.linearVelocity += (lambda * b.inverseMass) * row.jacobian.linearB;
     b.angularVelocity += b.inverseInertia * (lambda * row.jacobian.angularB);
   }
 }
 
-void JointVelocityProjection::projectJoints(std::vector<SolverBody>& bodies) const {
+void JointGroupProjection::projectJoints(std::vector<SolverBody>& bodies,
+                                         const std::vector<std::size_t>& index) const {
   if (m_rows.empty() || !m_system.ok()) return;
   const auto count = static_cast<Eigen::Index>(m_rows.size());
   m_impulse.resize(count);
-  for (Eigen::Index r = 0; r < count; ++r) m_impulse[r] = -rate(m_rows[static_cast<std::size_t>(r)], bodies);
+  for (Eigen::Index r = 0; r < count; ++r) m_impulse[r] = -rate(m_rows[static_cast<std::size_t>(r)], bodies, index);
   m_system.solveInPlace(m_impulse);
   // The rows' impulses summed per body, then through its inverse mass and
   // inertia once.
-  m_linearImpulse.assign(m_solverIndex.size(), Vec3::Zero());
-  m_angularImpulse.assign(m_solverIndex.size(), Vec3::Zero());
+  m_linearImpulse.assign(index.size(), Vec3::Zero());
+  m_angularImpulse.assign(index.size(), Vec3::Zero());
   for (Eigen::Index r = 0; r < count; ++r) {
     const JointSolverRow& row = m_rows[static_cast<std::size_t>(r)];
     const double lambda = m_impulse[r];
@@ -129,14 +130,14 @@ void JointVelocityProjection::projectJoints(std::vector<SolverBody>& bodies) con
     }
   }
   for (std::size_t local = 0; local < m_solverIndex.size(); ++local) {
-    SolverBody& body = bodies[m_solverIndex[local]];
+    SolverBody& body = bodies[index[local]];
     body.linearVelocity += body.inverseMass * m_linearImpulse[local];
     body.angularVelocity += body.inverseInertia * m_angularImpulse[local];
   }
 }
 
-void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
-  projectJoints(bodies);
+void JointGroupProjection::project(std::vector<SolverBody>& bodies) const {
+  projectJoints(bodies, m_solverIndex);
   if (m_limits.empty()) return;
   // With s = −side (a lower bound pushes up), μ = s Λ ≥ 0 the limits'
   // pushes and u = s w their rates away from the bounds: u = q + M μ with
@@ -148,7 +149,7 @@ void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
   Eigen::VectorXd s(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     s[i] = -m_limits[static_cast<std::size_t>(i)].side;
-    q[i] = s[i] * rate(m_limits[static_cast<std::size_t>(i)].row, bodies);
+    q[i] = s[i] * rate(m_limits[static_cast<std::size_t>(i)].row, bodies, m_solverIndex);
   }
   std::vector<char> pushing(static_cast<std::size_t>(n), 0);
   bool anyInto = false;
@@ -214,12 +215,34 @@ void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
     if (mu[i] <= 0.0) continue;
     const double scale = s[i] * mu[i];
     const std::vector<Vec3>& velocities = m_columnVelocities[static_cast<std::size_t>(i)];
-    for (std::size_t k = 0; k < m_localBodies.size(); ++k) {
-      SolverBody& body = bodies[m_localBodies[k]];
+    for (std::size_t k = 0; k < m_solverIndex.size(); ++k) {
+      SolverBody& body = bodies[m_solverIndex[k]];
       body.linearVelocity += scale * velocities[2 * k];
       body.angularVelocity += scale * velocities[2 * k + 1];
     }
   }
+}
+
+JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& links,
+                                                 const std::vector<JointBody>& bodies,
+                                                 const std::vector<std::size_t>& solverIndex) {
+  std::vector<int> localIndex;
+  for (const JointGroup& group : jointGroups(links, bodies.size(), localIndex)) {
+    if (group.links.empty()) continue;
+    std::vector<JointLink> groupLinks;
+    for (const int l : group.links) groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], localIndex));
+    std::vector<JointBody> groupBodies;
+    std::vector<std::size_t> groupIndex;
+    for (const int i : group.bodies) {
+      groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
+      groupIndex.push_back(solverIndex[static_cast<std::size_t>(i)]);
+    }
+    m_groups.emplace_back(groupLinks, groupBodies, std::move(groupIndex));
+  }
+}
+
+void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
+  for (const JointGroupProjection& group : m_groups) group.project(bodies);
 }
 
 }  // namespace rbsim

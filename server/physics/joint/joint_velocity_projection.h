@@ -23,13 +23,14 @@
 
 namespace rbsim {
 
-class JointVelocityProjection final : public VelocityProjection {
+// The projection of one group of joints (joint_solver.h's JointGroup).
+class JointGroupProjection {
  public:
   // `links` name their sides by index into `bodies` (start poses, inverse
   // mass and inertia), and `solverIndex` maps those to the solver's bodies.
-  JointVelocityProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                          std::vector<std::size_t> solverIndex);
-  void project(std::vector<SolverBody>& bodies) const override;
+  JointGroupProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
+                       std::vector<std::size_t> solverIndex);
+  void project(std::vector<SolverBody>& bodies) const;
 
  private:
   // A limit at its bound at the step's start: its row and which bound
@@ -38,12 +39,14 @@ class JointVelocityProjection final : public VelocityProjection {
     JointSolverRow row;
     int side = 0;
   };
-  // A row's rate from the solver's velocities (or from velocity changes
-  // kept per local body), and an impulse along a row.
-  double rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies) const;
-  void push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies) const;
-  // Removes the rates along the joints' rows (K₀).
-  void projectJoints(std::vector<SolverBody>& bodies) const;
+  // A row's rate from the velocities of `bodies`, an impulse along a row,
+  // and the removal of the rates along the joints' rows (K₀); `index` maps
+  // the group's bodies to those of `bodies` (the solver's, or the scratch).
+  double rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies,
+              const std::vector<std::size_t>& index) const;
+  void push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies,
+            const std::vector<std::size_t>& index) const;
+  void projectJoints(std::vector<SolverBody>& bodies, const std::vector<std::size_t>& index) const;
 
   std::vector<JointSolverRow> m_rows;  // the joints' equality rows
   std::vector<Limit> m_limits;
@@ -52,18 +55,33 @@ class JointVelocityProjection final : public VelocityProjection {
   // Column j of A: the limit rows' rates per unit impulse along limit row
   // j, with the joints' rows holding; made when limit j first pushes (most
   // limits at a bound are never moved into), on a scratch copy of the
-  // solver's view of the jointed bodies.
+  // group's bodies.
   Eigen::VectorXd responseColumn(std::size_t j) const;
   mutable Eigen::MatrixXd m_limitResponse;
   mutable std::vector<char> m_haveColumn;
   // With each column, the velocities a unit push along limit j leaves with
-  // the joints holding (linear, angular per body of m_localBodies).
+  // the joints holding (linear, angular per body of the group).
   mutable std::vector<std::vector<Vec3>> m_columnVelocities;
-  mutable std::vector<SolverBody> m_scratch;
-  std::vector<std::size_t> m_localBodies;  // the scratch's bodies, by solver index
+  mutable std::vector<SolverBody> m_scratch;  // by group body
+  std::vector<std::size_t> m_scratchIndex;    // 0, 1, …: the scratch's own numbering
   // projectJoints' scratch: the rows' impulses, and their sums per body.
   mutable Eigen::VectorXd m_impulse;
   mutable std::vector<Vec3> m_linearImpulse, m_angularImpulse;
+};
+
+// Every group of joints in contact, each projected on its own (K₀ is block
+// diagonal over the groups: the same projection, but a limit's response
+// and the limits' complementarity problem are the size of one ragdoll, not
+// of all of them).
+class JointVelocityProjection final : public VelocityProjection {
+ public:
+  // As JointGroupProjection's, for all the groups `links` make.
+  JointVelocityProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
+                          const std::vector<std::size_t>& solverIndex);
+  void project(std::vector<SolverBody>& bodies) const override;
+
+ private:
+  std::vector<JointGroupProjection> m_groups;
 };
 
 }  // namespace rbsim
