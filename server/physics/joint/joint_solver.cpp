@@ -226,6 +226,31 @@ double rowRate(const JointSolverRow& row, const std::vector<JointBody>& bodies, 
   return v;
 }
 
+// Every row's rate at once: each body's velocities made once (a body is
+// the side of several rows), then the rows' dot products.
+void rowRates(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
+              const std::vector<Mat3>& inverseInertia, Eigen::VectorXd& out) {
+  std::vector<Vec3> linear(bodies.size()), angular(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    linear[i] = bodies[i].inverseMass * bodies[i].linearMomentum;
+    angular[i] = inverseInertia[i] * bodies[i].angularMomentum;
+  }
+  out.resize(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const JointSolverRow& row = rows[r];
+    double v = 0.0;
+    if (row.bodyA >= 0) {
+      const auto i = static_cast<std::size_t>(row.bodyA);
+      v += row.jacobian.linearA.dot(linear[i]) + row.jacobian.angularA.dot(angular[i]);
+    }
+    if (row.bodyB >= 0) {
+      const auto i = static_cast<std::size_t>(row.bodyB);
+      v += row.jacobian.linearB.dot(linear[i]) + row.jacobian.angularB.dot(angular[i]);
+    }
+    out[static_cast<Eigen::Index>(r)] = v;
+  }
+}
+
 void pushAlongRow(const JointSolverRow& row, double lambda, std::vector<JointBody>& bodies) {
   if (row.bodyA >= 0) {
     JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
@@ -261,7 +286,7 @@ double driveError(const JointConstraint& joint, double position) {
 void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
   Eigen::VectorXd rate(count);
-  for (Eigen::Index r = 0; r < count; ++r) rate[r] = rowRate(m_rows[static_cast<std::size_t>(r)], bodies, inverseInertia);
+  rowRates(m_rows, bodies, inverseInertia, rate);
   const Eigen::VectorXd impulse = m_system.solve(-rate);
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
 }
@@ -618,11 +643,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     Eigen::VectorXd rate(count);
     double previous = INFINITY;
     for (int iteration = 0; iteration < 8; ++iteration) {
-      double largest = 0.0;
-      for (Eigen::Index r = 0; r < count; ++r) {
-        rate[r] = rateOf(m_rows[static_cast<std::size_t>(r)]);
-        largest = std::max(largest, std::abs(rate[r]));
-      }
+      rowRates(m_rows, bodies, inverseInertia, rate);
+      const double largest = rate.cwiseAbs().maxCoeff();
       if (largest <= 1e-13 || largest >= previous) break;
       previous = largest;
       const Eigen::VectorXd step = m_system.solve(-rate);
