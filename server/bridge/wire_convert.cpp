@@ -401,11 +401,19 @@ Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command
 
   const JointId id = world.findJoint(message.joint);
   if (id.isNull()) return Error{"joint: unknown joint '" + message.joint + "'"};
-  const JointState state = world.jointState(id);
-  const bool revolute = state.type == JointType::Revolute;
-  if (!revolute && state.type != JointType::Prismatic)
-    return Error{"joint: '" + message.joint + "' is a " + jointTypeName(state.type) +
-                 " joint, which has no axis to actuate (only revolute and prismatic joints take joint commands)"};
+  const JointDef& def = world.jointDefinition(id);
+  const bool revolute = def.type == JointType::Revolute;
+  // A distance joint made with a spring: MODE_POSITION sets its rest length
+  // and gains.
+  const bool spring = def.type == JointType::Distance && def.drive.enabled;
+  if (!revolute && def.type != JointType::Prismatic && !spring)
+    return Error{"joint: '" + message.joint + "' is a " + jointTypeName(def.type) +
+                 " joint, which has no axis to actuate (only revolute and prismatic joints take joint commands, "
+                 "and distance joints made with a spring MODE_POSITION)"};
+  if (spring && request.mode != JointCommandMode::Position)
+    return Error{"mode: '" + message.joint +
+                 "' is a distance spring, which takes only MODE_POSITION (target: its rest length in m; stiffness, "
+                 "damping, max_effort)"};
 
   if (message.apply_at_step == -1) {
     request.firstStep = nextStep;
@@ -429,6 +437,8 @@ Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command
                  (revolute ? "max_torque" : "max_force") + ")"};
   };
   if (!std::isfinite(message.target)) return Error{"target must be finite"};
+  if (spring && message.target < 0.0)
+    return Error{"target (the spring's rest length) must be >= 0 m (got " + std::to_string(message.target) + ")"};
   request.target = message.target;
   switch (request.mode) {
     case JointCommandMode::Velocity:

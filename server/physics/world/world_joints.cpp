@@ -97,11 +97,22 @@ Expected<bool> World::setJointMotor(JointId id, const JointMotor& motor) {
 Expected<bool> World::setJointDrive(JointId id, const JointDrive& drive) {
   if (const std::string why = invalidJointReason(id); !why.empty()) return Error{"cannot set the drive: " + why};
   JointConstraint& joint = m_joints[static_cast<std::size_t>(m_jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
-  if (drive.enabled && !joint.hasAxis()) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take a drive"};
+  // A distance joint made with a spring takes a new rest length (the
+  // drive's target) and gains; its drive is what it is, so it stays on.
+  const bool spring = joint.hasSpring();
+  if (spring && !drive.enabled)
+    return Error{"joint '" + joint.def.name + "': a spring cannot be turned off (its drive is the spring)"};
+  if (drive.enabled && !joint.hasAxis() && !spring)
+    return Error{"joint '" + joint.def.name +
+                 "': only revolute and prismatic joints take a drive (and distance joints made with a spring)"};
   if (drive.enabled) {
     if (const std::string why = invalidDriveReason(drive); !why.empty()) return Error{"joint '" + joint.def.name + "': " + why};
   }
+  if (spring && drive.target < 0.0)
+    return Error{"joint '" + joint.def.name + "': the spring's rest length must not be negative (got " +
+                 std::to_string(drive.target) + ")"};
   joint.def.drive = drive;
+  if (spring) joint.length = joint.def.length = drive.target;
   if (drive.enabled) joint.def.motor.enabled = false;
   wakeJointBodies(joint.def);
   return true;

@@ -220,6 +220,69 @@ TEST(JointWire, ModesAreExclusiveAndTakeEffectAtTheAckedStep) {
 
 // A command scheduled ahead for a joint whose body is removed before its
 // step is dropped; the other joints' commands still apply.
+// A distance joint made with a spring takes MODE_POSITION (its rest
+// length and gains) and nothing else; a rope (a distance joint without a
+// spring) no command.
+TEST(JointWire, ASpringTakesARestLengthAndGainsAndNothingElse) {
+  World world;
+  BodyDef bob;
+  bob.name = "bob";
+  bob.shape = SphereShape{0.05};
+  bob.mass = 1.0;
+  bob.position = Vec3(0, 0, -1);
+  const BodyId bobId = *world.createBody(bob);
+  bob.name = "lamp";
+  bob.position = Vec3(2, 0, -1);
+  const BodyId lampId = *world.createBody(bob);
+  JointDef spring;
+  spring.name = "spring";
+  spring.type = JointType::Distance;
+  spring.bodyB = bobId;
+  spring.anchor = Vec3::Zero();
+  spring.anchorB = Vec3(0, 0, -1);
+  spring.drive = {true, 1.0, 50.0, 2.0};
+  ASSERT_TRUE(world.createJoint(spring).ok());
+  JointDef rope;
+  rope.name = "rope";
+  rope.type = JointType::Distance;
+  rope.bodyB = lampId;
+  rope.anchor = Vec3(2, 0, 0);
+  rope.anchorB = Vec3(2, 0, -1);
+  rope.limit = {true, 0.0, 1.2};
+  ASSERT_TRUE(world.createJoint(rope).ok());
+  const auto reason = [&](const rbsim::joint_command_t& c) {
+    const auto r = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+    return r.ok() ? std::string("accepted") : r.error().message;
+  };
+  auto c = jointCommand("spring", rbsim::joint_command_t::MODE_POSITION, 0.7);
+  c.stiffness = 80.0;
+  c.damping = 4.0;
+  c.max_effort = 30.0;
+  EXPECT_EQ(reason(c), "accepted");
+  const auto request = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+  ASSERT_TRUE(request.ok());
+  ASSERT_TRUE(applyJointCommand(world, world.findJoint("spring"), *request).ok());
+  const JointDef& set = definition(world, "spring");
+  EXPECT_TRUE(set.drive.enabled);
+  EXPECT_EQ(set.drive.target, 0.7);
+  EXPECT_EQ(set.drive.stiffness, 80.0);
+  EXPECT_EQ(set.drive.damping, 4.0);
+  EXPECT_EQ(set.drive.maxEffort, 30.0);
+  EXPECT_EQ(set.length, 0.7);
+  c.target = -0.1;
+  EXPECT_EQ(reason(c), "target (the spring's rest length) must be >= 0 m (got -0.100000)");
+  for (const int8_t mode : {rbsim::joint_command_t::MODE_OFF, rbsim::joint_command_t::MODE_VELOCITY,
+                            rbsim::joint_command_t::MODE_EFFORT}) {
+    c = jointCommand("spring", mode, 0.5);
+    c.max_effort = 1.0;
+    EXPECT_EQ(reason(c).rfind("mode: 'spring' is a distance spring, which takes only MODE_POSITION", 0), 0u)
+        << reason(c);
+  }
+  c = jointCommand("rope", rbsim::joint_command_t::MODE_POSITION, 0.5);
+  c.stiffness = 10.0;
+  EXPECT_NE(reason(c).find("joint: 'rope' is a distance joint, which has no axis"), std::string::npos) << reason(c);
+}
+
 TEST(JointWire, ACommandForARemovedJointIsDropped) {
   Session session(jointWorld());
   CommandHandler handler(session, ServerSettings{}, ".");

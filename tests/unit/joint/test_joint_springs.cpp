@@ -177,6 +177,44 @@ TEST(JointSprings, ACheckpointKeepsASpring) {
   EXPECT_EQ(restored->jointDefinitionAt(0).drive.target, 0.9);
 }
 
+// A new rest length and new gains set while the spring runs (as a joint
+// command does) move where the mass comes to rest: rest + m g / k, the
+// new ones; a spring cannot be turned off, nor given a negative length.
+TEST(JointSprings, ANewRestLengthAndStiffnessMoveWhereTheMassRests) {
+  const double mass = 2.0;
+  for (const IntegratorKind integrator : kIntegrators) {
+    for (const double dt : {1e-3, 5e-4}) {
+      SCOPED_TRACE(::testing::Message() << "integrator " << static_cast<int>(integrator) << ", dt " << dt);
+      World world(jointWorldSettings(integrator, dt));
+      const BodyId bob = addBody(world, "bob", SphereShape{0.05}, mass, Vec3(0, 0, -1));
+      const JointId joint = addJoint(world, spring(bob, Vec3::Zero(), Vec3(0, 0, -1), 1.0, 200.0, 10.0));
+      const int steps = static_cast<int>(std::lround(12.0 / dt));
+      for (int i = 0; i < steps; ++i) world.step();
+      EXPECT_NEAR(world.jointState(joint).position, 1.0 + mass * kGravity / 200.0, 1e-9);
+      JointDrive drive = world.jointDefinition(joint).drive;
+      drive.target = 1.5;
+      drive.stiffness = 400.0;
+      drive.damping = 20.0;  // ζ = 0.25 again
+      ASSERT_TRUE(world.setJointDrive(joint, drive).ok());
+      EXPECT_EQ(world.jointDefinition(joint).length, 1.5);
+      for (int i = 0; i < steps; ++i) world.step();
+      EXPECT_NEAR(world.jointState(joint).position, 1.5 + mass * kGravity / 400.0, 1e-9);
+      EXPECT_NEAR(world.jointState(joint).axisEffort, -mass * kGravity, 1e-6);
+    }
+  }
+  World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));
+  const BodyId bob = addBody(world, "bob", SphereShape{0.05}, 1.0, Vec3(0, 0, -1));
+  const JointId joint = addJoint(world, spring(bob, Vec3::Zero(), Vec3(0, 0, -1), 1.0, 10.0, 1.0));
+  JointDrive off;
+  EXPECT_EQ(world.setJointDrive(joint, off).error().message,
+            "joint 'spring': a spring cannot be turned off (its drive is the spring)");
+  JointDrive negative = world.jointDefinition(joint).drive;
+  negative.target = -0.25;
+  EXPECT_EQ(world.setJointDrive(joint, negative).error().message,
+            "joint 'spring': the spring's rest length must not be negative (got -0.250000)");
+  EXPECT_EQ(world.jointDefinition(joint).drive.target, 1.0) << "a refused drive changes nothing";
+}
+
 TEST(JointSprings, ASpringsRestLengthMustNotBeNegative) {
   World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));
   const BodyId bob = addBody(world, "bob", SphereShape{0.05}, 1.0, Vec3(0, 0, -1));

@@ -453,7 +453,8 @@ const std::vector<Verb>& verbs() {
        "                --max-effort E (N m or N, default 0)\n"
        "  position      a spring --stiffness K (N m/rad or N/m) and damper --damping D\n"
        "                (N m s/rad or N s/m) pull the joint to TARGET (rad or m);\n"
-       "                --max-effort E caps the effort (default 0: uncapped)\n"
+       "                --max-effort E caps the effort (default 0: uncapped); a\n"
+       "                distance spring: TARGET is its rest length (m)\n"
        "  effort        a constant TARGET (N m or N) along the axis\n"
        "  --at-step K   the step from which it acts (default: the next)\n",
        runJoint},

@@ -160,6 +160,8 @@ class World {
   // The joint as defined (its limits, motor, drive and effort in force), with
   // the points and directions of its creation; denseIndex < jointCount().
   const JointDef& jointDefinitionAt(int denseIndex) const;
+  // The same by id; an invalid id throws std::invalid_argument.
+  const JointDef& jointDefinition(JointId id) const;
 
   // Bodies frozen during the last step, in body order (empty most of the
   // time), each with the joints it lost.
