@@ -18,10 +18,10 @@ constexpr double kMaxEffort = 1e12;  // N or N·m
 constexpr double kMaxRate = 1e6;     // rad/s or m/s
 constexpr std::size_t kMaxNameLength = 128;
 
-constexpr std::array<std::string_view, 17> kJointKeys = {
+constexpr std::array<std::string_view, 18> kJointKeys = {
     "name",   "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
     "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit",
-    "spring"};
+    "spring", "position"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
 constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
@@ -91,7 +91,7 @@ class JointParser {
                               "a distance joint has a length (a rod) or limits (a rope: free between them), not both "
                               "(a spring takes both: its rest length and its stops)");
       if (((key == "axis" && !spherical) || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
-           key == "damping" || key == "friction") &&
+           key == "damping" || key == "friction" || key == "position") &&
           !axial)
         return m_reader.error(entry.keyMark, entry.value.path,
                               "only revolute and prismatic joints take " + std::string(key) + ", this one is " +
@@ -141,6 +141,19 @@ class JointParser {
         Expected<JointLimit> limit = parseLimit(limits->value, NumberRule::any(kMaxLength));
         if (!limit) return limit.error();
         def.limit = *limit;
+      }
+      // The joint's coordinate as the bodies are placed (a robot
+      // description's joint position); the limits and the drive's target
+      // count from the same zero.
+      if (const YamlMap::Entry* position = map->find("position")) {
+        Expected<double> value = m_reader.number(position->value, NumberRule::any(kMaxLength));
+        if (!value) return value.error();
+        if (def.limit.enabled && (*value < def.limit.lower || *value > def.limit.upper))
+          return m_reader.error(position->value, "the joint starts at " + std::to_string(*value) +
+                                                     ", outside its limits [" + std::to_string(def.limit.lower) + ", " +
+                                                     std::to_string(def.limit.upper) +
+                                                     "]: a joint cannot start beyond its stops");
+        def.position = *value;
       }
       if (const YamlMap::Entry* motor = map->find("motor")) {
         Expected<YamlMap> motorMap = m_reader.map(motor->value);

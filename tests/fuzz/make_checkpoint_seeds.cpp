@@ -105,6 +105,7 @@ int main(int argc, char** argv) {
   };
   JointDef hinge = joint("hinge", JointType::Revolute, BodyId{}, crate, world.body(crate).position() + Vec3(0, 0, 0.3));
   hinge.limit = {true, -0.4, 0.4};
+  hinge.position = 0.1;  // made away from its zero, as a robot description places it
   hinge.drive.enabled = true;
   hinge.drive.target = 0.2;
   hinge.drive.stiffness = 50.0;

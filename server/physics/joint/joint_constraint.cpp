@@ -127,6 +127,15 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
       return Error{where + ": a rope's lengths need 0 <= lower <= upper, upper > 0 (got " +
                    std::to_string(def.limit.lower) + ", " + std::to_string(def.limit.upper) + ")"};
   }
+  if (def.position != 0.0) {
+    if (!axial)
+      return Error{where + ": only revolute and prismatic joints take a position (their coordinate at creation)"};
+    if (!std::isfinite(def.position)) return Error{where + ": the position is not finite"};
+  }
+  if (axial && def.limit.enabled && (def.position < def.limit.lower || def.position > def.limit.upper))
+    return Error{where + ": the position " + std::to_string(def.position) + " is outside the limits [" +
+                 std::to_string(def.limit.lower) + ", " + std::to_string(def.limit.upper) +
+                 "]: a joint cannot start beyond its stops"};
   if (def.motor.enabled) {
     if (!axial) return Error{where + ": only revolute and prismatic joints take a motor"};
     if (!std::isfinite(def.motor.targetRate) || !std::isfinite(def.motor.maxEffort) || def.motor.maxEffort < 0.0)
@@ -286,10 +295,10 @@ double JointConstraint::coordinate(const JointSidePose& a, const JointSidePose& 
       // B's rotation relative to A, from the rest relative orientation, in
       // A's frame; its angle about A's axis.
       const Quaternion turn = a.orientation.conjugate() * b.orientation * restRelative.conjugate();
-      return 2.0 * std::atan2(turn.vec().dot(axisA), turn.w);
+      return def.position + 2.0 * std::atan2(turn.vec().dot(axisA), turn.w);
     }
     case JointType::Prismatic:
-      return (pB - pA).dot(a.rotation * axisA);
+      return def.position + (pB - pA).dot(a.rotation * axisA);
     case JointType::Distance:
       return (pB - pA).norm();
     case JointType::Spherical: {

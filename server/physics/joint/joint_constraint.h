@@ -106,7 +106,8 @@ struct JointConstraint {
   int lastAtLimit = 0;
 
   // The joint coordinate and its rate (JointState::position, rate) from the
-  // poses and the sides' velocities.
+  // poses and the sides' velocities; an axis's coordinate counts from
+  // def.position at creation, as its limits and drive target do.
   double coordinate(const JointSidePose& a, const JointSidePose& b) const;
   double coordinateRate(const JointSidePose& a, const JointSidePose& b, const Vec3& vA, const Vec3& wA,
                         const Vec3& vB, const Vec3& wB) const;
@@ -118,7 +119,8 @@ struct JointConstraint {
 // negative length, a limit, motor or effort on a joint without an axis or
 // with bad numbers (not finite, lower above upper, a negative effort cap),
 // a motor and a drive together, damping or friction on a joint without an
-// axis, or negative.
+// axis, or negative, a position on a joint without an axis, not finite or
+// outside the limits.
 // Why a drive's numbers are bad (empty: they are not): a target that is not
 // finite, a negative or non-finite stiffness, damping, frequency or damping
 // ratio, a max effort that is not positive.

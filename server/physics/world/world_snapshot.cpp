@@ -255,6 +255,7 @@ void writeJoint(const JointConstraint& joint, ByteWriter& out) {
   out.vec3(def.axis);
   out.vec3(def.anchorB);
   out.f64(def.length);
+  out.f64(def.position);
   out.boolean(def.collideConnected);
   out.boolean(def.limit.enabled);
   out.f64(def.limit.lower);
@@ -305,6 +306,7 @@ JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
   def.axis = in.vec3("joint axis");
   def.anchorB = in.vec3("joint anchor b");
   def.length = in.f64("joint length");
+  def.position = in.f64("joint position at creation");
   def.collideConnected = in.boolean("joint collide-connected flag");
   def.limit.enabled = in.boolean("joint limit flag");
   def.limit.lower = in.f64("joint limit lower");

@@ -173,6 +173,57 @@ TEST(JointConfig, SpringsAreReadAsWritten) {
             std::string::npos);
 }
 
+TEST(JointConfig, APositionIsTheJointsCoordinateWhereTheBodiesArePlaced) {
+  // The arm is placed 0.3 rad round from its zero pose (along +x from the
+  // shoulder); the tip 0.1 m along its slider from its zero.
+  const Expected<WorldDef> def = parseWorldConfig(
+      "bodies:\n"
+      "  - {name: arm, shape: {type: sphere, radius: 0.05}, mass: 1, position: [0.4776682, 0, -0.1477601],\n"
+      "     rpy: [0, 0.3, 0]}\n"
+      "  - {name: tip, shape: {type: sphere, radius: 0.05}, mass: 1, position: [1.1, 0, 0]}\n"
+      "joints:\n"
+      "  - {name: shoulder, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
+      "     position: 0.3, limits: {lower: -0.5, upper: 0.5}}\n"
+      "  - {name: slide, type: prismatic, body_a: world, body_b: tip, anchor: [1.1, 0, 0], axis: [1, 0, 0],\n"
+      "     position: 0.1, drive: {target: 0.1, stiffness: 10}}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  EXPECT_EQ(def->joints[0].def.position, 0.3);
+  EXPECT_EQ(def->joints[1].def.position, 0.1);
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_NEAR(world->jointState(world->findJoint("shoulder")).position, 0.3, 1e-15);
+  EXPECT_NEAR(world->jointState(world->findJoint("slide")).position, 0.1, 1e-15);
+  const Expected<WorldDef> unset = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(unset.ok()) << unset.error().message;
+  EXPECT_EQ(unset->joints[0].def.position, 0.0) << "the default";
+}
+
+TEST(JointConfig, APositionOnAJointWithoutAnAxisOrBeyondItsLimitsIsAnError) {
+  EXPECT_EQ(errorOf("  - {name: j, type: fixed, body_a: world, body_b: arm, anchor: [0, 0, 0], position: 0.1}\n"),
+            "j.yaml:6:75: joints[0].position: only revolute and prismatic joints take position, this one is fixed");
+  EXPECT_EQ(errorOf("  - {name: j, type: spherical, body_a: world, body_b: arm, anchor: [0, 0, 0], position: 0.1}\n"),
+            "j.yaml:6:79: joints[0].position: only revolute and prismatic joints take position, this one is spherical");
+  EXPECT_EQ(errorOf("  - {name: j, type: distance, body_a: world, body_b: arm, anchor: [0, 0, 1],\n"
+                    "     position: 0.1, anchor_b: [0.5, 0, 0]}\n"),
+            "j.yaml:7:6: joints[0].position: only revolute and prismatic joints take position, this one is distance");
+  EXPECT_EQ(errorOf("  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
+                    "     limits: {lower: -0.5, upper: 0.5}, position: 0.7}\n"),
+            "j.yaml:7:51: joints[0].position: the joint starts at 0.700000, outside its limits [-0.500000, 0.500000]: "
+            "a joint cannot start beyond its stops");
+  EXPECT_EQ(errorOf("  - {name: j, type: prismatic, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [1, 0, 0],\n"
+                    "     position: -0.3, limits: {lower: -0.2, upper: 0.2}}\n"),
+            "j.yaml:7:16: joints[0].position: the joint starts at -0.300000, outside its limits [-0.200000, 0.200000]: "
+            "a joint cannot start beyond its stops");
+  EXPECT_EQ(errorOf("  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
+                    "     position: .nan}\n"),
+            "j.yaml:7:16: joints[0].position: expected a finite number, got \".nan\"");
+}
+
 TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
   const std::string base = "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]";
   EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: ghost, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")

@@ -1,7 +1,8 @@
 #pragma once
 // Worlds for the joint tests: gravity along −z, no ground, the integrator
-// and step asked for; bodies made from a shape and a mass; the energy of a
-// world; the crossings of a signal through zero.
+// and step asked for; bodies made from a shape and a mass; hinges and
+// sliders, and why a joint was refused; the energy of a world; the
+// crossings of a signal through zero.
 
 #include <gtest/gtest.h>
 
@@ -52,6 +53,18 @@ inline JointDef hinge(const std::string& name, BodyId a, BodyId b, const Vec3& a
   def.anchor = anchor;
   def.axis = axis;
   return def;
+}
+
+inline JointDef slider(const std::string& name, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis) {
+  JointDef def = hinge(name, a, b, anchor, axis);
+  def.type = JointType::Prismatic;
+  return def;
+}
+
+// Why createJoint refused the definition ("" when it made the joint).
+inline std::string creationError(World& world, const JointDef& def) {
+  const Expected<JointId> made = world.createJoint(def);
+  return made.ok() ? "" : made.error().message;
 }
 
 // Kinetic plus potential energy (zero height at z = 0), J.

@@ -14,13 +14,9 @@ namespace {
 
 using testing::addBody;
 using testing::addJoint;
+using testing::creationError;
 using testing::hinge;
 using testing::jointWorldSettings;
-
-std::string creationError(World& world, const JointDef& def) {
-  const Expected<JointId> made = world.createJoint(def);
-  return made.ok() ? "" : made.error().message;
-}
 
 TEST(JointApi, BadDefinitionsAreRefusedWithTheJointAndTheReasonNamed) {
   World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));

@@ -87,6 +87,13 @@ struct JointDef {
   // Whether the two bodies still collide with each other (by default they
   // do not: the links of a chain overlap at their joints).
   bool collideConnected = false;
+  // Revolute and prismatic joints: the joint coordinate (JointState::
+  // position) in the configuration the joint is created in. A robot
+  // description (URDF) measures its joints from its own zero pose and places
+  // the bodies at their positions: created so, the joint reads `position`
+  // there, and its limits and drive target count from the same zero. It
+  // must lie within the limits (a joint cannot start beyond its stops).
+  double position = 0.0;  // rad or m
   // Revolute, prismatic and distance joints (a distance joint with a limit
   // has no `length`: it is free between the bounds, or its spring pulls).
   JointLimit limit;
@@ -121,11 +128,12 @@ struct JointState {
   std::string name;
   JointType type = JointType::Revolute;
   BodyId bodyA, bodyB;  // null: the world
-  // The joint coordinate from the initial configuration: the angle of B
-  // about the axis relative to A (revolute, rad, right-handed about the
-  // axis), B's displacement along the axis (prismatic, m), the anchors'
-  // distance (distance, m), the swing from the cone's axis (spherical with
-  // a cone limit, rad); 0 for the others.
+  // The joint coordinate: JointDef::position plus the angle of B about the
+  // axis relative to A since the initial configuration (revolute, rad,
+  // right-handed about the axis), or plus B's displacement along the axis
+  // since then (prismatic, m); the anchors' distance (distance, m), the
+  // swing from the cone's axis (spherical with a cone limit, rad); 0 for
+  // the others.
   double position = 0.0;
   double rate = 0.0;  // its time derivative: rad/s or m/s
   // B's orientation relative to A's, from the initial configuration

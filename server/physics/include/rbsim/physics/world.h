@@ -211,8 +211,8 @@ class World {
   static constexpr uint32_t kSnapshotMagic = 0x53574252u;  // "RBWS" in file order
   // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
   // the body, and whether a body's mass properties were given as data; 4:
-  // joints.
-  static constexpr uint32_t kSnapshotVersion = 4;
+  // joints; 5: a joint's coordinate at creation (JointDef::position).
+  static constexpr uint32_t kSnapshotVersion = 5;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
