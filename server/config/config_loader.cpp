@@ -49,10 +49,10 @@ constexpr std::array<std::string_view, 7> kTopLevelKeys = {
 constexpr std::array<std::string_view, 2> kSpawnKeys = {"bodies", "joints"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
-constexpr std::array<std::string_view, 15> kBodyKeys = {
+constexpr std::array<std::string_view, 16> kBodyKeys = {
     "name",     "shape",       "mass", "density",         "center_of_mass",   "inertia",
     "position", "orientation", "rpy",  "linear_velocity", "angular_velocity", "static",
-    "damping",  "material",    "ccd"};
+    "damping",  "material",    "ccd",  "collides"};
 
 constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
@@ -370,6 +370,11 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
   Expected<bool> ccd = m_reader.boolean(*map, "ccd", false);
   if (!ccd) return ccd.error();
   body.continuousCollision = *ccd;
+  // false: a body that collides with nothing (a robot link without
+  // collision geometry): its shape only draws it and gives its mass.
+  Expected<bool> collides = m_reader.boolean(*map, "collides", true);
+  if (!collides) return collides.error();
+  body.collides = *collides;
   return body;
 }
 

@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
        {"{name: m, shape: {type: mesh, file: cube.obj}, position: [0, 0, 2]}",
         "{name: t, shape: {type: mesh, file: tetrahedron.stl}, position: [0, 1, 0.5]}",
         "{name: s, shape: {type: sphere, radius: 0.2}, position: [1, 1, 0.2], ccd: true}",
+        "{name: v, shape: {type: box, half_extents: [0.1, 0.1, 0.1]}, position: [0, 0, 0.1], collides: false}",
         "{name: g, shape: {type: box, half_extents: [0.2, 0.1, 0.01]}, position: [-1, 0, 0.3], "
         "mass: 2, center_of_mass: [0.05, 0, 0], inertia: [[0.01, -0.001, 0], [-0.001, 0.02, 0], "
         "[0, 0, 0.03]]}"}) {

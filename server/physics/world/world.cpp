@@ -191,6 +191,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   description->isStatic = def.isStatic;
   description->material = resolveMaterial(def.material, m_settings.contact.defaultMaterial);
   description->continuousCollision = def.continuousCollision;
+  description->collides = def.collides;
   if (description->material.restitution > 1.0 || description->material.restitution < 0.0 ||
       description->material.friction < 0.0 ||
       description->material.staticCoefficient() < description->material.friction)
@@ -246,10 +247,14 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     description->bodySpaceMesh = std::make_shared<TriangleMesh>(
         transformed(*mesh->mesh, description->shapeRotation, description->shapeTranslation));
   }
-  auto collider = buildCollider(def.shape, Transform{description->shapeRotation, description->shapeTranslation},
-                                "body '" + def.name + "'");
-  if (!collider) return collider.error();
-  description->collider = std::make_shared<const Collider>(std::move(collider).value());
+  // A body that collides with nothing has no collider: detection and the
+  // sweeps skip a body without one (and its mesh parts need no hulls).
+  if (def.collides) {
+    auto collider = buildCollider(def.shape, Transform{description->shapeRotation, description->shapeTranslation},
+                                  "body '" + def.name + "'");
+    if (!collider) return collider.error();
+    description->collider = std::make_shared<const Collider>(std::move(collider).value());
+  }
 
   const Quaternion shapeOrientation = def.orientation.normalized();
   RigidState state;
@@ -402,25 +407,31 @@ Expected<bool> World::setBodyDamping(BodyId id, double linear, double angular) {
 void World::step() {
   m_judged.assign(m_bodies.size(), 0);
   const bool anyContact = m_settings.contact.enabled && m_collidingBodies > 0;
+  // The impulse model's step is also where islands at rest fall asleep, so
+  // a world whose bodies all collide with nothing (BodyDef::collides) takes
+  // it too: its detector finds no contact, and every body flies free as in
+  // the step without contact below.
+  const bool impulseStep =
+      m_settings.contact.enabled && m_settings.contact.model == ContactModel::Impulse && !m_bodies.empty();
   std::vector<RigidState> starts;
   if (anyContact && m_continuousBodies > 0) {
     starts.reserve(m_bodies.size());
     for (const Body& body : m_bodies) starts.push_back(body.state());
   }
-  if (!anyContact) {
-    const std::vector<char> jointed = findJointedBodies();
-    integrateFree(m_settings.dt, jointed);
-    stepJointedBodies(jointed, {}, {}, m_settings.dt);
-    m_contacts.clear();
-  } else if (m_settings.contact.model == ContactModel::Penalty) {
-    stepPenalty();
-  } else {
+  if (impulseStep) {
     m_stepSquaredSpeed = m_stepSquaredSpin = 0.0;
     stepImpulse();
     // Every awake body was integrated by one of the step's paths, which
     // noted its speeds; sleeping, static and frozen bodies stand still.
     m_maxSquaredSpeed = m_stepSquaredSpeed;
     m_maxSquaredSpin = m_stepSquaredSpin;
+  } else if (anyContact) {
+    stepPenalty();
+  } else {
+    const std::vector<char> jointed = findJointedBodies();
+    integrateFree(m_settings.dt, jointed);
+    stepJointedBodies(jointed, {}, {}, m_settings.dt);
+    m_contacts.clear();
   }
   if (!starts.empty()) applyContinuousCollision(starts);
   clearLoads();

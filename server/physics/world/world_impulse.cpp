@@ -130,7 +130,9 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
     sb.angularVelocity = sb.inverseInertia * momenta.angular;
     double speed2 = sb.linearVelocity.squaredNorm();
     const double spin2 = sb.angularVelocity.squaredNorm();
-    if (spin2 > 0.0) {
+    // A body without a collider (one jointed to a body in contact) is in no
+    // contact: how far it turns cannot make one collide.
+    if (spin2 > 0.0 && body.description().collider) {
       const double radius = colliderRadius(*body.description().collider);
       speed2 += spin2 * radius * radius;
     }

@@ -5,7 +5,8 @@
 // What it holds: the step count and serial counter; every body with the 13
 // state numbers as bit patterns, its description (shape with mesh vertices,
 // mass properties and whether they were given, placement of the shape in
-// body space, material, flags), its dynamics, the load given for the coming
+// body space, material, flags: static, continuous collision, whether it
+// collides at all), its dynamics, the load given for the coming
 // step, its sleep state (asleep, time at rest) and whether the numerical
 // guard froze it; the slot table behind BodyIds; every joint with its
 // definition (actuation included), its data in the bodies' frames and its
@@ -437,6 +438,7 @@ Expected<bool> World::writeSnapshot(ByteWriter& out) const {
     out.string(d.name);
     out.boolean(d.isStatic);
     out.boolean(d.continuousCollision);
+    out.boolean(d.collides);
     if (auto shape = writeShape(d.shape, d.name, out); !shape) return shape;
     out.f64(d.massProperties.mass);
     out.f64(d.massProperties.volume);
@@ -541,6 +543,7 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
       return Error{"world snapshot: " + where + ": empty or duplicate name"};
     description->isStatic = in.boolean("static flag");
     description->continuousCollision = in.boolean("continuous collision flag");
+    description->collides = in.boolean("collides flag");
     description->shape = readShape(in, description->name);
     description->massProperties.mass = in.f64("mass");
     description->massProperties.volume = in.f64("volume");
@@ -598,11 +601,14 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
       description->bodySpaceMesh = std::make_shared<TriangleMesh>(
           transformed(*mesh->mesh, description->shapeRotation, description->shapeTranslation));
     }
-    auto collider = buildCollider(description->shape,
-                                  Transform{description->shapeRotation, description->shapeTranslation},
-                                  "body '" + description->name + "'");
-    if (!collider) return Error{"world snapshot: " + where + ": " + collider.error().message};
-    description->collider = std::make_shared<const Collider>(std::move(collider).value());
+    // As createBody: a body that collides with nothing has no collider.
+    if (description->collides) {
+      auto collider = buildCollider(description->shape,
+                                    Transform{description->shapeRotation, description->shapeTranslation},
+                                    "body '" + description->name + "'");
+      if (!collider) return Error{"world snapshot: " + where + ": " + collider.error().message};
+      description->collider = std::make_shared<const Collider>(std::move(collider).value());
+    }
 
     // The state exactly as saved: Body's constructor would normalise the
     // quaternion, which can move its last bit.

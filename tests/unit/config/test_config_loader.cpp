@@ -295,6 +295,36 @@ bodies:
   expectVec3(parts[3].position, 0.0, 1.0, 0.0);
 }
 
+TEST(ConfigLoader, ABodyThatCollidesWithNothing) {
+  const Expected<WorldDef> world = parse(R"(
+bodies:
+  - {name: link, shape: {type: box, half_extents: [0.1, 0.2, 0.3]}, mass: 2, collides: false}
+  - {name: solid, shape: {type: sphere, radius: 0.1}, collides: true}
+  - {name: plain, shape: {type: sphere, radius: 0.1}}
+)");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_FALSE(world->bodies[0].collides);
+  EXPECT_TRUE(world->bodies[1].collides);
+  EXPECT_TRUE(world->bodies[2].collides) << "the default";
+  // A spawned body (SPAWN's spawn_yaml) takes the key too.
+  const Expected<BodyDef> spawned = parseBodyDef(
+      "{name: ghost, shape: {type: sphere, radius: 0.1}, collides: false}", "spawn", kDataDir.string());
+  ASSERT_TRUE(spawned.ok()) << spawned.error().message;
+  EXPECT_FALSE(spawned->collides);
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: link
+    shape: {type: sphere, radius: 0.1}
+    collides: no
+)"),
+            "test.yaml:4:15: bodies[0].collides: expected true or false, got \"no\"");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - {name: link, shape: {type: sphere, radius: 0.1}, collides: 0}
+)"),
+            "test.yaml:2:64: bodies[0].collides: expected true or false, got \"0\"");
+}
+
 TEST(ConfigLoader, OneBodyForSpawning) {
   const Expected<BodyDef> body = parseBodyDef(yaml(R"(
 name: probe
@@ -404,7 +434,7 @@ bodies:
 )"),
             "test.yaml:4:5: bodies[0].colour: unknown key; a body has: name, shape, mass, "
             "density, center_of_mass, inertia, position, orientation, rpy, linear_velocity, "
-            "angular_velocity, static, damping, material, ccd");
+            "angular_velocity, static, damping, material, ccd, collides");
   // Keys of another shape type are unknown too.
   EXPECT_EQ(errorOf(R"(
 bodies:

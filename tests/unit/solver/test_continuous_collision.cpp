@@ -13,7 +13,7 @@ struct Shot {
   double farthest;
   double finalVelocity;
 };
-Shot shoot(bool continuous, ContactModel model = ContactModel::Impulse) {
+Shot shoot(bool continuous, ContactModel model = ContactModel::Impulse, bool collides = true) {
   WorldSettings settings = testing::contactSettings(0.0, 0.0);
   settings.gravity = Vec3::Zero();
   settings.contact.model = model;
@@ -30,6 +30,7 @@ Shot shoot(bool continuous, ContactModel model = ContactModel::Impulse) {
   bullet.position = Vec3(0.2, 0, 0);
   bullet.linearVelocity = Vec3(500.0, 0, 0);
   bullet.continuousCollision = continuous;
+  bullet.collides = collides;
   const BodyId id = *world.createBody(bullet);
   Shot shot{0.0, 0.0};
   for (int i = 0; i < 10; ++i) {
@@ -63,6 +64,17 @@ TEST(ContinuousCollision, WithItTheSphereStopsAtTheWall) {
   EXPECT_LT(shot.farthest, 0.4875 + 1e-4);
   EXPECT_GT(shot.farthest, 0.4875 - 1e-3);
   EXPECT_NEAR(shot.finalVelocity, 0.0, 1e-6);  // restitution 0: it stays at the wall
+}
+
+TEST(ContinuousCollision, ABodyThatCollidesWithNothingIsNotSweptAndFliesThroughTheWall) {
+  // Flagged for continuous collision but colliding with nothing
+  // (BodyDef::collides false): neither the sweeps nor the speculative
+  // contacts stop it, in either model; it flies on at 0.5 m a step.
+  for (const ContactModel model : {ContactModel::Impulse, ContactModel::Penalty}) {
+    const Shot shot = shoot(true, model, false);
+    EXPECT_NEAR(shot.farthest, 0.2 + 10 * 0.5, 1e-12);
+    EXPECT_EQ(shot.finalVelocity, 500.0);
+  }
 }
 
 }  // namespace

@@ -52,6 +52,13 @@ struct BodyDef {
   // its time of impact instead of passing through thin geometry (costs a
   // sweep per step; for small fast bodies).
   bool continuousCollision = false;
+  // Whether the body collides at all. One that does not (a robot link
+  // without <collision> geometry) is never in a contact: collision
+  // detection and the continuous collision sweeps leave it out, and its
+  // shape only draws it (and gives its mass properties when none are
+  // given). It is integrated, jointed, pushed and put to sleep like any
+  // other body.
+  bool collides = true;
 
   static constexpr double kDefaultDensity = 1000.0;  // kg/m³, water
 };

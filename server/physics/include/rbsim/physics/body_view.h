@@ -51,10 +51,12 @@ struct BodyDescription {
   }
   // For mesh shapes: the mesh re-expressed in body space. Null otherwise.
   std::shared_ptr<const TriangleMesh> bodySpaceMesh;
-  // Collision geometry in body space (null until collision detection builds it).
+  // Collision geometry in body space; null for a body that collides with
+  // nothing (`collides` false), which detection and the sweeps then skip.
   std::shared_ptr<const Collider> collider;
   Material material;                 // resolved against the world's defaults
   bool continuousCollision = false;  // swept against fast motion (see BodyDef)
+  bool collides = true;              // false: no collider, never in a contact (see BodyDef)
 };
 
 class Body;

@@ -77,7 +77,8 @@ class World {
   // so that the shape lands at def.position / def.orientation. Errors: empty
   // or duplicate name, non-positive or non-finite mass, density or size, a
   // plane on a dynamic body, a mesh that is missing, a compound without
-  // parts or with a bad part (named by its index).
+  // parts or with a bad part (named by its index). A body that does not
+  // collide (def.collides false) gets no collider.
   Expected<BodyId> createBody(const BodyDef& def);
   Expected<bool> removeBody(BodyId id);  // an error for an invalid id
 
@@ -211,8 +212,9 @@ class World {
   static constexpr uint32_t kSnapshotMagic = 0x53574252u;  // "RBWS" in file order
   // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
   // the body, and whether a body's mass properties were given as data; 4:
-  // joints; 5: a joint's coordinate at creation (JointDef::position).
-  static constexpr uint32_t kSnapshotVersion = 5;
+  // joints; 5: a joint's coordinate at creation (JointDef::position); 6:
+  // whether a body collides at all (BodyDef::collides).
+  static constexpr uint32_t kSnapshotVersion = 6;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
