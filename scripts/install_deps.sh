@@ -12,6 +12,8 @@ packages=(
   libjchart2d-java openjdk-17-jdk-headless openjdk-17-jre
   # physics and config
   libeigen3-dev libccd-dev libyaml-cpp-dev libqhull-dev
+  # robots from URDF (urdfdom, and tinyxml2 for the load report's line numbers)
+  liburdfdom-dev libtinyxml2-dev
   # rbctl --json
   nlohmann-json3-dev
   # tests and benchmarks

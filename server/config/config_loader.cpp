@@ -15,6 +15,8 @@
 
 #include "config/contact_config.h"
 #include "config/joint_config.h"
+#include "config/orientation_config.h"
+#include "config/robot_config.h"
 #include "config/contained_path.h"
 #include "config/mass_data_config.h"
 #include "config/server_sections.h"
@@ -37,13 +39,11 @@ constexpr double kMaxAngularSpeed = 1e5;         // rad/s, per component
 constexpr double kMaxMass = 1e12;                // kg
 constexpr double kMaxDensity = 1e6;              // kg/m³ (osmium is 2.26e4)
 constexpr double kMaxDamping = 1e6;              // 1/s
-constexpr double kMaxAngle = 1e6;                // rad, roll/pitch/yaw
-constexpr double kMaxQuaternionComponent = 1e6;  // before normalisation
 constexpr double kMinNorm = 1e-9;            // below this a quaternion or normal has no direction
 constexpr std::size_t kMaxNameLength = 128;  // characters, body names
 
-constexpr std::array<std::string_view, 7> kTopLevelKeys = {
-    "world", "bodies", "joints", "contact",
+constexpr std::array<std::string_view, 8> kTopLevelKeys = {
+    "world", "bodies", "robots", "joints", "contact",
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 2> kSpawnKeys = {"bodies", "joints"};
@@ -67,14 +67,6 @@ constexpr std::string_view kShapeTypes = "sphere, box, cylinder, capsule, mesh, 
 constexpr std::array<IntegratorKind, 3> kIntegrators = {
     IntegratorKind::ExplicitEuler, IntegratorKind::SemiImplicitEuler, IntegratorKind::Rk4};
 
-// Of two entries of one map, the one written later (to point at in "not
-// both" messages: the reader has just passed the first).
-const YamlMap::Entry& later(const YamlMap::Entry& a, const YamlMap::Entry& b) {
-  const bool aFirst = a.keyMark.line < b.keyMark.line ||
-                      (a.keyMark.line == b.keyMark.line && a.keyMark.column < b.keyMark.column);
-  return aFirst ? b : a;
-}
-
 void replaceAll(std::string& text, const std::string& from, const std::string& to) {
   for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
     text.replace(at, from.size(), to);
@@ -90,7 +82,8 @@ class ConfigParser {
                MeshPaths meshPaths = MeshPaths::Anywhere)
       : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory), m_meshPaths(meshPaths) {}
 
-  Expected<WorldDef> parseWorld(const YamlNode& root) const;
+  // `robotReport` (null: not wanted) gets the robots' load reports.
+  Expected<WorldDef> parseWorld(const YamlNode& root, std::vector<std::string>* robotReport = nullptr) const;
   // The world, then the server's sections, of one document.
   Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
@@ -109,7 +102,6 @@ class ConfigParser {
   std::optional<Error> parseDamping(const YamlNode& node, std::optional<double>& linear,
                                     std::optional<double>& angular) const;
   Expected<std::string> parseName(const YamlNode& node) const;
-  Expected<Quaternion> parseOrientation(const YamlMap& body) const;
   Expected<Shape> parseShape(const YamlNode& node, bool isStatic) const;
   Expected<Shape> parseMesh(const YamlMap& shape) const;
   Expected<Shape> parsePlane(const YamlMap& shape, const YamlNode& type, bool isStatic) const;
@@ -124,7 +116,7 @@ class ConfigParser {
   MeshPaths m_meshPaths;
 };
 
-Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
+Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<std::string>* robotReport) const {
   Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   if (auto error = m_reader.checkKeys(*top, kTopLevelKeys, "the top level")) return *error;
@@ -141,13 +133,23 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root) const {
   }
 
   const YamlMap::Entry* bodies = top->find("bodies");
-  if (bodies == nullptr) {
+  const YamlMap::Entry* robots = top->find("robots");
+  if (bodies == nullptr && robots == nullptr) {
     if (const YamlMap::Entry* joints = top->find("joints"))
       return m_reader.error(joints->value, "joints need bodies to join (there is no bodies: list)");
     return world;
   }
   std::map<std::string, std::size_t, std::less<>> indexByName;
-  if (auto error = parseBodies(bodies->value, nullptr, world.bodies, indexByName)) return *error;
+  if (bodies != nullptr) {
+    if (auto error = parseBodies(bodies->value, nullptr, world.bodies, indexByName)) return *error;
+  }
+  if (robots != nullptr) {
+    std::vector<std::string> report;
+    const BodyNameTaken taken = [&](const std::string& name) { return indexByName.count(name) > 0; };
+    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, taken, world, report)) return *error;
+    for (std::size_t i = 0; i < world.bodies.size(); ++i) indexByName.emplace(world.bodies[i].name, i);
+    if (robotReport != nullptr) robotReport->insert(robotReport->end(), report.begin(), report.end());
+  }
   if (const YamlMap::Entry* joints = top->find("joints")) {
     const JointBodyLookup lookup = [&](const std::string& name) -> std::optional<bool> {
       const auto found = indexByName.find(name);
@@ -212,9 +214,10 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
 }
 
 Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
-  Expected<WorldDef> world = parseWorld(root);
+  std::vector<std::string> robotReport;
+  Expected<WorldDef> world = parseWorld(root, &robotReport);
   if (!world) return world.error();
-  Config config{std::move(*world), ServerSettings{}};
+  Config config{std::move(*world), ServerSettings{}, std::move(robotReport)};
   // parseWorld has checked that the root is a mapping.
   const Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
@@ -310,7 +313,7 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
   const YamlMap::Entry* mass = map->find("mass");
   const YamlMap::Entry* density = map->find("density");
   if (mass != nullptr && density != nullptr) {
-    const YamlMap::Entry& second = later(*mass, *density);
+    const YamlMap::Entry& second = laterEntry(*mass, *density);
     return m_reader.error(second.keyMark, second.value.path, "give mass or density, not both");
   }
   if (mass != nullptr) {
@@ -330,7 +333,7 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
   if (!position) return position.error();
   body.position = *position;
 
-  Expected<Quaternion> orientation = parseOrientation(*map);
+  Expected<Quaternion> orientation = parseOrientation(m_reader, *map);
   if (!orientation) return orientation.error();
   body.orientation = *orientation;
 
@@ -395,29 +398,6 @@ Expected<std::string> ConfigParser::parseName(const YamlNode& node) const {
   if (*name == "world")
     return m_reader.error(node, "\"world\" is reserved: joints name the world itself so; give the body another name");
   return name;
-}
-
-Expected<Quaternion> ConfigParser::parseOrientation(const YamlMap& body) const {
-  const YamlMap::Entry* quaternion = body.find("orientation");
-  const YamlMap::Entry* rpy = body.find("rpy");
-  if (quaternion != nullptr && rpy != nullptr) {
-    const YamlMap::Entry& second = later(*quaternion, *rpy);
-    return m_reader.error(second.keyMark, second.value.path, "give orientation or rpy, not both");
-  }
-  if (rpy != nullptr) {
-    Expected<Vec3> angles = m_reader.vec3(rpy->value, NumberRule::any(kMaxAngle));
-    if (!angles) return angles.error();
-    return Quaternion::fromRollPitchYaw(angles->x(), angles->y(), angles->z());
-  }
-  if (quaternion == nullptr) return Quaternion::identity();
-  Expected<std::array<double, 4>> wxyz =
-      m_reader.numbers<4>(quaternion->value, NumberRule::any(kMaxQuaternionComponent));
-  if (!wxyz) return wxyz.error();
-  const Quaternion q{(*wxyz)[0], (*wxyz)[1], (*wxyz)[2], (*wxyz)[3]};
-  if (q.norm() < kMinNorm) {
-    return m_reader.error(quaternion->value, "expected a non-zero quaternion (w, x, y, z)");
-  }
-  return q.normalized();
 }
 
 Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) const {
@@ -590,7 +570,7 @@ Expected<CompoundPart> ConfigParser::parseCompoundPart(const YamlNode& node, boo
   if (!position) return position.error();
   part.position = *position;
 
-  Expected<Quaternion> orientation = parseOrientation(*map);
+  Expected<Quaternion> orientation = parseOrientation(m_reader, *map);
   if (!orientation) return orientation.error();
   part.orientation = *orientation;
 

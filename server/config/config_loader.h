@@ -24,6 +24,10 @@ struct Config {
   // The `lcm:`, `server:` and `limits:` sections (defaults where absent),
   // before rbserver applies its command line.
   ServerSettings server;
+  // What the `robots:` were made into and what of their URDFs was not
+  // used, one line each (robot/urdf_robot.h), for rbserver --describe and
+  // its start-up log.
+  std::vector<std::string> robotReport;
 };
 
 // Reads and parses the file at `path`, the world and the server's sections

@@ -68,6 +68,13 @@ int main(int argc, char** argv) {
     std::fputs(massPropertiesJson(*world).c_str(), stdout);
     return 0;
   }
+  if (options->describe) {
+    for (const std::string& line : config->robotReport) std::printf("%s\n", line.c_str());
+    std::printf("%d bodies, %d joints\n", world->bodyCount(), world->jointCount());
+    return 0;
+  }
+  // The robots' load reports: what each URDF became, and what of it is not used.
+  for (const std::string& line : config->robotReport) logInfo("robots: " + line);
 
   // The command line overrides the file.
   ServerSettings& settings = config->server;

@@ -30,6 +30,8 @@ RBSIM_COMMAND from clients. SIGINT/SIGTERM stop it cleanly.
 options (each overrides the config file's key):
   --config FILE            world and server settings (YAML), required
   --mass-properties        print every body's mass properties as JSON and exit
+  --describe               print what the robots (robots:) were made into, and every URDF
+                           element not used, by file and line, and exit
   --real-time-factor X     simulated s per wall s; 0 = as fast as possible (server.real_time_factor)
   --duration S             stop after S s of simulated time (server.duration)
   --lcm-url URL            LCM provider URL (lcm.url)
@@ -80,6 +82,8 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
       options.help = true;
     } else if (arg == "--mass-properties") {
       options.massProperties = true;
+    } else if (arg == "--describe") {
+      options.describe = true;
     } else if (arg == "--paused") {
       options.startPaused = true;
     } else if (arg == "--read-only") {

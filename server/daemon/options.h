@@ -12,6 +12,7 @@ namespace rbsim {
 struct Options {
   std::string configPath;
   bool massProperties = false;
+  bool describe = false;  // print what the robots were made into and exit
   bool help = false;
   std::optional<double> realTimeFactor;
   std::optional<double> duration;  // s of simulated time

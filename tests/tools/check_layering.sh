@@ -20,7 +20,10 @@ forbid() {
 above_config='#include "(session|persist|bridge|replay|daemon)/'
 forbid physics '#include "(config|session|persist|bridge|replay|daemon)/' "is below every other library"
 forbid physics '#include <(lcm/|rbsim/|yaml-cpp/)' "has no LCM and no config files"
-forbid config "$above_config" "depends on physics only"
+forbid meshio '#include "(robot|config|session|persist|bridge|replay|daemon)/' "depends on physics only"
+forbid robot '#include "(config|session|persist|bridge|replay|daemon)/' "depends on physics and meshio only"
+forbid robot '#include <(lcm/|rbsim/|yaml-cpp/)' "knows no LCM and no config files"
+forbid config "$above_config" "depends on physics, meshio and robot only"
 forbid config '#include <(lcm/|rbsim/)' "knows no LCM"
 forbid session '#include "(config|persist|bridge|replay|daemon)/' "depends on physics only"
 forbid session '#include <(lcm/|rbsim/|yaml-cpp/)' "has no LCM and no config files"
@@ -31,7 +34,7 @@ forbid bridge '#include <(lcm/lcm|yaml-cpp/)' "has no LCM handle and does not re
 forbid replay '#include "daemon/' "is below daemon"
 forbid replay '#include <yaml-cpp/' "does not read YAML"
 # Outside the physics library, physics is used through its public headers.
-for library in meshio config session persist bridge replay daemon; do
+for library in meshio robot config session persist bridge replay daemon; do
   forbid $library '#include "physics/' "uses physics through its public headers (rbsim/physics/) only"
 done
 # The config file is read once, by config/: nothing else parses YAML.

@@ -1,5 +1,7 @@
 #include "physics/collision/convex_hull.h"
 
+#include "rbsim/physics/shapes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -227,6 +229,18 @@ Expected<ConvexHull> buildConvexHull(const std::vector<Vec3>& points,
                                                   b.normal.data(), b.normal.data() + 3);
             });
   return hull;
+}
+
+Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName) {
+  Expected<ConvexHull> hull = buildConvexHull(points, sourceName);
+  if (!hull) return hull.error();
+  TriangleMesh mesh;
+  mesh.vertices = hull->vertices;
+  // Each face is convex and counter-clockwise seen from outside: a fan.
+  for (const ConvexHull::Face& face : hull->faces)
+    for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
+      mesh.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
+  return mesh;
 }
 
 }  // namespace rbsim

@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "physics/common/expected.h"
 #include "physics/geometry/triangle_mesh.h"
 #include "physics/math/quaternion.h"
 #include "physics/math/types.h"
@@ -78,5 +79,11 @@ std::string shapeTypeName(const CompoundPartShape& shape);
 // plane or a compound).
 Shape toShape(const CompoundPartShape& shape);
 std::optional<CompoundPartShape> toPartShape(Shape shape);
+
+// The closed, outward-wound mesh of the convex hull of `points` (qhull):
+// what an open mesh (a robot description's collision mesh, its triangles
+// bounding no solid) collides as. Errors as for any hull, naming
+// `sourceName`: fewer than 4 distinct points, or all in a plane.
+Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName);
 
 }  // namespace rbsim

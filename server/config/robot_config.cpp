@@ -1,0 +1,112 @@
+#include "config/robot_config.h"
+
+#include <array>
+#include <set>
+#include <string_view>
+
+#include "config/orientation_config.h"
+#include "robot/urdf_robot.h"
+
+namespace rbsim {
+
+namespace {
+
+constexpr std::array<std::string_view, 9> kRobotKeys = {
+    "name", "urdf", "position", "orientation", "rpy", "fixed_base", "merge_fixed_links", "joint_positions",
+    "package_paths"};
+constexpr double kMaxLength = 1e6;           // m, as the bodies' positions
+constexpr double kMaxJointPosition = 1e6;    // rad or m
+constexpr std::size_t kMaxNameLength = 128;  // characters, as body names
+
+std::filesystem::path resolved(const std::filesystem::path& base, const std::string& file) {
+  std::filesystem::path path(file);
+  if (path.is_relative() && !base.empty()) path = base / path;
+  return path.lexically_normal();
+}
+
+}  // namespace
+
+std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
+                                 const std::filesystem::path& baseDirectory, const BodyNameTaken& taken,
+                                 WorldDef& world, std::vector<std::string>& report) {
+  Expected<std::vector<YamlNode>> items = reader.list(node);
+  if (!items) return items.error();
+  std::set<std::string, std::less<>> names;
+  for (const YamlNode& item : *items) {
+    Expected<YamlMap> map = reader.map(item);
+    if (!map) return map.error();
+    if (auto error = reader.checkKeys(*map, kRobotKeys, "a robot")) return *error;
+
+    RobotPlacement placement;
+    Expected<YamlNode> nameNode = reader.required(*map, "name");
+    if (!nameNode) return nameNode.error();
+    Expected<std::string> name = reader.string(*nameNode);
+    if (!name) return name.error();
+    if (name->empty() || name->size() > kMaxNameLength || name->find('/') != std::string::npos)
+      return reader.error(*nameNode, "a robot's name is 1 to 128 characters without '/' (it prefixes its bodies' names)");
+    if (!names.insert(*name).second) return reader.error(*nameNode, "duplicate robot name \"" + *name + "\"");
+    placement.name = *name;
+
+    Expected<YamlNode> urdfNode = reader.required(*map, "urdf");
+    if (!urdfNode) return urdfNode.error();
+    Expected<std::string> urdf = reader.string(*urdfNode);
+    if (!urdf) return urdf.error();
+    if (urdf->empty()) return reader.error(*urdfNode, "expected the path of a URDF file");
+
+    Expected<Vec3> position = reader.vec3(*map, "position", NumberRule::any(kMaxLength), Vec3::Zero());
+    if (!position) return position.error();
+    placement.position = *position;
+    Expected<Quaternion> orientation = parseOrientation(reader, *map);
+    if (!orientation) return orientation.error();
+    placement.orientation = *orientation;
+    Expected<bool> fixedBase = reader.boolean(*map, "fixed_base", false);
+    if (!fixedBase) return fixedBase.error();
+    placement.fixedBase = *fixedBase;
+    Expected<bool> merge = reader.boolean(*map, "merge_fixed_links", false);
+    if (!merge) return merge.error();
+    placement.mergeFixedLinks = *merge;
+
+    const YamlMap::Entry* positions = map->find("joint_positions");
+    if (positions != nullptr) {
+      Expected<YamlMap> joints = reader.map(positions->value);
+      if (!joints) return joints.error();
+      for (const YamlMap::Entry& joint : joints->entries()) {
+        Expected<double> q = reader.number(joint.value, NumberRule::any(kMaxJointPosition));
+        if (!q) return q.error();
+        placement.jointPositions.emplace(joint.key, *q);
+      }
+    }
+    RobotFiles files;
+    files.sourceName = *urdf;
+    if (const YamlMap::Entry* paths = map->find("package_paths")) {
+      Expected<std::vector<YamlNode>> list = reader.list(paths->value);
+      if (!list) return list.error();
+      for (const YamlNode& entry : *list) {
+        Expected<std::string> directory = reader.string(entry);
+        if (!directory) return directory.error();
+        if (directory->empty()) return reader.error(entry, "expected a directory");
+        files.packagePaths.push_back(resolved(baseDirectory, *directory).string());
+      }
+    }
+
+    Expected<RobotModel> robot = loadRobot(resolved(baseDirectory, *urdf).string(), placement, files);
+    if (!robot) {
+      // A joint position the robot cannot take is the world file's mistake.
+      constexpr std::string_view kPositions = "joint_positions: ";
+      const std::string& message = robot.error().message;
+      if (positions != nullptr && message.rfind(kPositions, 0) == 0)
+        return reader.error(positions->value, message.substr(kPositions.size()));
+      return reader.error(*urdfNode, message);
+    }
+    for (const BodyDef& body : robot->bodies)
+      if (taken(body.name))
+        return reader.error(*nameNode, "robot \"" + *name + "\" makes a body named \"" + body.name +
+                                           "\", which the world already has");
+    for (BodyDef& body : robot->bodies) world.bodies.push_back(std::move(body));
+    for (NamedJointDef& joint : robot->joints) world.joints.push_back(std::move(joint));
+    report.insert(report.end(), robot->report.begin(), robot->report.end());
+  }
+  return std::nullopt;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,39 @@
+#pragma once
+// The `robots:` list of a world file: robots from URDF descriptions
+// (robot/urdf_robot.h), each placed in the world with its joints at their
+// initial positions; their bodies and joints are added to the world's under
+// the robot's name ("arm/base_link", "arm/shoulder_joint"):
+//
+//   robots:
+//     - name: arm                  # the prefix of its bodies' and joints' names
+//       urdf: robots/arm.urdf      # relative to the config file
+//       position: [0, 0, 0]        # m: where the root link's frame goes
+//       orientation: [1, 0, 0, 0]  # or rpy
+//       fixed_base: true           # the root link static (welded to the world)
+//       merge_fixed_links: false   # links held by fixed joints as one body
+//       joint_positions: {shoulder_joint: 0.3}   # rad or m
+//       package_paths: [robots]    # where package://NAME/... is looked up
+//
+// Errors name the world file's line and key, and the URDF's line.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "config/yaml_reader.h"
+#include "rbsim/physics/world_settings.h"
+
+namespace rbsim {
+
+// Whether a body of this name is already in the world.
+using BodyNameTaken = std::function<bool(const std::string& name)>;
+
+// Reads the list `node`, appends each robot's bodies and joints to `world`
+// and its load report (robot/urdf_robot.h) to `report`. Relative paths are
+// relative to `baseDirectory`.
+std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
+                                 const std::filesystem::path& baseDirectory, const BodyNameTaken& taken,
+                                 WorldDef& world, std::vector<std::string>& report);
+
+}  // namespace rbsim

@@ -1,0 +1,76 @@
+#pragma once
+// A robot from its URDF description (parsed by urdfdom, the parser ROS
+// uses) as bodies and joints of a world, with everything that changes the
+// physics honoured and everything else reported, by element and line.
+//
+// The mapping:
+//  - a link is a body named "<robot>/<link>", placed where the link's frame
+//    is with the joints at their initial positions; its <inertial> gives
+//    the mass properties (mass, centre of mass and inertia in the link's
+//    frame), its <collision> elements its shape (one: that shape; several:
+//    a compound; box, sphere, cylinder, and meshes (OBJ, STL), which collide
+//    as their convex hull and may be open, since the mass is given). A link
+//    without collisions collides with nothing.
+//  - revolute, continuous, prismatic and fixed joints are joints with their
+//    axis, limits and <dynamics> (damping, friction); a floating joint
+//    leaves its child free; a planar joint is refused.
+//  - the root link is static when the robot has a fixed base, or when it
+//    has no mass (PyBullet's convention for a static base).
+//  - a link without mass (no <inertial>, or mass 0: a sensor's frame) is
+//    merged into its parent when a fixed joint holds it there (its
+//    collisions join the parent's shape); anywhere else it is an error.
+//    Links held by fixed joints are merged into one body with their masses
+//    combined exactly when the robot asks for it (merge_fixed_links).
+// Errors name the file and the line of the element at fault.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/joint_definition.h"
+#include "rbsim/physics/types.h"
+
+namespace rbsim {
+
+// Where a robot goes and how it starts.
+struct RobotPlacement {
+  std::string name;  // the prefix of its bodies' and joints' names
+  Vec3 position = Vec3::Zero();                     // m: where the root link's frame goes
+  Quaternion orientation = Quaternion::identity();  // root link frame -> world
+  bool fixedBase = false;                           // the root link static (welded to the world)
+  bool mergeFixedLinks = false;                     // links held by fixed joints merged into one body
+  // Initial joint positions by the URDF's joint names (rad or m); the
+  // others start at 0. The joints read them as their positions there.
+  std::map<std::string, double, std::less<>> jointPositions;
+};
+
+// Where a URDF's files are: its own directory (for relative mesh paths) and
+// the directories package://NAME/... is looked up in (each holds packages,
+// DIR/NAME/..., or is the package itself, .../NAME).
+struct RobotFiles {
+  std::string sourceName;  // the URDF as messages name it
+  std::string directory;
+  std::vector<std::string> packagePaths;
+};
+
+// What a robot adds to a world, and the report of what was made of its
+// description and what was not used.
+struct RobotModel {
+  std::vector<BodyDef> bodies;
+  std::vector<NamedJointDef> joints;
+  std::vector<std::string> report;  // one line each
+};
+
+// Builds the robot of the URDF text `xml`. Errors: XML that is not a URDF
+// (urdfdom's message), a planar joint, a mimic joint, a moving link without
+// mass, mass properties no rigid body has, a shape of non-positive size, a
+// mesh that cannot be read (COLLADA is refused by name), a joint position
+// for a joint the robot does not have or that does not move, or outside its
+// limits.
+Expected<RobotModel> buildRobot(const std::string& xml, const RobotPlacement& placement, const RobotFiles& files);
+
+// The same from the file at `path` (sourceName: how messages name it).
+Expected<RobotModel> loadRobot(const std::string& path, const RobotPlacement& placement, RobotFiles files);
+
+}  // namespace rbsim

@@ -1,0 +1,153 @@
+// The `robots:` list of a world file (config/robot_config.h): a URDF
+// pendulum steps bit-identically to the same bodies and joint written in
+// YAML, a world's own joints can join a robot's bodies, and mistakes point
+// at the world file's line and key.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "config/config_loader.h"
+#include "rbsim/physics/world.h"
+
+namespace rbsim {
+namespace {
+
+const std::string kUrdfDir = std::string(RBSIM_TEST_DATA_DIR) + "/urdf";
+
+Expected<WorldDef> parse(const std::string& yaml) { return parseWorldConfig(yaml, "w.yaml", kUrdfDir); }
+
+std::string errorOf(const std::string& yaml) {
+  const Expected<WorldDef> world = parse(yaml);
+  if (world.ok()) {
+    ADD_FAILURE() << "accepted:\n" << yaml;
+    return "";
+  }
+  return world.error().message;
+}
+
+bool sameBits(const RigidState& a, const RigidState& b) {
+  return std::memcmp(a.position.data(), b.position.data(), sizeof(double) * 3) == 0 &&
+         std::memcmp(&a.orientation, &b.orientation, sizeof(Quaternion)) == 0 &&
+         std::memcmp(a.linearMomentum.data(), b.linearMomentum.data(), sizeof(double) * 3) == 0 &&
+         std::memcmp(a.angularMomentum.data(), b.angularMomentum.data(), sizeof(double) * 3) == 0;
+}
+
+TEST(RobotConfig, AUrdfPendulumStepsBitIdenticallyToTheSameBodiesInYaml) {
+  const Expected<WorldDef> fromUrdf = parse(
+      "world: {dt: 0.001}\n"
+      "robots:\n"
+      "  - {name: pendulum, urdf: pendulum.urdf, position: [0, 0, 2]}\n");
+  ASSERT_TRUE(fromUrdf.ok()) << fromUrdf.error().message;
+  const Expected<WorldDef> fromYaml = parse(
+      "world: {dt: 0.001}\n"
+      "bodies:\n"
+      "  - {name: pendulum/base, static: true, position: [0, 0, 2],\n"
+      "     shape: {type: box, half_extents: [0.05, 0.05, 0.05]}}\n"
+      "  - name: pendulum/bob\n"
+      "    position: [0, 0, 2]\n"
+      "    shape: {type: compound, shapes: [{shape: {type: sphere, radius: 0.05}, position: [1, 0, 0]}]}\n"
+      "    mass: 1\n"
+      "    center_of_mass: [1, 0, 0]\n"
+      "    inertia: [0.001, 0.001, 0.001]\n"
+      "joints:\n"
+      "  - {name: pendulum/swing, type: revolute, body_a: pendulum/base, body_b: pendulum/bob,\n"
+      "     anchor: [0, 0, 2], axis: [0, 1, 0]}\n");
+  ASSERT_TRUE(fromYaml.ok()) << fromYaml.error().message;
+  Expected<World> a = World::fromDef(*fromUrdf);
+  Expected<World> b = World::fromDef(*fromYaml);
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  const BodyId bobA = a->findBody("pendulum/bob"), bobB = b->findBody("pendulum/bob");
+  for (int step = 0; step < 2000; ++step) {
+    a->step();
+    b->step();
+    ASSERT_TRUE(sameBits(a->body(bobA).state(), b->body(bobB).state())) << "step " << step;
+  }
+  // And it swung: released from the horizontal, the bob is below it now.
+  EXPECT_LT(a->body(bobA).position().z(), 1.5);
+}
+
+TEST(RobotConfig, AWorldsJointsMayJoinARobotsBodies) {
+  const Expected<WorldDef> world = parse(
+      "bodies:\n"
+      "  - {name: tool, shape: {type: box, half_extents: [0.05, 0.05, 0.05]}, mass: 0.5, position: [1.0, 0, 0.1]}\n"
+      "robots:\n"
+      "  - {name: arm, urdf: two_link_arm.urdf, fixed_base: true}\n"
+      "joints:\n"
+      "  - {name: flange, type: fixed, body_a: arm/fore, body_b: tool, anchor: [1.0, 0, 0.1]}\n");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_EQ(world->bodies.size(), 4u);
+  EXPECT_EQ(world->joints.size(), 3u);
+  Expected<World> built = World::fromDef(*world);
+  ASSERT_TRUE(built.ok()) << built.error().message;
+  for (int step = 0; step < 100; ++step) built->step();
+  EXPECT_LT(built->jointState(built->findJoint("flange")).error, 1e-9);
+}
+
+TEST(RobotConfig, AnArmStartsAtItsJointPositionsAndItsJointsReadThem) {
+  const Expected<WorldDef> def = parse(
+      "robots:\n"
+      "  - {name: arm, urdf: two_link_arm.urdf, fixed_base: true, joint_positions: {shoulder: 0.3, elbow: -0.5}}\n");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_NEAR(world->jointState(world->findJoint("arm/shoulder")).position, 0.3, 1e-12);
+  EXPECT_NEAR(world->jointState(world->findJoint("arm/elbow")).position, -0.5, 1e-12);
+  EXPECT_LT(world->jointState(world->findJoint("arm/elbow")).error, 1e-12) << "placed where the joints close";
+}
+
+TEST(RobotConfig, ALinkWithoutCollisionsCollidesWithNothing) {
+  const Expected<WorldDef> def = parse("robots:\n  - {name: p, urdf: pendulum.urdf}\n");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  EXPECT_TRUE(def->bodies[1].collides) << "the bob has a sphere";
+  const std::string yaml =
+      "robots:\n  - {name: g, urdf: sensor_only.urdf}\n";
+  const Expected<WorldDef> sensor = parse(yaml);
+  ASSERT_TRUE(sensor.ok()) << sensor.error().message;
+  ASSERT_EQ(sensor->bodies.size(), 1u);
+  EXPECT_FALSE(sensor->bodies[0].collides);
+  EXPECT_EQ(*sensor->bodies[0].mass, 0.2);
+}
+
+TEST(RobotConfig, TheLoadReportComesWithTheConfig) {
+  const Expected<Config> config =
+      parseConfig("robots:\n  - {name: arm, urdf: two_link_arm.urdf}\n", kUrdfDir + "/w.yaml", kUrdfDir);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  ASSERT_FALSE(config->robotReport.empty());
+  EXPECT_NE(config->robotReport.front().find("robot 'arm' from two_link_arm.urdf"), std::string::npos)
+      << config->robotReport.front();
+}
+
+TEST(RobotConfig, MistakesPointAtTheWorldFilesLineAndKey) {
+  EXPECT_NE(errorOf("robots:\n  - {name: arm}\n").find("w.yaml:2:5: robots[0].urdf: missing required key"),
+            std::string::npos)
+      << errorOf("robots:\n  - {name: arm}\n");
+  EXPECT_NE(errorOf("robots:\n  - {name: a/b, urdf: pendulum.urdf}\n").find("w.yaml:2:12: robots[0].name: a robot's name is 1 to 128 characters without '/'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("robots:\n  - {name: p, urdf: pendulum.urdf}\n  - {name: p, urdf: pendulum.urdf}\n")
+                .find("w.yaml:3:12: robots[1].name: duplicate robot name \"p\""),
+            std::string::npos);
+  EXPECT_NE(errorOf("robots:\n  - {name: p, urdf: pendulum.urdf, colour: red}\n").find("robots[0]"), std::string::npos);
+  EXPECT_NE(errorOf("bodies:\n  - {name: p/bob, shape: {type: sphere, radius: 1}}\n"
+                    "robots:\n  - {name: p, urdf: pendulum.urdf}\n")
+                .find("robot \"p\" makes a body named \"p/bob\", which the world already has"),
+            std::string::npos);
+  EXPECT_NE(errorOf("robots:\n  - {name: p, urdf: missing.urdf}\n").find("w.yaml:2:21: robots[0].urdf: missing.urdf: cannot read"),
+            std::string::npos)
+      << errorOf("robots:\n  - {name: p, urdf: missing.urdf}\n");
+  EXPECT_NE(errorOf("robots:\n  - {name: g, urdf: gripper_mimic.urdf}\n")
+                .find("robots[0].urdf: gripper_mimic.urdf:22: joint 'right_slide': mimics"),
+            std::string::npos);
+  const std::string outside = errorOf("robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n"
+                                      "    joint_positions: {elbow: 9}\n");
+  EXPECT_NE(outside.find("w.yaml:4:22: robots[0].joint_positions: joint 'elbow' at 9 is outside its limits"),
+            std::string::npos)
+      << outside;
+  EXPECT_NE(errorOf("robots:\n  - {name: p, urdf: pendulum.urdf, fixed_base: 1}\n").find("robots[0].fixed_base"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rbsim

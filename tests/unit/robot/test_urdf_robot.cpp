@@ -1,0 +1,387 @@
+// Robots from URDF (robot/urdf_robot.h): each test description loads with
+// the bodies, joints, limits and mass properties worked out by hand from
+// its file, and every mistake that matters is refused with the file and
+// the line.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "robot/urdf_robot.h"
+
+namespace rbsim {
+namespace {
+
+const std::string kUrdfDir = std::string(RBSIM_TEST_DATA_DIR) + "/urdf";
+constexpr double kPi = 3.14159265358979323846;
+
+RobotFiles filesFor(const std::string& name) {
+  RobotFiles files;
+  files.sourceName = name;
+  files.packagePaths = {kUrdfDir + "/packages"};
+  return files;
+}
+
+RobotModel load(const std::string& file, RobotPlacement placement = {}) {
+  if (placement.name.empty()) placement.name = "r";
+  Expected<RobotModel> robot = loadRobot(kUrdfDir + "/" + file, placement, filesFor(file));
+  if (!robot) {
+    ADD_FAILURE() << robot.error().message;
+    return {};
+  }
+  return std::move(*robot);
+}
+
+std::string errorOf(const std::string& xml, RobotPlacement placement = {}) {
+  if (placement.name.empty()) placement.name = "r";
+  Expected<RobotModel> robot = buildRobot(xml, placement, filesFor("bad.urdf"));
+  if (robot) {
+    ADD_FAILURE() << "accepted:\n" << xml;
+    return "";
+  }
+  return robot.error().message;
+}
+
+const BodyDef* bodyNamed(const RobotModel& robot, const std::string& name) {
+  for (const BodyDef& body : robot.bodies)
+    if (body.name == name) return &body;
+  ADD_FAILURE() << "no body " << name;
+  return nullptr;
+}
+
+const NamedJointDef* jointNamed(const RobotModel& robot, const std::string& name) {
+  for (const NamedJointDef& joint : robot.joints)
+    if (joint.def.name == name) return &joint;
+  ADD_FAILURE() << "no joint " << name;
+  return nullptr;
+}
+
+bool reportHas(const RobotModel& robot, const std::string& text) {
+  for (const std::string& line : robot.report)
+    if (line.find(text) != std::string::npos) return true;
+  return false;
+}
+
+std::string reportText(const RobotModel& robot) {
+  std::string all;
+  for (const std::string& line : robot.report) all += line + "\n";
+  return all;
+}
+
+void expectMatrixNear(const Mat3& actual, const Mat3& expected, double tolerance) {
+  EXPECT_LT((actual - expected).cwiseAbs().maxCoeff(), tolerance) << "actual\n" << actual << "\nexpected\n" << expected;
+}
+
+// A link with a 1 kg box, for descriptions written inline.
+std::string boxLink(const std::string& name, const std::string& inertialExtra = "") {
+  return "<link name=\"" + name + "\"><inertial>" + inertialExtra +
+         "<mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial>"
+         "<collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision></link>\n";
+}
+
+std::string robotXml(const std::string& inside) { return "<?xml version=\"1.0\"?>\n<robot name=\"t\">\n" + inside + "</robot>\n"; }
+
+TEST(UrdfRobot, APendulumIsAStaticBaseAndABobOnAHinge) {
+  RobotPlacement placement;
+  placement.name = "pendulum";
+  placement.position = {0, 0, 2};
+  const RobotModel robot = load("pendulum.urdf", placement);
+  ASSERT_EQ(robot.bodies.size(), 2u);
+  const BodyDef& base = robot.bodies[0];
+  EXPECT_EQ(base.name, "pendulum/base");
+  EXPECT_TRUE(base.isStatic) << "a root without mass is static";
+  EXPECT_EQ(base.position, Vec3(0, 0, 2));
+  ASSERT_TRUE(std::holds_alternative<BoxShape>(base.shape));
+  EXPECT_EQ(std::get<BoxShape>(base.shape).halfExtents, Vec3::Constant(0.05));
+
+  const BodyDef& bob = robot.bodies[1];
+  EXPECT_EQ(bob.name, "pendulum/bob");
+  EXPECT_FALSE(bob.isStatic);
+  EXPECT_EQ(*bob.mass, 1.0);
+  EXPECT_EQ(*bob.centerOfMass, Vec3(1, 0, 0));
+  EXPECT_EQ(*bob.inertia, Mat3(Vec3::Constant(0.001).asDiagonal()));
+  EXPECT_EQ(bob.position, Vec3(0, 0, 2)) << "the link's frame is at the joint";
+  ASSERT_TRUE(std::holds_alternative<CompoundShape>(bob.shape)) << "one collision away from the frame: a placed part";
+  const CompoundShape& parts = std::get<CompoundShape>(bob.shape);
+  ASSERT_EQ(parts.parts.size(), 1u);
+  EXPECT_EQ(parts.parts[0].position, Vec3(1, 0, 0));
+  EXPECT_EQ(std::get<SphereShape>(parts.parts[0].shape).radius, 0.05);
+
+  ASSERT_EQ(robot.joints.size(), 1u);
+  const NamedJointDef& swing = robot.joints[0];
+  EXPECT_EQ(swing.def.name, "pendulum/swing");
+  EXPECT_EQ(swing.def.type, JointType::Revolute);
+  EXPECT_FALSE(swing.def.limit.enabled) << "continuous";
+  EXPECT_EQ(swing.bodyA, "pendulum/base");
+  EXPECT_EQ(swing.bodyB, "pendulum/bob");
+  EXPECT_EQ(swing.def.anchor, Vec3(0, 0, 2));
+  EXPECT_EQ(swing.def.axis, Vec3(0, 1, 0));
+  EXPECT_NE(swing.source.find("pendulum.urdf:21: joint 'swing'"), std::string::npos) << swing.source;
+}
+
+TEST(UrdfRobot, AnArmsMassPropertiesAreItsInertialsTurnedIntoTheLinkFrame) {
+  RobotPlacement placement;
+  placement.fixedBase = true;
+  const RobotModel robot = load("two_link_arm.urdf", placement);
+  ASSERT_EQ(robot.bodies.size(), 3u);
+  EXPECT_TRUE(bodyNamed(robot, "r/base")->isStatic) << "fixed_base";
+  EXPECT_FALSE(bodyNamed(robot, "r/base")->mass.has_value()) << "a static body takes no mass properties";
+  // The tensor diag(0.0417, 0.001, 0.0425) in a frame turned a quarter
+  // turn about z: the link's x is the inertial frame's −y, so
+  // R diag(a, b, c) Rᵀ = diag(b, a, c).
+  const BodyDef& upper = *bodyNamed(robot, "r/upper");
+  EXPECT_EQ(*upper.mass, 2.0);
+  EXPECT_LT((*upper.centerOfMass - Vec3(0.25, 0, 0)).norm(), 1e-15);
+  expectMatrixNear(*upper.inertia, Vec3(0.001, 0.0417, 0.0425).asDiagonal().toDenseMatrix(), 1e-12);
+  const BodyDef& fore = *bodyNamed(robot, "r/fore");
+  expectMatrixNear(*fore.inertia, Vec3(0.0005, 0.0208, 0.021).asDiagonal().toDenseMatrix(), 1e-12);
+  EXPECT_EQ(fore.position, Vec3(0.5, 0, 0.1));
+
+  const JointDef& shoulder = jointNamed(robot, "r/shoulder")->def;
+  EXPECT_EQ(shoulder.type, JointType::Revolute);
+  EXPECT_TRUE(shoulder.limit.enabled);
+  EXPECT_EQ(shoulder.limit.lower, -2.0);
+  EXPECT_EQ(shoulder.limit.upper, 2.0);
+  EXPECT_EQ(shoulder.damping, 0.1);
+  EXPECT_EQ(shoulder.friction, 0.05);
+  EXPECT_EQ(shoulder.anchor, Vec3(0, 0, 0.1));
+  const JointDef& elbow = jointNamed(robot, "r/elbow")->def;
+  EXPECT_EQ(elbow.limit.lower, -2.5);
+  EXPECT_EQ(elbow.anchor, Vec3(0.5, 0, 0.1));
+  EXPECT_EQ(elbow.damping, 0.0) << "no <dynamics>";
+
+  // Without a fixed base the root has its own mass.
+  const RobotModel free = load("two_link_arm.urdf");
+  const BodyDef& base = *bodyNamed(free, "r/base");
+  EXPECT_FALSE(base.isStatic);
+  EXPECT_EQ(*base.mass, 5.0);
+  ASSERT_TRUE(std::holds_alternative<CylinderShape>(base.shape));
+  EXPECT_EQ(std::get<CylinderShape>(base.shape).halfLength, 0.1) << "URDF gives the whole length";
+}
+
+TEST(UrdfRobot, InitialJointPositionsPlaceTheLinksThroughTheChain) {
+  RobotPlacement placement;
+  placement.position = {1, 2, 3};
+  placement.orientation = Quaternion::fromAxisAngle(Vec3::UnitZ(), kPi / 2);
+  placement.fixedBase = true;
+  placement.jointPositions = {{"shoulder", 0.3}, {"elbow", -0.5}};
+  const RobotModel robot = load("two_link_arm.urdf", placement);
+  // By hand: the shoulder's frame is 0.1 m above the base; the upper link
+  // turns 0.3 about y, so the elbow is at (0.5 cos 0.3, 0, 0.1 − 0.5 sin
+  // 0.3) in the base's frame, which the placement turns by a quarter about
+  // z ((x, y, z) -> (−y, x, z)) and moves by (1, 2, 3).
+  const BodyDef& upper = *bodyNamed(robot, "r/upper");
+  EXPECT_LT((upper.position - Vec3(1, 2, 3.1)).norm(), 1e-15);
+  const BodyDef& fore = *bodyNamed(robot, "r/fore");
+  const Vec3 elbow(1.0, 2.0 + 0.5 * std::cos(0.3), 3.0 + 0.1 - 0.5 * std::sin(0.3));
+  EXPECT_LT((fore.position - elbow).norm(), 1e-12) << fore.position.transpose();
+  // The forearm is turned by 0.3 − 0.5 about the arm's y, which is the
+  // world's −x after the placement.
+  const Mat3 expected = Quaternion::fromAxisAngle(Vec3::UnitZ(), kPi / 2).toRotationMatrix() *
+                        Quaternion::fromAxisAngle(Vec3::UnitY(), -0.2).toRotationMatrix();
+  expectMatrixNear(fore.orientation.toRotationMatrix(), expected, 1e-12);
+  const JointDef& elbowJoint = jointNamed(robot, "r/elbow")->def;
+  EXPECT_LT((elbowJoint.anchor - elbow).norm(), 1e-12);
+  EXPECT_LT((elbowJoint.axis - Vec3(-1, 0, 0)).norm(), 1e-15);
+  EXPECT_EQ(elbowJoint.position, -0.5) << "the joint reads its initial position there";
+  EXPECT_EQ(jointNamed(robot, "r/shoulder")->def.position, 0.3);
+}
+
+TEST(UrdfRobot, AWheeledBaseHasFourWheelsOnAxlesAndItsMasslessLaserMergedIntoTheChassis) {
+  const RobotModel robot = load("wheeled_base.urdf");
+  ASSERT_EQ(robot.bodies.size(), 5u) << reportText(robot);
+  const BodyDef& chassis = *bodyNamed(robot, "r/chassis");
+  EXPECT_FALSE(chassis.isStatic);
+  EXPECT_EQ(*chassis.mass, 10.0) << "the laser has no mass";
+  ASSERT_TRUE(std::holds_alternative<CompoundShape>(chassis.shape));
+  const CompoundShape& parts = std::get<CompoundShape>(chassis.shape);
+  ASSERT_EQ(parts.parts.size(), 2u) << "the chassis's box and the laser's";
+  EXPECT_LT((parts.parts[1].position - Vec3(0.4, 0, 0.125)).norm(), 1e-15);
+  EXPECT_EQ(std::get<BoxShape>(parts.parts[1].shape).halfExtents, Vec3::Constant(0.025));
+  EXPECT_TRUE(reportHas(robot, "link 'laser' merged into 'chassis'")) << reportText(robot);
+
+  for (const char* wheel : {"front_left", "front_right", "rear_left", "rear_right"}) {
+    SCOPED_TRACE(wheel);
+    const BodyDef& body = *bodyNamed(robot, std::string("r/") + wheel);
+    // diag(a, a, c) about the cylinder's z, turned onto y: diag(a, c, a).
+    const double a = (3 * 0.01 + 0.0025) / 12, c = 0.005;
+    expectMatrixNear(*body.inertia, Vec3(a, c, a).asDiagonal().toDenseMatrix(), 1e-12);
+    const NamedJointDef& axle = *jointNamed(robot, std::string("r/") + wheel + "_axle");
+    EXPECT_EQ(axle.def.type, JointType::Revolute);
+    EXPECT_FALSE(axle.def.limit.enabled);
+    EXPECT_EQ(axle.def.damping, 0.01);
+    EXPECT_EQ(axle.def.axis, Vec3(0, 1, 0));
+    EXPECT_EQ(axle.bodyA, "r/chassis");
+    EXPECT_EQ(body.position, axle.def.anchor);
+  }
+  EXPECT_EQ(jointNamed(robot, "r/front_right_axle")->def.anchor, Vec3(0.35, -0.35, -0.1));
+}
+
+TEST(UrdfRobot, MergingFixedLinksCombinesTheirMassesExactly) {
+  const std::string xml = robotXml(
+      boxLink("a") +
+      "<link name=\"b\"><inertial><mass value=\"3\"/>"
+      "<inertia ixx=\"0.2\" ixy=\"0\" ixz=\"0\" iyy=\"0.2\" iyz=\"0\" izz=\"0.2\"/></inertial>"
+      "<collision><geometry><sphere radius=\"0.1\"/></geometry></collision></link>\n"
+      "<joint name=\"weld\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/><origin xyz=\"1 0 0\"/></joint>\n");
+  RobotPlacement apart;
+  apart.name = "r";
+  Expected<RobotModel> separate = buildRobot(xml, apart, filesFor("m.urdf"));
+  ASSERT_TRUE(separate.ok()) << separate.error().message;
+  EXPECT_EQ(separate->bodies.size(), 2u) << "kept apart unless asked";
+  ASSERT_EQ(separate->joints.size(), 1u);
+  EXPECT_EQ(separate->joints[0].def.type, JointType::Fixed);
+
+  RobotPlacement merged = apart;
+  merged.mergeFixedLinks = true;
+  Expected<RobotModel> one = buildRobot(xml, merged, filesFor("m.urdf"));
+  ASSERT_TRUE(one.ok()) << one.error().message;
+  ASSERT_EQ(one->bodies.size(), 1u);
+  EXPECT_TRUE(one->joints.empty());
+  const BodyDef& body = one->bodies[0];
+  // 1 kg at 0 and 3 kg at 1 m: 4 kg at 0.75 m; about y and z each adds
+  // m d² = 1 · 0.75² + 3 · 0.25² = 0.75 to 0.1 + 0.2.
+  EXPECT_EQ(*body.mass, 4.0);
+  EXPECT_LT((*body.centerOfMass - Vec3(0.75, 0, 0)).norm(), 1e-15);
+  expectMatrixNear(*body.inertia, Vec3(0.3, 1.05, 1.05).asDiagonal().toDenseMatrix(), 1e-12);
+  ASSERT_TRUE(std::holds_alternative<CompoundShape>(body.shape));
+  EXPECT_EQ(std::get<CompoundShape>(body.shape).parts.size(), 2u);
+}
+
+TEST(UrdfRobot, AnOpenPackagedMeshCollidesAsItsConvexHull) {
+  const RobotModel robot = load("packaged_meshes.urdf");
+  ASSERT_EQ(robot.bodies.size(), 1u);
+  const CompoundShape& parts = std::get<CompoundShape>(robot.bodies[0].shape);
+  ASSERT_EQ(parts.parts.size(), 2u);
+  const MeshShape& box = std::get<MeshShape>(parts.parts[0].shape);
+  ASSERT_TRUE(box.mesh);
+  ASSERT_EQ(box.mesh->vertices.size(), 8u) << "the open box's hull is its cube";
+  EXPECT_EQ(box.mesh->triangles.size(), 12u);
+  Vec3 lower, upper;
+  usedVertexBounds(*box.mesh, lower, upper);
+  EXPECT_LT((lower - Vec3(0.2, 0.4, 0.6)).norm(), 1e-15) << "scaled by 0.2";
+  EXPECT_LT((upper - Vec3(0.6, 0.8, 1.0)).norm(), 1e-15);
+  EXPECT_TRUE(validateClosedMesh(*box.mesh, "hull").ok()) << "the hull bounds a solid";
+  EXPECT_TRUE(reportHas(robot, "open_box.obj' (10 triangles, open:")) << reportText(robot);
+  EXPECT_EQ(std::get<MeshShape>(parts.parts[1].shape).mesh->vertices.size(), 4u);
+  EXPECT_EQ(parts.parts[1].position, Vec3(0, 0, 0.5));
+}
+
+TEST(UrdfRobot, APackageIsFoundThroughRosPackagePathOrNamedWhenItIsNot) {
+  RobotPlacement placement;
+  placement.name = "r";
+  RobotFiles files;
+  files.sourceName = "packaged_meshes.urdf";
+  ::unsetenv("ROS_PACKAGE_PATH");
+  Expected<RobotModel> missing = loadRobot(kUrdfDir + "/packaged_meshes.urdf", placement, files);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("packaged_meshes.urdf:6: link 'bin': mesh "
+                                         "'package://rbsim_test_parts/meshes/open_box.obj': package "
+                                         "'rbsim_test_parts' not found"),
+            std::string::npos)
+      << missing.error().message;
+  ::setenv("ROS_PACKAGE_PATH", ("/nonexistent:" + kUrdfDir + "/packages").c_str(), 1);
+  Expected<RobotModel> found = loadRobot(kUrdfDir + "/packaged_meshes.urdf", placement, files);
+  ::unsetenv("ROS_PACKAGE_PATH");
+  EXPECT_TRUE(found.ok()) << found.error().message;
+}
+
+TEST(UrdfRobot, WhatIsNotUsedIsReportedByElementAndLine) {
+  const RobotModel robot = load("two_link_arm.urdf");
+  const std::string text = reportText(robot);
+  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:8: material 'orange': colour only")) << text;
+  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:24: link 'upper'/visual: drawing only")) << text;
+  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:58: joint 'elbow'/safety_controller")) << text;
+  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:60: transmission 'shoulder_transmission'")) << text;
+  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:64: gazebo")) << text;
+  EXPECT_TRUE(reportHas(robot, "joint 'r/shoulder': <limit> effort 50 and velocity 3 are not enforced yet")) << text;
+  EXPECT_TRUE(reportHas(robot, "joint 'r/elbow': revolute 'r/upper' -> 'r/fore', axis (0, 1, 0), limits [-2.5, 2.5]"))
+      << text;
+}
+
+TEST(UrdfRobot, AMimicJointIsRefusedNotDropped) {
+  RobotPlacement placement;
+  placement.name = "g";
+  Expected<RobotModel> robot = loadRobot(kUrdfDir + "/gripper_mimic.urdf", placement, filesFor("gripper_mimic.urdf"));
+  ASSERT_FALSE(robot.ok());
+  EXPECT_NE(robot.error().message.find("gripper_mimic.urdf:22: joint 'right_slide': mimics joint 'left_slide'"),
+            std::string::npos)
+      << robot.error().message;
+}
+
+TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {
+  const std::string arm = boxLink("a") + boxLink("b");
+  const auto joint = [](const std::string& type, const std::string& extra = "") {
+    return "<joint name=\"j\" type=\"" + type + "\"><parent link=\"a\"/><child link=\"b\"/>" + extra + "</joint>\n";
+  };
+  EXPECT_NE(errorOf("<robot name=\"t\">\n<link name=\"a\">\n</robot>").find("bad.urdf:2: not well-formed XML"),
+            std::string::npos);
+  EXPECT_NE(errorOf("<model name=\"t\"/>").find("bad.urdf:1: a URDF's root element is <robot>, not <model>"),
+            std::string::npos);
+  EXPECT_NE(errorOf(robotXml(arm + joint("planar"))).find("bad.urdf:5: joint 'j': planar joints are not supported"),
+            std::string::npos);
+  EXPECT_NE(errorOf(robotXml(arm + joint("continuous", "<axis xyz=\"0 0 0\"/>"))).find("joint 'j': its <axis> is zero"),
+            std::string::npos);
+  // A link without mass that moves.
+  const std::string massless = boxLink("a") + "<link name=\"b\"/>\n" + joint("continuous", "<axis xyz=\"0 0 1\"/>");
+  EXPECT_NE(errorOf(robotXml(massless)).find("bad.urdf:4: link 'b': has no mass (no <inertial>, or mass 0) but moves on "
+                                            "continuous joint 'j'"),
+            std::string::npos)
+      << errorOf(robotXml(massless));
+  // An inertia no body has (the triangle inequality broken).
+  const std::string badInertia =
+      "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" "
+      "izz=\"0.1\"/></inertial></link>\n";
+  EXPECT_NE(errorOf(robotXml(badInertia)).find("bad.urdf:3: link 'a': its <inertia> is not one a rigid body can have"),
+            std::string::npos)
+      << errorOf(robotXml(badInertia));
+  // A non-positive size.
+  const std::string flat =
+      "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" "
+      "izz=\"0.1\"/></inertial><collision><geometry><sphere radius=\"-1\"/></geometry></collision></link>\n";
+  EXPECT_NE(errorOf(robotXml(flat)).find("link 'a': a collision sphere's radius must be > 0, got -1"), std::string::npos)
+      << errorOf(robotXml(flat));
+  // urdfdom's own objections come through.
+  EXPECT_NE(errorOf(robotXml(boxLink("a") + joint("revolute", "<axis xyz=\"0 0 1\"/>"))).find("bad.urdf: not a valid URDF"),
+            std::string::npos);
+}
+
+TEST(UrdfRobot, AColladaMeshIsRefusedByName) {
+  RobotPlacement placement;
+  placement.name = "r";
+  RobotFiles files = filesFor("dae.urdf");
+  files.directory = kUrdfDir;
+  const std::string xml = robotXml(
+      "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" "
+      "izz=\"0.1\"/></inertial><collision><geometry><mesh filename=\"meshes/part.dae\"/></geometry></collision></link>\n");
+  Expected<RobotModel> robot = buildRobot(xml, placement, files);
+  ASSERT_FALSE(robot.ok());
+  EXPECT_NE(robot.error().message.find("dae.urdf:3: link 'a': mesh 'meshes/part.dae' is COLLADA (.dae), which rbsim "
+                                       "does not read: convert it to STL or OBJ"),
+            std::string::npos)
+      << robot.error().message;
+}
+
+TEST(UrdfRobot, JointPositionsMustNameMovingJointsWithinTheirLimits) {
+  const auto errorWith = [](std::map<std::string, double, std::less<>> positions) {
+    RobotPlacement placement;
+    placement.name = "r";
+    placement.jointPositions = std::move(positions);
+    Expected<RobotModel> robot = loadRobot(kUrdfDir + "/two_link_arm.urdf", placement, filesFor("arm.urdf"));
+    return robot.ok() ? std::string("accepted") : robot.error().message;
+  };
+  EXPECT_NE(errorWith({{"wrist", 0.1}}).find("joint_positions: the robot has no joint 'wrist'"), std::string::npos);
+  EXPECT_NE(errorWith({{"elbow", 3.0}}).find("joint_positions: joint 'elbow' at 3 is outside its limits [-2.5, 2.5]"),
+            std::string::npos);
+  RobotPlacement placement;
+  placement.name = "r";
+  placement.jointPositions = {{"laser_mount", 0.1}};
+  Expected<RobotModel> fixed = loadRobot(kUrdfDir + "/wheeled_base.urdf", placement, filesFor("base.urdf"));
+  ASSERT_FALSE(fixed.ok());
+  EXPECT_NE(fixed.error().message.find("joint_positions: joint 'laser_mount' is fixed"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rbsim
