@@ -17,7 +17,7 @@
 #include "config/joint_config.h"
 #include "config/orientation_config.h"
 #include "config/robot_config.h"
-#include "config/contained_path.h"
+#include "meshio/contained_path.h"
 #include "config/mass_data_config.h"
 #include "config/server_sections.h"
 #include "config/yaml_document_count.h"
@@ -46,7 +46,7 @@ constexpr std::array<std::string_view, 8> kTopLevelKeys = {
     "world", "bodies", "robots", "joints", "contact",
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
-constexpr std::array<std::string_view, 2> kSpawnKeys = {"bodies", "joints"};
+constexpr std::array<std::string_view, 3> kSpawnKeys = {"bodies", "robots", "joints"};
 constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
 constexpr std::array<std::string_view, 16> kBodyKeys = {
@@ -146,7 +146,9 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<st
   if (robots != nullptr) {
     std::vector<std::string> report;
     const BodyNameTaken taken = [&](const std::string& name) { return indexByName.count(name) > 0; };
-    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, taken, world, report)) return *error;
+    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, RobotFilePaths::Anywhere, taken, world,
+                                 report))
+      return *error;
     for (std::size_t i = 0; i < world.bodies.size(); ++i) indexByName.emplace(world.bodies[i].name, i);
     if (robotReport != nullptr) robotReport->insert(robotReport->end(), report.begin(), report.end());
   }
@@ -188,7 +190,7 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
   Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   SpawnDef spawn;
-  if (top->find("bodies") == nullptr && top->find("joints") == nullptr) {
+  if (top->find("bodies") == nullptr && top->find("robots") == nullptr && top->find("joints") == nullptr) {
     // One body, as a `bodies:` entry.
     Expected<BodyDef> body = parseBody(root);
     if (!body) return body.error();
@@ -197,10 +199,28 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
     spawn.bodies.push_back(std::move(*body));
     return spawn;
   }
-  if (auto error = m_reader.checkKeys(*top, kSpawnKeys, "a spawn of bodies and joints")) return *error;
+  if (auto error = m_reader.checkKeys(*top, kSpawnKeys, "a spawn of bodies, robots and joints")) return *error;
   std::map<std::string, std::size_t, std::less<>> indexByName;
   if (const YamlMap::Entry* bodies = top->find("bodies")) {
     if (auto error = parseBodies(bodies->value, &existing, spawn.bodies, indexByName)) return *error;
+  }
+  if (const YamlMap::Entry* robots = top->find("robots")) {
+    // The sender names the URDF and its meshes: they must lie inside the
+    // spawn directory, as a spawned body's mesh must.
+    const RobotFilePaths paths = m_meshPaths == MeshPaths::InsideBaseDirectory ? RobotFilePaths::InsideBaseDirectory
+                                                                               : RobotFilePaths::Anywhere;
+    const BodyNameTaken taken = [&](const std::string& name) {
+      return indexByName.count(name) > 0 || existing(name).has_value();
+    };
+    WorldDef made;
+    std::vector<std::string> report;
+    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, paths, taken, made, report)) return *error;
+    for (BodyDef& body : made.bodies) {
+      indexByName.emplace(body.name, spawn.bodies.size());
+      spawn.bodies.push_back(std::move(body));
+    }
+    for (NamedJointDef& joint : made.joints) spawn.joints.push_back(std::move(joint));
+    spawn.robotReport = std::move(report);
   }
   if (const YamlMap::Entry* joints = top->find("joints")) {
     const JointBodyLookup lookup = [&](const std::string& name) -> std::optional<bool> {

@@ -63,18 +63,21 @@ Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& s
 // What one SPAWN adds (command_t.spawn_yaml): bodies, and joints among them,
 // the world's bodies and the world.
 struct SpawnDef {
-  std::vector<BodyDef> bodies;
-  std::vector<NamedJointDef> joints;
+  std::vector<BodyDef> bodies;  // the spawn's bodies, then its robots' links
+  std::vector<NamedJointDef> joints;  // its robots' joints, then the spawn's own
+  std::vector<std::string> robotReport;  // what the robots were made into (robot/urdf_robot.h)
 };
 
 // Parses a spawn: either one body (a mapping in the schema of a `bodies:`
-// entry) or a mapping with a `bodies:` list and a `joints:` list, as a world
-// file has them (either may be absent). `existing` names the world's bodies:
-// a new body may not take one of their names, and a joint may join them.
-// The sender is not trusted with the server's file system: a mesh file must
-// be a relative path to a regular file under `meshDirectory`, with no '..'
-// and no symbolic link leading out (config/contained_path.h has the rules).
-// Messages name the mesh as the sender did, never by the host's path.
+// entry) or a mapping with `bodies:`, `robots:` and `joints:` lists, as a
+// world file has them (any may be absent). `existing` names the world's
+// bodies: a new body may not take one of their names, and a joint may join
+// them. The sender is not trusted with the server's file system: a mesh
+// file, a robot's URDF and every file the URDF names must be a relative
+// path to a regular file under `meshDirectory`, with no '..' and no
+// symbolic link leading out (meshio/contained_path.h has the rules), and
+// ROS_PACKAGE_PATH is not consulted. Messages name files as the sender did,
+// never by the host's path.
 Expected<SpawnDef> parseSpawnDef(const std::string& yamlText, const std::string& sourceName,
                                  const std::string& meshDirectory, const JointBodyLookup& existing);
 

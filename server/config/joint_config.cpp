@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -18,10 +19,11 @@ constexpr double kMaxEffort = 1e12;  // N or N·m
 constexpr double kMaxRate = 1e6;     // rad/s or m/s
 constexpr std::size_t kMaxNameLength = 128;
 
-constexpr std::array<std::string_view, 18> kJointKeys = {
+constexpr std::array<std::string_view, 19> kJointKeys = {
     "name",   "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
     "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit",
-    "spring", "position"};
+    "spring", "position", "actuator_limits"};
+constexpr std::array<std::string_view, 2> kActuatorLimitKeys = {"effort", "rate"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
 constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
@@ -91,7 +93,7 @@ class JointParser {
                               "a distance joint has a length (a rod) or limits (a rope: free between them), not both "
                               "(a spring takes both: its rest length and its stops)");
       if (((key == "axis" && !spherical) || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
-           key == "damping" || key == "friction" || key == "position") &&
+           key == "damping" || key == "friction" || key == "position" || key == "actuator_limits") &&
           !axial)
         return m_reader.error(entry.keyMark, entry.value.path,
                               "only revolute and prismatic joints take " + std::string(key) + ", this one is " +
@@ -184,6 +186,19 @@ class JointParser {
       Expected<double> effort = m_reader.number(*map, "effort", NumberRule::any(kMaxEffort), 0.0);
       if (!effort) return effort.error();
       def.effort = *effort;
+      if (const YamlMap::Entry* limits = map->find("actuator_limits")) {
+        Expected<YamlMap> limitMap = m_reader.map(limits->value);
+        if (!limitMap) return limitMap.error();
+        if (auto error = m_reader.checkKeys(*limitMap, kActuatorLimitKeys, "actuator limits")) return *error;
+        if (limitMap->find("effort") == nullptr && limitMap->find("rate") == nullptr)
+          return m_reader.error(limits->value, "actuator limits need an effort (N·m or N), a rate (rad/s or m/s) or both");
+        const double none = std::numeric_limits<double>::infinity();
+        Expected<double> cap = m_reader.number(*limitMap, "effort", NumberRule::positive(kMaxEffort), none);
+        if (!cap) return cap.error();
+        Expected<double> rate = m_reader.number(*limitMap, "rate", NumberRule::positive(kMaxRate), none);
+        if (!rate) return rate.error();
+        def.actuatorLimits = {*cap, *rate};
+      }
     }
     if (def.type == JointType::Spherical) {
       if (const YamlMap::Entry* cone = map->find("cone_limit")) {

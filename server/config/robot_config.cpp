@@ -1,10 +1,12 @@
 #include "config/robot_config.h"
 
+#include <algorithm>
 #include <array>
 #include <set>
 #include <string_view>
 
 #include "config/orientation_config.h"
+#include "meshio/contained_path.h"
 #include "robot/urdf_robot.h"
 
 namespace rbsim {
@@ -27,8 +29,9 @@ std::filesystem::path resolved(const std::filesystem::path& base, const std::str
 }  // namespace
 
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
-                                 const std::filesystem::path& baseDirectory, const BodyNameTaken& taken,
-                                 WorldDef& world, std::vector<std::string>& report) {
+                                 const std::filesystem::path& baseDirectory, RobotFilePaths paths,
+                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report) {
+  const bool confined = paths == RobotFilePaths::InsideBaseDirectory;
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();
   std::set<std::string, std::less<>> names;
@@ -78,18 +81,37 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     }
     RobotFiles files;
     files.sourceName = *urdf;
-    if (const YamlMap::Entry* paths = map->find("package_paths")) {
-      Expected<std::vector<YamlNode>> list = reader.list(paths->value);
+    std::string urdfPath = resolved(baseDirectory, *urdf).string();
+    if (confined) {
+      Expected<std::string> inside = resolveContainedFile(*urdf, baseDirectory.string());
+      if (!inside) return reader.error(*urdfNode, inside.error().message);
+      urdfPath = *inside;
+      files.confinedTo = baseDirectory.string();
+      files.directory = std::filesystem::path(*urdf).parent_path().string();
+    }
+    if (const YamlMap::Entry* packagePaths = map->find("package_paths")) {
+      Expected<std::vector<YamlNode>> list = reader.list(packagePaths->value);
       if (!list) return list.error();
       for (const YamlNode& entry : *list) {
         Expected<std::string> directory = reader.string(entry);
         if (!directory) return directory.error();
         if (directory->empty()) return reader.error(entry, "expected a directory");
-        files.packagePaths.push_back(resolved(baseDirectory, *directory).string());
+        if (!confined) {
+          files.packagePaths.push_back(resolved(baseDirectory, *directory).string());
+          continue;
+        }
+        // Each file found through it is checked again (contained_path.h);
+        // the directory itself must not point out.
+        const std::filesystem::path given(*directory);
+        const bool climbs = std::any_of(given.begin(), given.end(), [](const auto& part) { return part == ".."; });
+        if (given.is_absolute() || climbs)
+          return reader.error(entry, "a spawned robot's package path must be relative to the spawn directory, "
+                                     "with no '..'");
+        files.packagePaths.push_back(given.lexically_normal().string());
       }
     }
 
-    Expected<RobotModel> robot = loadRobot(resolved(baseDirectory, *urdf).string(), placement, files);
+    Expected<RobotModel> robot = loadRobot(urdfPath, placement, files);
     if (!robot) {
       // A joint position the robot cannot take is the world file's mistake.
       constexpr std::string_view kPositions = "joint_positions: ";

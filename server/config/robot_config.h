@@ -29,11 +29,16 @@ namespace rbsim {
 // Whether a body of this name is already in the world.
 using BodyNameTaken = std::function<bool(const std::string& name)>;
 
+// Who names the files: the world file (trusted: paths go anywhere) or a
+// SPAWN's sender (not trusted: the URDF, its package paths and every mesh
+// it names must lie inside the spawn directory, meshio/contained_path.h).
+enum class RobotFilePaths { Anywhere, InsideBaseDirectory };
+
 // Reads the list `node`, appends each robot's bodies and joints to `world`
 // and its load report (robot/urdf_robot.h) to `report`. Relative paths are
 // relative to `baseDirectory`.
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
-                                 const std::filesystem::path& baseDirectory, const BodyNameTaken& taken,
-                                 WorldDef& world, std::vector<std::string>& report);
+                                 const std::filesystem::path& baseDirectory, RobotFilePaths paths,
+                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report);
 
 }  // namespace rbsim

@@ -3,6 +3,8 @@
 #include <tinyxml2.h>
 
 #include <array>
+#include <optional>
+#include <utility>
 #include <string_view>
 
 namespace rbsim {
@@ -41,6 +43,55 @@ constexpr std::array<KnownChild, 6> kRobotChildren = {{
     {"sensor", "rbsim simulates no sensors"},
 }};
 
+struct JointLinks {
+  std::string name, parent, child;
+  int line = 0;
+};
+
+// A <joint>'s parent and child links, as urdfdom reads them (the first
+// <parent> and <child>, their link attribute); empty when not given.
+JointLinks linksOf(const tinyxml2::XMLElement& joint) {
+  JointLinks out;
+  const char* name = joint.Attribute("name");
+  out.name = name ? name : "";
+  out.line = joint.GetLineNum();
+  for (auto [tag, link] : {std::pair{"parent", &out.parent}, std::pair{"child", &out.child}}) {
+    const tinyxml2::XMLElement* element = joint.FirstChildElement(tag);
+    const char* value = element ? element->Attribute("link") : nullptr;
+    if (value) *link = value;
+  }
+  return out;
+}
+
+// Each link is the child of at most one joint and no link is its own
+// ancestor. Walking up from each link: a walk longer than there are
+// joints has gone round a loop.
+std::optional<std::string> treeError(const std::vector<JointLinks>& joints, const std::string& sourceName) {
+  std::map<std::string_view, const JointLinks*> parentJoint;
+  for (const JointLinks& joint : joints) {
+    if (joint.parent.empty() || joint.child.empty()) continue;  // urdfdom names it
+    const std::string at = sourceName + ":" + std::to_string(joint.line) + ": joint '" + joint.name + "': ";
+    if (joint.parent == joint.child) return at + "joins link '" + joint.child + "' to itself";
+    auto [it, inserted] = parentJoint.emplace(joint.child, &joint);
+    if (!inserted) {
+      return at + "link '" + joint.child + "' is already the child of joint '" + it->second->name + "' (line " +
+             std::to_string(it->second->line) + "): a URDF's joints form a tree";
+    }
+  }
+  for (const auto& [link, first] : parentJoint) {
+    const JointLinks* joint = first;
+    for (std::size_t steps = 0; joint != nullptr; ++steps) {
+      if (steps > joints.size()) {
+        return sourceName + ":" + std::to_string(first->line) + ": joint '" + first->name + "': link '" +
+               std::string(link) + "': its parents never reach a root (the joints make a loop): a URDF's joints form a tree";
+      }
+      auto up = parentJoint.find(joint->parent);
+      joint = up == parentJoint.end() ? nullptr : up->second;
+    }
+  }
+  return std::nullopt;
+}
+
 std::string nameOf(const tinyxml2::XMLElement& element) {
   const char* name = element.Attribute("name");
   return name ? name : "";
@@ -78,6 +129,7 @@ Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::strin
                  (robot ? std::string(", not <") + robot->Name() + ">" : std::string())};
   }
   UrdfDocument out;
+  std::vector<JointLinks> joints;
   for (const tinyxml2::XMLElement* child = robot->FirstChildElement(); child; child = child->NextSiblingElement()) {
     const std::string_view element = child->Name();
     const std::string name = nameOf(*child);
@@ -87,6 +139,7 @@ Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::strin
       noteChildren(*child, described(*child), kLinkChildren, out.unused);
     } else if (element == "joint") {
       out.jointLine.emplace(name, child->GetLineNum());
+      joints.push_back(linksOf(*child));
       noteChildren(*child, described(*child), kJointChildren, out.unused);
     } else {
       const char* reason = "not an element of URDF: ignored";
@@ -95,6 +148,7 @@ Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::strin
       if (reason != nullptr) out.unused.push_back({described(*child), child->GetLineNum(), reason});
     }
   }
+  if (auto error = treeError(joints, sourceName)) return Error{*error};
   return out;
 }
 

@@ -31,8 +31,12 @@ struct UrdfDocument {
   std::vector<UnusedUrdfElement> unused;              // in the file's order
 };
 
-// Reads `xml`; errors (not XML, no <robot> root) name `sourceName` and the
-// line, as "arm.urdf:12: ...".
+// Reads `xml`; errors (not XML, no <robot> root, joints that do not make a
+// tree) name `sourceName` and the line, as "arm.urdf:12: ...".
+// The tree is checked here, before urdfdom sees the file: urdfdom links a
+// joint's parent to its child by shared pointers, so a joint to itself or
+// a loop of joints would never be freed (and is no URDF: a URDF's joints
+// form a tree, each link the child of at most one joint).
 Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::string& sourceName);
 
 }  // namespace rbsim

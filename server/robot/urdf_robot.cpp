@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "meshio/contained_path.h"
 #include "meshio/mesh_io.h"
 #include "robot/urdf_document.h"
 
@@ -130,6 +131,8 @@ class RobotBuilder {
   Expected<CompoundPartShape> makeShape(const urdf::Geometry& geometry, const std::string& link);
   Expected<CompoundPartShape> makeMesh(const urdf::Mesh& mesh, const std::string& link);
   Expected<std::string> meshFile(const std::string& uri, const std::string& link) const;
+  Expected<std::string> confinedPackageFile(const std::string& uri, const std::string& package,
+                                            const std::string& inside, const std::string& link) const;
   std::optional<Error> makeJoint(const urdf::Joint& joint);
 
   const RobotPlacement& m_placement;
@@ -253,6 +256,7 @@ Expected<std::string> RobotBuilder::meshFile(const std::string& uri, const std::
       return Error{linkAt(link) + ": mesh '" + uri + "' names no package (package://NAME/path)"};
     const std::string package = rest.substr(0, slash), inside = rest.substr(slash + 1);
     std::vector<std::string> directories = m_files.packagePaths;
+    if (m_files.confinedTo) return confinedPackageFile(uri, package, inside, link);
     if (const char* rosPath = std::getenv("ROS_PACKAGE_PATH")) {
       std::stringstream list(rosPath);
       for (std::string directory; std::getline(list, directory, ':');)
@@ -270,9 +274,34 @@ Expected<std::string> RobotBuilder::meshFile(const std::string& uri, const std::
                                    : searched)};
   }
   fs::path path(uri.rfind(kFile, 0) == 0 ? uri.substr(kFile.size()) : uri);
+  if (m_files.confinedTo) {
+    Expected<std::string> inside = resolveContainedFile((fs::path(m_files.directory) / path).string(), *m_files.confinedTo);
+    if (!inside) return Error{linkAt(link) + ": mesh '" + uri + "': " + inside.error().message};
+    return inside;
+  }
   if (path.is_relative() && !m_files.directory.empty()) path = fs::path(m_files.directory) / path;
   if (!isFile(path)) return Error{linkAt(link) + ": mesh '" + uri + "': no such file (" + path.string() + ")"};
   return path.lexically_normal().string();
+}
+
+// package://NAME/inside of a confined robot: looked up in its package
+// paths only, each inside the spawn directory.
+Expected<std::string> RobotBuilder::confinedPackageFile(const std::string& uri, const std::string& package,
+                                                        const std::string& inside, const std::string& link) const {
+  namespace fs = std::filesystem;
+  std::string why = "no package paths given";
+  for (const std::string& directory : m_files.packagePaths) {
+    const fs::path base(directory);
+    std::vector<fs::path> candidates{base / package / inside};
+    if (base.filename() == package) candidates.push_back(base / inside);
+    for (const fs::path& candidate : candidates) {
+      Expected<std::string> found = resolveContainedFile(candidate.string(), *m_files.confinedTo);
+      if (found) return found;
+      why = found.error().message;
+    }
+  }
+  return Error{linkAt(link) + ": mesh '" + uri + "': package '" + package +
+               "' not found in the package paths inside the spawn directory (" + why + ")"};
 }
 
 // A collision mesh collides as its convex hull: real descriptions' meshes
@@ -287,7 +316,14 @@ Expected<CompoundPartShape> RobotBuilder::makeMesh(const urdf::Mesh& mesh, const
   Expected<std::string> path = meshFile(mesh.filename, link);
   if (!path) return path.error();
   Expected<TriangleMesh> loaded = loadMesh(*path);
-  if (!loaded) return Error{linkAt(link) + ": " + loaded.error().message};
+  if (!loaded) {
+    std::string message = loaded.error().message;
+    // A confined robot's sender learns nothing of the host's directories.
+    if (m_files.confinedTo)
+      for (std::size_t at = message.find(*path); at != std::string::npos; at = message.find(*path, at))
+        message.replace(at, path->size(), mesh.filename);
+    return Error{linkAt(link) + ": " + message};
+  }
   const Vec3 scale = vectorOf(mesh.scale);
   if (!scale.allFinite() || scale.cwiseAbs().minCoeff() <= 0.0 || scale.cwiseAbs().maxCoeff() > kMaxLength)
     return Error{linkAt(link) + ": mesh '" + mesh.filename + "' has scale " + vectorText(scale) +
@@ -457,10 +493,25 @@ std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {
   m_out.report.push_back("joint '" + def.name + "': " + jointTypeText(joint.type) + " '" + out.bodyA + "' -> '" +
                          out.bodyB + "'" + (moves(joint.type) ? ", axis " + vectorText(def.axis) : std::string()) +
                          detail);
-  if (joint.limits && moves(joint.type) && (joint.limits->effort > 0.0 || joint.limits->velocity > 0.0))
-    m_out.report.push_back("joint '" + def.name + "': <limit> effort " + number(joint.limits->effort) + " and velocity " +
-                           number(joint.limits->velocity) +
-                           " are not enforced yet: a command's own max_effort caps its actuator");
+  // <limit effort velocity> bound the joint's actuator, whatever it is
+  // commanded. Descriptions of passive joints often write 0 for either,
+  // meaning "not given": that leaves it uncapped, and the report says so.
+  if (joint.limits && moves(joint.type)) {
+    const bool prismatic = joint.type == urdf::Joint::PRISMATIC;
+    std::string limits;
+    const auto take = [&](double value, double& into, const char* what, const char* unit) {
+      if (!limits.empty()) limits += ", ";
+      if (value > 0.0) {
+        into = value;
+        limits += std::string(what) + " " + number(value) + " " + unit;
+      } else {
+        limits += std::string(what) + " " + number(value) + " (none: uncapped)";
+      }
+    };
+    take(joint.limits->effort, def.actuatorLimits.effort, "effort", prismatic ? "N" : "N·m");
+    take(joint.limits->velocity, def.actuatorLimits.rate, "rate", prismatic ? "m/s" : "rad/s");
+    m_out.report.push_back("joint '" + def.name + "': actuator limits " + limits);
+  }
   m_out.joints.push_back(std::move(out));
   return std::nullopt;
 }
@@ -509,16 +560,19 @@ Expected<RobotModel> loadRobot(const std::string& path, const RobotPlacement& pl
   // A description is text of a few hundred kB at most; this bounds what an
   // untrusted path can make the loader read.
   constexpr std::uintmax_t kMaxUrdfBytes = 64u << 20;
+  const std::string unreadable =
+      files.sourceName + ": cannot read the URDF file" + (files.confinedTo ? std::string() : " (" + path + ")");
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error || !std::filesystem::is_regular_file(path, error))
-    return Error{files.sourceName + ": cannot read the URDF file (" + path + ")"};
+  if (error || !std::filesystem::is_regular_file(path, error)) return Error{unreadable};
   if (size > kMaxUrdfBytes) return Error{files.sourceName + ": larger than 64 MiB: not a robot description"};
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  if (!in && !in.eof()) return Error{files.sourceName + ": cannot read the URDF file (" + path + ")"};
-  if (files.directory.empty()) files.directory = std::filesystem::path(path).parent_path().string();
+  if (!in && !in.eof()) return Error{unreadable};
+  // Confined, the directory is the sender's (relative to the spawn
+  // directory), never the host's.
+  if (files.directory.empty() && !files.confinedTo) files.directory = std::filesystem::path(path).parent_path().string();
   return buildRobot(text.str(), placement, files);
 }
 

@@ -24,6 +24,7 @@
 // Errors name the file and the line of the element at fault.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,11 +48,21 @@ struct RobotPlacement {
 
 // Where a URDF's files are: its own directory (for relative mesh paths) and
 // the directories package://NAME/... is looked up in (each holds packages,
-// DIR/NAME/..., or is the package itself, .../NAME).
+// DIR/NAME/..., or is the package itself, .../NAME), then those of
+// ROS_PACKAGE_PATH.
+//
+// A robot spawned over LCM comes from a sender who is not trusted with the
+// server's file system: `confinedTo` is then the spawn directory, and every
+// file the description names is opened only inside it, by the rules of
+// meshio/contained_path.h (relative, no '..', no link leading out, a
+// regular file). `directory` and `packagePaths` are then relative to it,
+// ROS_PACKAGE_PATH is not consulted, and messages name a file as the
+// description does, never by the host's path.
 struct RobotFiles {
   std::string sourceName;  // the URDF as messages name it
   std::string directory;
   std::vector<std::string> packagePaths;
+  std::optional<std::string> confinedTo;
 };
 
 // What a robot adds to a world, and the report of what was made of its
@@ -70,7 +81,8 @@ struct RobotModel {
 // limits.
 Expected<RobotModel> buildRobot(const std::string& xml, const RobotPlacement& placement, const RobotFiles& files);
 
-// The same from the file at `path` (sourceName: how messages name it).
+// The same from the file at `path` (sourceName: how messages name it;
+// confined, `path` must have been resolved inside files.confinedTo).
 Expected<RobotModel> loadRobot(const std::string& path, const RobotPlacement& placement, RobotFiles files);
 
 }  // namespace rbsim

@@ -23,6 +23,15 @@ Affine uncappedDrive(const AxisLaw& law) {
           -law.h * (law.driveStiffness * law.driveLookahead + law.driveDamping)};
 }
 
+// The drive's impulse at rate w: capped, and none that pushes faster than
+// its rate limit (at exactly ±R, the value just inside it).
+double driveAt(const AxisLaw& law, double w) {
+  const double value = std::clamp(uncappedDrive(law).at(w), -law.driveCap, law.driveCap);
+  if (w > law.driveRateLimit) return std::min(value, 0.0);
+  if (w < -law.driveRateLimit) return std::max(value, 0.0);
+  return value;
+}
+
 // Each law on the open interval that holds `w` (a point that is no
 // breakpoint). `actuation` is the motor's and drive's part alone.
 Affine lawsNear(const AxisLaw& law, double w, bool actuationOnly = false) {
@@ -31,7 +40,10 @@ Affine lawsNear(const AxisLaw& law, double w, bool actuationOnly = false) {
   if (law.drive) {
     const Affine raw = uncappedDrive(law);
     const double value = raw.at(w);
-    if (value > law.driveCap) {
+    const bool stopped = (w > law.driveRateLimit && value > 0.0) || (w < -law.driveRateLimit && value < 0.0);
+    if (stopped) {
+      // beyond the rate limit, pushing on: nothing
+    } else if (value > law.driveCap) {
       sum.alpha += law.driveCap;
     } else if (value < -law.driveCap) {
       sum.alpha -= law.driveCap;
@@ -49,17 +61,24 @@ Affine lawsNear(const AxisLaw& law, double w, bool actuationOnly = false) {
 }  // namespace
 
 AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass) {
-  // The rates where L jumps (the motor's target, friction's zero) or bends
-  // (where the drive reaches its cap), ascending.
-  std::array<double, 4> breaks{};
+  // The rates where L jumps (the motor's target, friction's zero, the
+  // drive's rate limits) or bends (where the drive reaches its cap or
+  // changes sign), ascending.
+  std::array<double, 7> breaks{};
   int count = 0;
   if (law.motor) breaks[count++] = law.motorTarget;
   if (law.frictionCap > 0.0) breaks[count++] = 0.0;
-  if (law.drive && std::isfinite(law.driveCap)) {
+  const bool rateLimited = law.drive && std::isfinite(law.driveRateLimit);
+  if (law.drive) {
     const Affine raw = uncappedDrive(law);
-    if (raw.beta < 0.0) {
+    if (std::isfinite(law.driveCap) && raw.beta < 0.0) {
       breaks[count++] = (law.driveCap - raw.alpha) / raw.beta;
       breaks[count++] = (-law.driveCap - raw.alpha) / raw.beta;
+    }
+    if (rateLimited) {
+      breaks[count++] = -law.driveRateLimit;
+      breaks[count++] = law.driveRateLimit;
+      if (raw.beta < 0.0) breaks[count++] = -raw.alpha / raw.beta;
     }
   }
   // Ascending, each once (insertion: at most four).
@@ -105,8 +124,12 @@ AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass
       out.total = (b - freeRate) / inverseMass;
       double rest = out.total;
       double actuation = 0.0;
-      if (law.drive) {
-        const double drive = std::clamp(uncappedDrive(law).at(b), -law.driveCap, law.driveCap);
+      // At its rate limit the drive holds the rate (with at most what it
+      // would give there; a motor, its only rival there, is never on
+      // with it).
+      const bool driveHere = rateLimited && (b == law.driveRateLimit || b == -law.driveRateLimit);
+      if (law.drive && !driveHere) {
+        const double drive = driveAt(law, b);
         actuation += drive;
         rest -= drive;
       }
@@ -122,7 +145,7 @@ AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass
                                          : (b < 0.0 ? law.frictionCap : -law.frictionCap);
         rest -= friction;
       }
-      if (motorHere) actuation += rest;  // the motor holds its target with what is left
+      if (motorHere || driveHere) actuation += rest;  // the motor (or drive) holds its rate with what is left
       out.actuation = actuation;
       return out;
     }
@@ -134,7 +157,7 @@ AxisImpulse solveAxisLaw(const AxisLaw& law, double freeRate, double inverseMass
 double actuationAtRate(const AxisLaw& law, double rate) {
   double actuation = 0.0;
   if (law.motor && rate != law.motorTarget) actuation += rate < law.motorTarget ? law.motorCap : -law.motorCap;
-  if (law.drive) actuation += std::clamp(uncappedDrive(law).at(rate), -law.driveCap, law.driveCap);
+  if (law.drive) actuation += driveAt(law, rate);
   return actuation;
 }
 

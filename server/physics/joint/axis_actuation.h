@@ -13,6 +13,10 @@
 //             Euler), so that no stiffness makes the step unstable;
 //             Catto's soft constraints ("Soft Step", Box2D v3) are the
 //             same law;
+//             with a rate limit R the drive pushes no faster than R:
+//             beyond +R its impulse is min(Λ, 0), beyond −R max(Λ, 0),
+//             and at ±R it holds the rate with what it would give (a
+//             servo at its top speed);
 //   damping   Λ = −h c w, implicit as well;
 //   friction  w = 0 while |Λ| < h f (static); Λ = −h f sign(w) otherwise.
 // Given the rate the axis would end with without them (w_free) and the
@@ -37,6 +41,7 @@ struct AxisLaw {
   double driveStiffness = 0.0;  // N·m/rad or N/m
   double driveDamping = 0.0;    // N·m·s/rad or N·s/m
   double driveCap = std::numeric_limits<double>::infinity();  // N·m·s or N·s over h
+  double driveRateLimit = std::numeric_limits<double>::infinity();  // rad/s or m/s, > 0: R above
   double damping = 0.0;      // N·m·s/rad or N·s/m
   double frictionCap = 0.0;  // N·m·s or N·s over h
 

@@ -156,6 +156,12 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
     if (!axial) return Error{where + ": only revolute and prismatic joints take an effort"};
     if (!std::isfinite(def.effort)) return Error{where + ": the effort is not finite"};
   }
+  const JointActuatorLimits& limits = def.actuatorLimits;
+  if (std::isnan(limits.effort) || limits.effort <= 0.0 || std::isnan(limits.rate) || limits.rate <= 0.0)
+    return Error{where + ": the actuator's effort and rate limits must be positive (got " +
+                 std::to_string(limits.effort) + ", " + std::to_string(limits.rate) + ")"};
+  if (!axial && (std::isfinite(limits.effort) || std::isfinite(limits.rate)))
+    return Error{where + ": only revolute and prismatic joints take actuator limits"};
   if (def.type == JointType::Distance) {
     if (!finite(def.anchorB)) return Error{where + ": anchor_b is not finite"};
     joint.anchorB = toB(def.anchorB);

@@ -326,11 +326,14 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
     const JointDef& def = joint.def;
     AxisLaw law;
     law.h = half;
+    // The actuator's limits bound whatever it is commanded.
+    const JointActuatorLimits& limits = def.actuatorLimits;
     law.motor = def.motor.enabled;
-    law.motorTarget = def.motor.targetRate;
-    law.motorCap = def.motor.maxEffort * half;
+    law.motorTarget = std::clamp(def.motor.targetRate, -limits.rate, limits.rate);
+    law.motorCap = std::min(def.motor.maxEffort, limits.effort) * half;
     law.drive = def.drive.enabled;
-    law.driveCap = def.drive.maxEffort * half;
+    law.driveCap = std::min(def.drive.maxEffort, limits.effort) * half;
+    if (joint.hasAxis()) law.driveRateLimit = limits.rate;
     law.driveLookahead = atEnd ? 0.0 : h;
     law.damping = def.damping;
     law.frictionCap = def.friction * half;

@@ -23,6 +23,11 @@ JointSidePose poseOfBody(const Body& body) {
   return {body.position(), body.orientation(), body.rotation()};
 }
 
+// The direct effort as the actuator gives it: capped at its effort limit.
+double appliedEffort(const JointDef& def) {
+  return std::clamp(def.effort, -def.actuatorLimits.effort, def.actuatorLimits.effort);
+}
+
 }  // namespace
 
 Expected<JointId> World::createJoint(const JointDef& def) {
@@ -397,7 +402,7 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
   // `duration` at the current poses of `bodies` (start or end).
   const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
     for (const JointLink& link : links) {
-      const double effort = link.joint->def.effort;
+      const double effort = appliedEffort(link.joint->def);
       if (effort == 0.0 || !link.joint->hasAxis()) continue;
       const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
       if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
@@ -498,7 +503,7 @@ void World::stepJointedBodies(const std::vector<char>& jointed, const std::vecto
     JointConstraint& joint = m_joints[linkJoint[l]];
     joint.lastForce = reactionLinear[l] / h;
     joint.lastTorque = reactionAngular[l] / h;
-    joint.lastAxisEffort = axisImpulse[l] / h + joint.def.effort;
+    joint.lastAxisEffort = axisImpulse[l] / h + appliedEffort(joint.def);
     joint.lastAtLimit = atLimit[l];
   }
 }

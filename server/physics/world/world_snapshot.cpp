@@ -275,6 +275,8 @@ void writeJoint(const JointConstraint& joint, ByteWriter& out) {
   out.f64(def.damping);
   out.f64(def.friction);
   out.f64(def.effort);
+  out.f64(def.actuatorLimits.effort);
+  out.f64(def.actuatorLimits.rate);
   out.vec3(joint.anchorA);
   out.vec3(joint.anchorB);
   out.vec3(joint.axisA);
@@ -326,6 +328,8 @@ JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
   def.damping = in.f64("joint damping");
   def.friction = in.f64("joint friction");
   def.effort = in.f64("joint effort");
+  def.actuatorLimits.effort = in.f64("joint actuator effort limit");
+  def.actuatorLimits.rate = in.f64("joint actuator rate limit");
   joint.anchorA = in.vec3("joint body-frame anchor a");
   joint.anchorB = in.vec3("joint body-frame anchor b");
   joint.axisA = in.vec3("joint body-frame axis a");

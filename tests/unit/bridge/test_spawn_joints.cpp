@@ -174,7 +174,7 @@ TEST(SpawnJoints, ARefusedSpawnAddsNothingAndSaysWhere) {
   EXPECT_EQ(refused("{name: world, shape: {type: sphere, radius: 0.1}, mass: 1}"),
             "spawn_yaml:1:8: name: \"world\" is reserved: joints name the world itself so; give the body another name");
   EXPECT_EQ(refused("bodies: []\nworld: {dt: 0.001}\n"),
-            "spawn_yaml:2:1: world: unknown key; a spawn of bodies and joints has: bodies, joints");
+            "spawn_yaml:2:1: world: unknown key; a spawn of bodies, robots and joints has: bodies, robots, joints");
   EXPECT_EQ(refused("joints:\n  - {name: j, type: revolute, body_a: world, body_b: post, anchor: [0, 0, 0], "
                     "axis: [0, 0, 1]}\n"),
             "spawn_yaml:2:54: joints[0].body_b: neither side moves (both are the world or static bodies)");

@@ -224,6 +224,35 @@ TEST(JointConfig, APositionOnAJointWithoutAnAxisOrBeyondItsLimitsIsAnError) {
             "j.yaml:7:16: joints[0].position: expected a finite number, got \".nan\"");
 }
 
+TEST(JointConfig, ActuatorLimitsAreReadAsWrittenAndCheckedAtTheirKey) {
+  const Expected<WorldDef> def = parseWorldConfig(
+      kBodies +
+          "joints:\n"
+          "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
+          "     actuator_limits: {effort: 80, rate: 3}}\n"
+          "  - {name: k, type: prismatic, body_a: arm, body_b: tip, anchor: [1, 0, 0], axis: [1, 0, 0],\n"
+          "     actuator_limits: {rate: 0.5}}\n",
+      "j.yaml", "");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  EXPECT_EQ(def->joints[0].def.actuatorLimits.effort, 80.0);
+  EXPECT_EQ(def->joints[0].def.actuatorLimits.rate, 3.0);
+  EXPECT_EQ(def->joints[1].def.actuatorLimits.rate, 0.5);
+  EXPECT_TRUE(std::isinf(def->joints[1].def.actuatorLimits.effort)) << "not given: uncapped";
+
+  const std::string hinge = "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n";
+  EXPECT_EQ(errorOf(hinge + "     actuator_limits: {}}\n"),
+            "j.yaml:7:23: joints[0].actuator_limits: actuator limits need an effort (N·m or N), a rate (rad/s or m/s) "
+            "or both");
+  EXPECT_NE(errorOf(hinge + "     actuator_limits: {effort: 0}}\n").find("j.yaml:7:32: joints[0].actuator_limits.effort"),
+            std::string::npos)
+      << errorOf(hinge + "     actuator_limits: {effort: 0}}\n");
+  EXPECT_NE(errorOf(hinge + "     actuator_limits: {speed: 2}}\n").find("speed"), std::string::npos);
+  EXPECT_NE(errorOf("  - {name: j, type: fixed, body_a: world, body_b: arm, anchor: [0, 0, 0],\n"
+                    "     actuator_limits: {effort: 1}}\n")
+                .find("only revolute and prismatic joints take actuator_limits, this one is fixed"),
+            std::string::npos);
+}
+
 TEST(JointConfig, MistakesAreNamedAtTheirLineAndKey) {
   const std::string base = "  - {name: j, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0]";
   EXPECT_NE(errorOf("  - {name: j, type: revolute, body_a: world, body_b: ghost, anchor: [0, 0, 0], axis: [0, 1, 0]}\n")

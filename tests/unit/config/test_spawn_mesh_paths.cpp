@@ -10,7 +10,7 @@
 #include <string>
 
 #include "config/config_loader.h"
-#include "config/contained_path.h"
+#include "meshio/contained_path.h"
 
 namespace rbsim {
 namespace {

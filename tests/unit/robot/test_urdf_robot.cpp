@@ -151,6 +151,10 @@ TEST(UrdfRobot, AnArmsMassPropertiesAreItsInertialsTurnedIntoTheLinkFrame) {
   EXPECT_EQ(elbow.limit.lower, -2.5);
   EXPECT_EQ(elbow.anchor, Vec3(0.5, 0, 0.1));
   EXPECT_EQ(elbow.damping, 0.0) << "no <dynamics>";
+  // <limit effort velocity> bound each joint's actuator.
+  EXPECT_EQ(shoulder.actuatorLimits.effort, 50.0);
+  EXPECT_EQ(shoulder.actuatorLimits.rate, 3.0);
+  EXPECT_EQ(elbow.actuatorLimits.effort, 20.0);
 
   // Without a fixed base the root has its own mass.
   const RobotModel free = load("two_link_arm.urdf");
@@ -296,7 +300,7 @@ TEST(UrdfRobot, WhatIsNotUsedIsReportedByElementAndLine) {
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:58: joint 'elbow'/safety_controller")) << text;
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:60: transmission 'shoulder_transmission'")) << text;
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:64: gazebo")) << text;
-  EXPECT_TRUE(reportHas(robot, "joint 'r/shoulder': <limit> effort 50 and velocity 3 are not enforced yet")) << text;
+  EXPECT_TRUE(reportHas(robot, "joint 'r/shoulder': actuator limits effort 50 N·m, rate 3 rad/s")) << text;
   EXPECT_TRUE(reportHas(robot, "joint 'r/elbow': revolute 'r/upper' -> 'r/fore', axis (0, 1, 0), limits [-2.5, 2.5]"))
       << text;
 }
@@ -346,6 +350,28 @@ TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {
   // urdfdom's own objections come through.
   EXPECT_NE(errorOf(robotXml(boxLink("a") + joint("revolute", "<axis xyz=\"0 0 1\"/>"))).find("bad.urdf: not a valid URDF"),
             std::string::npos);
+}
+
+// Joints that make no tree are refused before urdfdom builds its links:
+// urdfdom would link them into a loop of shared pointers never freed.
+TEST(UrdfRobot, JointsThatMakeNoTreeAreRefusedWithTheirLines) {
+  const auto joint = [](const std::string& name, const std::string& parent, const std::string& child) {
+    return "<joint name=\"" + name + "\" type=\"fixed\"><parent link=\"" + parent + "\"/><child link=\"" + child +
+           "\"/></joint>\n";
+  };
+  const std::string links = boxLink("a") + boxLink("b") + boxLink("c");
+  EXPECT_NE(errorOf(robotXml(links + joint("j", "b", "b"))).find("bad.urdf:6: joint 'j': joins link 'b' to itself"),
+            std::string::npos);
+  const std::string twoParents = errorOf(robotXml(links + joint("j1", "a", "c") + joint("j2", "b", "c")));
+  EXPECT_NE(twoParents.find("bad.urdf:7: joint 'j2': link 'c' is already the child of joint 'j1' (line 6)"),
+            std::string::npos)
+      << twoParents;
+  const std::string loop = errorOf(robotXml(links + joint("j1", "a", "b") + joint("j2", "b", "a")));
+  EXPECT_NE(loop.find("the joints make a loop"), std::string::npos) << loop;
+  // A loop hanging below a root: every link has a parent but c.
+  const std::string hanging =
+      errorOf(robotXml(links + boxLink("d") + joint("j1", "c", "d") + joint("j2", "a", "b") + joint("j3", "b", "a")));
+  EXPECT_NE(hanging.find("the joints make a loop"), std::string::npos) << hanging;
 }
 
 TEST(UrdfRobot, AColladaMeshIsRefusedByName) {

@@ -73,6 +73,18 @@ struct JointDrive {
   double maxEffort = std::numeric_limits<double>::infinity();  // N·m or N, > 0
 };
 
+// Revolute and prismatic joints: what the joint's actuator can give at
+// most, whatever it is commanded (URDF's <limit effort velocity>): the
+// motor's and the drive's effort and the direct effort are each capped at
+// `effort`; the motor's target rate is capped at `rate`, and the drive
+// stops pushing the joint faster than `rate` (a servo slews at its top
+// speed). Gravity, contacts and a joint's own stops may still move it
+// faster: these bound the actuator, not the joint.
+struct JointActuatorLimits {
+  double effort = std::numeric_limits<double>::infinity();  // N·m or N, > 0
+  double rate = std::numeric_limits<double>::infinity();    // rad/s or m/s, > 0
+};
+
 struct JointDef {
   std::string name;  // unique among the world's joints
   JointType type = JointType::Revolute;
@@ -112,6 +124,7 @@ struct JointDef {
   // A force or torque along the axis, on B (and its reaction on A), as a
   // torque-controlled actuator commands it: N·m or N, until changed.
   double effort = 0.0;
+  JointActuatorLimits actuatorLimits;
 };
 
 // A joint as a world file gives it: its bodies by name. World::fromDef
@@ -150,8 +163,8 @@ struct JointState {
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
   // The actuation along the axis over the last step (the motor's or the
-  // drive's, and the direct effort): N·m or N on B. Damping and friction
-  // are not in it.
+  // drive's, and the direct effort, as the actuator limits let them act):
+  // N·m or N on B. Damping and friction are not in it.
   double axisEffort = 0.0;
   // At a limit after the last step: -1 at the lower one, +1 at the upper, 0 within.
   int atLimit = 0;

@@ -213,8 +213,9 @@ class World {
   // 2: a body's freeze reason (numerical guard); 3: loads at points fixed in
   // the body, and whether a body's mass properties were given as data; 4:
   // joints; 5: a joint's coordinate at creation (JointDef::position); 6:
-  // whether a body collides at all (BodyDef::collides).
-  static constexpr uint32_t kSnapshotVersion = 6;
+  // whether a body collides at all (BodyDef::collides); 7: a joint's
+  // actuator limits (JointDef::actuatorLimits).
+  static constexpr uint32_t kSnapshotVersion = 7;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);

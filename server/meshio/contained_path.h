@@ -4,7 +4,8 @@
 // A config file given on the command line is trusted: its mesh paths may go
 // anywhere. A body spawned over LCM is not: anyone on the multicast group can
 // send one, and its mesh file is opened on the server host. So the mesh of a
-// spawned body must be a regular file under the spawn mesh directory:
+// spawned body, a spawned robot's URDF and every mesh that URDF names must
+// be a regular file under the spawn mesh directory:
 //  - a relative path (no leading '/'),
 //  - with no '..' component (even one that would stay inside: the rule is
 //    simpler to state and to check than "stays inside lexically"),

@@ -1,4 +1,4 @@
-#include "config/contained_path.h"
+#include "meshio/contained_path.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -20,16 +20,16 @@ bool isWithin(const fs::path& path, const fs::path& directory) {
 }  // namespace
 
 Expected<std::string> resolveContainedFile(const std::string& file, const std::string& directory) {
-  const std::string quoted = "mesh file '" + file + "'";
-  if (file.empty()) return Error{"a mesh file path is needed"};
+  const std::string quoted = "file '" + file + "'";
+  if (file.empty()) return Error{"a file path is needed"};
   if (file.find('\0') != std::string::npos) return Error{quoted + ": contains a NUL character"};
   const fs::path relative(file);
   if (relative.is_absolute() || relative.has_root_name() || relative.has_root_directory())
-    return Error{quoted + ": absolute paths are not allowed for spawned bodies; name a file "
+    return Error{quoted + ": absolute paths are not allowed in a spawn; name a file "
                  "relative to the spawn mesh directory"};
   for (const fs::path& part : relative) {
     if (part == "..")
-      return Error{quoted + ": '..' is not allowed in the mesh path of a spawned body"};
+      return Error{quoted + ": '..' is not allowed in the paths of a spawn"};
   }
 
   std::error_code error;
