@@ -535,7 +535,9 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
         changed = true;
       }
     }
-    if (!changed) break;
+    // The last round keeps the set it was solved with: the impulses, the
+    // rows and the factor below must all be of one set of limits.
+    if (!changed || round == kLimitRounds - 1) break;
     m_limits = kept;
     m_rows.resize(jointRows);
     for (const LimitRow& limit : m_limits) {
