@@ -60,6 +60,14 @@ std::vector<std::string> jointsOf(const World& world, BodyId body) {
   return names;
 }
 
+// The sender's text (its client name, the names in its URDF) as one log
+// line: control characters (a newline would forge a line) shown as '?'.
+std::string printable(std::string text) {
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return text;
+}
+
 // Adds a parsed spawn to the world, all or nothing: the World's own checks
 // (a joint's length, two joints of one name, ...) can still refuse a part,
 // and then what was added is taken out again, joints first. The reason names
@@ -250,6 +258,8 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       m_session.noteWorldChanged();
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.publishWorld = true;
+      for (const std::string& line : spawn->robotReport)
+        outcome.logLines.push_back(printable("spawn from '" + message.client + "': robots: " + line));
       return outcome;
     }
     case rbsim::command_t::REMOVE: {

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
@@ -36,6 +37,9 @@ struct CommandOutcome {
   bool publishState = false;  // the state jumped (RESET)
   bool paceChanged = false;   // pause, resume, step or rate: re-plan the next deadline
   std::optional<double> realTimeFactor;  // SET_REAL_TIME_FACTOR: the new target
+  // For the server's log: a spawned robot's load report (robot/urdf_robot.h:
+  // what its links and joints were made into, what of its URDF went unused).
+  std::vector<std::string> logLines;
 };
 
 class CommandHandler {

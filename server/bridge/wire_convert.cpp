@@ -104,6 +104,7 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   out.mass = body.mass();
   copyTo(out.inertia, body.dynamics().inertiaBody);
   out.mass_properties_given = d.massPropertiesGiven;
+  out.collides = d.collides;
   out.linear_damping = body.dynamics().linearDamping;
   out.angular_damping = body.dynamics().angularDamping;
   out.shape_type = shapeTypeName(d.shape);
@@ -172,6 +173,15 @@ rbsim::joint_description_t jointDescription(const World& world, int denseIndex) 
   out.length = state.type == JointType::Distance && (!def.limit.enabled || spring) ? def.length : 0.0;
   out.spring = spring;
   out.cone_angle = state.type == JointType::Spherical ? def.coneAngle : 0.0;
+  // The unlimited actuator (infinite in JointDef) is 0 on the wire, where
+  // a limit is always positive.
+  const bool axial = state.type == JointType::Revolute || state.type == JointType::Prismatic;
+  const auto limitOrZero = [axial](double limit) { return axial && std::isfinite(limit) ? limit : 0.0; };
+  out.initial_position = axial ? def.position : 0.0;
+  out.effort_limit = limitOrZero(def.actuatorLimits.effort);
+  out.rate_limit = limitOrZero(def.actuatorLimits.rate);
+  out.damping = axial ? def.damping : 0.0;
+  out.friction = axial ? def.friction : 0.0;
   return out;
 }
 

@@ -291,6 +291,7 @@ void Server::onInput(const lcm::ReceiveBuffer* buffer, const std::string& channe
   if (outcome->realTimeFactor) m_clock.setRealTimeFactor(*outcome->realTimeFactor, monotonicNow());
   if (outcome->paceChanged) ++m_controlVersion;
   acknowledge(std::move(outcome->ack));
+  for (const std::string& line : outcome->logLines) logInfo(line);
   if (outcome->publishWorld) publishWorld();
   if (outcome->publishState) publishState();
 }

@@ -86,6 +86,8 @@ def world_lines(world) -> List[str]:
             line += " file %s vertices %d triangles %d" % (b.mesh_file, b.num_vertices, b.num_triangles)
         if b.shape_type == "compound":
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
+        if not b.collides:
+            line += " collides false"
         if b.frozen:
             line += " frozen " + b.frozen
         lines.append(line)
@@ -110,6 +112,7 @@ def joint_lines(world, joints=None) -> List[str]:
             line += " spring"
         if j.type == "spherical" and j.cone_angle > 0:
             line += " cone %s" % number(j.cone_angle)
+        line += _axis_extras(j)
         state = joints.by_name.get(j.name) if joints is not None else None
         if state is not None:
             line += " position %s rate %s effort %s at_limit %d active %s" % (
@@ -117,6 +120,17 @@ def joint_lines(world, joints=None) -> List[str]:
                 "true" if state.active else "false")
         lines.append(line)
     return lines
+
+
+def _axis_extras(j) -> str:
+    """A revolute's or prismatic's numbers that are set (not 0): where its
+    coordinate's zero is, its actuator's limits, its own losses."""
+    text = ""
+    for label, value in (("initial_position", j.initial_position), ("effort_limit", j.effort_limit),
+                         ("rate_limit", j.rate_limit), ("damping", j.damping), ("friction", j.friction)):
+        if value != 0:
+            text += " %s %s" % (label, number(value))
+    return text
 
 
 def _dumps(value) -> str:
@@ -150,7 +164,9 @@ def joints_json(world, joints=None) -> str:
                  "anchor_a": [float(v) for v in j.anchor_a], "anchor_b": [float(v) for v in j.anchor_b],
                  "axis": [float(v) for v in j.axis], "limit_enabled": bool(j.limit_enabled),
                  "lower_limit": j.lower_limit, "upper_limit": j.upper_limit, "length": j.length,
-                 "spring": bool(j.spring), "cone_angle": j.cone_angle}
+                 "spring": bool(j.spring), "cone_angle": j.cone_angle,
+                 "initial_position": j.initial_position, "effort_limit": j.effort_limit,
+                 "rate_limit": j.rate_limit, "damping": j.damping, "friction": j.friction}
         state = joints.by_name.get(j.name) if joints is not None else None
         if state is not None:
             entry.update({"position": state.position, "rate": state.rate,
@@ -168,6 +184,7 @@ def world_json(world) -> str:
         "integrator": world.integrator, "gravity": [float(g) for g in world.gravity],
         "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
                     "mass": b.mass, "inertia": [float(v) for v in b.inertia],
-                    "mass_properties_given": bool(b.mass_properties_given), "frozen": b.frozen}
+                    "mass_properties_given": bool(b.mass_properties_given),
+                    "collides": bool(b.collides), "frozen": b.frozen}
                    for b in world.bodies],
     })

@@ -435,6 +435,62 @@ TEST(JointWire, TheWorldDescriptionListsTheJoints) {
   EXPECT_NEAR(lift.axis[0], 1.0, 1e-15);
 }
 
+// What a viewer or a robot client reads beyond the geometry: where an
+// axis's coordinate counts from, its actuator's limits and its own losses
+// (0 where unset or, for these, meaningless), and a body that collides
+// with nothing.
+TEST(JointWire, TheWorldDescriptionCarriesAnAxisJointsZeroLimitsAndLosses) {
+  World world = jointWorld();
+  BodyDef sensor;
+  sensor.name = "sensor";
+  sensor.shape = SphereShape{0.02};
+  sensor.mass = 0.1;
+  sensor.position = Vec3(0, 3, 1);
+  sensor.collides = false;
+  const BodyId sensorId = *world.createBody(sensor);
+  JointDef pan;
+  pan.name = "pan";
+  pan.type = JointType::Revolute;
+  pan.bodyB = sensorId;
+  pan.anchor = Vec3(0, 3, 1.2);
+  pan.axis = Vec3::UnitZ();
+  pan.limit = {true, -1.0, 1.0};
+  pan.position = 0.25;
+  pan.actuatorLimits.effort = 3.5;
+  pan.actuatorLimits.rate = 2.0;
+  pan.damping = 0.3;
+  pan.friction = 0.05;
+  ASSERT_TRUE(world.createJoint(pan).ok());
+
+  const auto pages = worldDescriptionPages(world, 0, 1);
+  ASSERT_EQ(pages.size(), 1u);
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(pages[0].getEncodedSize()));
+  ASSERT_EQ(pages[0].encode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
+  rbsim::world_t page;
+  ASSERT_EQ(page.decode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
+  ASSERT_EQ(page.num_bodies, 4);
+  EXPECT_TRUE(page.bodies[0].collides);
+  EXPECT_FALSE(page.bodies[3].collides);
+  ASSERT_EQ(page.num_joints, 4);
+  const rbsim::joint_description_t& out = page.joints[3];
+  EXPECT_EQ(out.name, "pan");
+  EXPECT_EQ(out.initial_position, 0.25);
+  EXPECT_EQ(out.effort_limit, 3.5);
+  EXPECT_EQ(out.rate_limit, 2.0);
+  EXPECT_EQ(out.damping, 0.3);
+  EXPECT_EQ(out.friction, 0.05);
+  // The axle has no actuator limits (infinite in JointDef): 0 on the wire.
+  // The ball joint has no axis: 0 for all of them.
+  for (int i : {0, 1}) {
+    const rbsim::joint_description_t& other = page.joints[static_cast<std::size_t>(i)];
+    EXPECT_EQ(other.initial_position, 0.0) << other.name;
+    EXPECT_EQ(other.effort_limit, 0.0) << other.name;
+    EXPECT_EQ(other.rate_limit, 0.0) << other.name;
+    EXPECT_EQ(other.damping, 0.0) << other.name;
+    EXPECT_EQ(other.friction, 0.0) << other.name;
+  }
+}
+
 // Many joints with long names: every page fits a datagram, indices are
 // contiguous, and the joints follow the bodies in the description.
 TEST(JointWire, ManyJointsArePagedInOrder) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 namespace rbsim::rbctl {
 
@@ -39,6 +40,18 @@ json array(const double (&values)[N]) {
 void printVector(std::FILE* out, const char* key, const double* values, int count) {
   std::fprintf(out, " %s", key);
   for (int i = 0; i < count; ++i) std::fprintf(out, " %.10g", values[i]);
+}
+
+// A revolute's or prismatic's numbers that are set (not 0): where its
+// coordinate's zero is, its actuator's limits, its own losses.
+void printAxisExtras(std::FILE* out, const rbsim::joint_description_t& j) {
+  const std::pair<const char*, double> extras[] = {{"initial_position", j.initial_position},
+                                                   {"effort_limit", j.effort_limit},
+                                                   {"rate_limit", j.rate_limit},
+                                                   {"damping", j.damping},
+                                                   {"friction", j.friction}};
+  for (const auto& [label, value] : extras)
+    if (value != 0.0) std::fprintf(out, " %s %.10g", label, value);
 }
 
 }  // namespace
@@ -103,6 +116,7 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       std::fprintf(out, " parts %d", b.num_parts);
       for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
     }
+    if (!b.collides) std::fprintf(out, " collides false");
     if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
@@ -124,6 +138,7 @@ void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joint
     if (j.type == "distance" && (!j.limit_enabled || j.spring)) std::fprintf(out, " length %.10g", j.length);
     if (j.spring) std::fprintf(out, " spring");
     if (j.type == "spherical" && j.cone_angle > 0.0) std::fprintf(out, " cone %.10g", j.cone_angle);
+    printAxisExtras(out, j);
     const rbsim::joint_state_t* state = nullptr;
     if (joints != nullptr)
       for (const auto& candidate : joints->joints)
@@ -194,7 +209,12 @@ void printJointsJson(std::FILE* out, const rbsim::world_t& world, const rbsim::j
                   {"upper_limit", j.upper_limit},
                   {"length", j.length},
                   {"spring", static_cast<bool>(j.spring)},
-                  {"cone_angle", j.cone_angle}};
+                  {"cone_angle", j.cone_angle},
+                  {"initial_position", j.initial_position},
+                  {"effort_limit", j.effort_limit},
+                  {"rate_limit", j.rate_limit},
+                  {"damping", j.damping},
+                  {"friction", j.friction}};
     const rbsim::joint_state_t* state = nullptr;
     if (joints != nullptr)
       for (const auto& candidate : joints->joints)
@@ -228,6 +248,7 @@ void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
                     {"mass", b.mass},
                     {"inertia", array(b.inertia)},
                     {"mass_properties_given", b.mass_properties_given},
+                    {"collides", b.collides},
                     {"frozen", b.frozen}});
   const json document = {{"world_revision", world.world_revision},
                          {"step", world.step},
