@@ -74,6 +74,7 @@ export class JointsView {
     for (const o of [this.markers, this.lines]) {
       o.frustumCulled = false;
       o.renderOrder = 10; // after the bodies
+      o.visible = false; // until a world with joints
       scene.add(o);
     }
     this.markers.renderOrder = 11;
@@ -118,6 +119,7 @@ export class JointsView {
       object.geometry.setAttribute("position", attribute(vertices));
       object.geometry.setAttribute("color", attribute(vertices));
       object.geometry.setDrawRange(0, 0);
+      object.visible = false; // until update: a world without joints costs no draw call
     }
     this.drawnCount = 0;
   }
@@ -156,9 +158,10 @@ export class JointsView {
   }
 
   update(frame) {
-    this.markers.visible = this.lines.visible = this.visible;
+    const shown = this.visible && this.joints.length > 0;
+    this.markers.visible = this.lines.visible = shown;
     this.drawnCount = 0;
-    if (!this.visible || !frame) return;
+    if (!shown || !frame) return;
     const markerPositions = this.markers.geometry.attributes.position.array;
     const markerColors = this.markers.geometry.attributes.color.array;
     const linePositions = this.lines.geometry.attributes.position.array;
