@@ -32,15 +32,20 @@ export class Connection {
   receive(data) {
     if (data instanceof ArrayBuffer) {
       const frame = parseFrame(data);
-      // A step's joints come just before its state, under the same "ready".
+      // A step's joints come just before its state, under the same "ready":
+      // kept until the state is here, and both handed over together.
       if (frame && frame.kind === "joints") {
-        this.handlers.joints(frame);
+        this.jointsOfNextState = frame;
         return;
       }
       // Ready for the next one right away: drawing happens at the display's
       // pace from the newest frame held, so this only bounds what is in flight.
       this.send({ type: "ready" });
-      if (frame) this.handlers.state(frame);
+      const joints = this.jointsOfNextState;
+      this.jointsOfNextState = null;
+      if (!frame) return;
+      if (joints && joints.step === frame.step && joints.revision === frame.revision) this.handlers.joints(joints);
+      this.handlers.state(frame);
       return;
     }
     const message = JSON.parse(data);
