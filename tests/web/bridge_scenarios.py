@@ -255,7 +255,7 @@ def bad_lcm(workdir):
             page.num_bodies, page.bodies = 0, []
             forged = page.encode()  # claims 2^30 bodies, holds none
             junk = [b"", b"\x00" * 7, b"garbage" * 100, forged, forged[:-3], forged + b"\x01\x02"]
-            for suffix in ("STATE", "CONTACTS", "WORLD", "STATUS", "ACK"):
+            for suffix in ("STATE", "CONTACTS", "JOINTS", "WORLD", "STATUS", "ACK"):
                 for data in junk:
                     bus.publish("RBSIM_" + suffix, data)
 

@@ -18,6 +18,23 @@
     ..      float32   contacts[m][7]: position x y z (m), normal x y z (a to b), depth (m)
 
 float32 is plenty for drawing (0.1 mm at 1 km) and halves the bytes.
+
+A world with joints also has a joints frame per step, sent just before the state
+frame of the same step (under the same "ready", so it adds nothing in flight):
+
+    offset  type      field
+    0       uint32    magic 0x31564252 ("RBV1")
+    4       uint32    kind: 2 = joints
+    8       float64   step
+    16      float64   sim_time (s)
+    24      float64   utime (as the state frame's)
+    32      float64   world_revision
+    40      uint32    num_joints (j), in the world description's order (creation order)
+    44      uint32    0
+    48      float32   numbers[j][9]: position (rad or m), rate (rad/s or m/s), effort (N m or N),
+                      force x y z (N, world, on body_b), torque x y z (N m, world)
+    ..      int8      at_limit[j]: -1 at the lower limit, +1 at the upper, 0 within
+    ..      uint8     active[j]: 0 while a body of the joint is frozen
 """
 
 import struct
@@ -26,6 +43,10 @@ import numpy as np
 
 MAGIC = 0x31564252
 KIND_STATE = 1
+KIND_JOINTS = 2
+JOINTS_HEADER = struct.Struct("<IIddddII")
+JOINT_FLOATS = 9
+assert JOINTS_HEADER.size == 48
 HEADER = struct.Struct("<IIddddIIIId")
 HEADER_BYTES = 64
 assert HEADER.size == HEADER_BYTES
@@ -93,3 +114,20 @@ def frame_from_pages(pages, static_mask, contacts=None, contacts_step=-1, contac
                      float(header.utime), float(header.world_revision), n, m, int(contacts_total),
                      at_rest, float(contacts_step))
     return out.tobytes()
+
+
+def joints_frame(header, records):
+    """bytes of one joints frame. header: the first joints_t page (wire.JointsPage);
+    records: every joint's numbers (wire.JOINT_DTYPE), creation order."""
+    j = len(records)
+    numbers = np.empty((j, JOINT_FLOATS), dtype="<f4")
+    with np.errstate(over="ignore", invalid="ignore"):
+        numbers[:, 0] = records["position"]
+        numbers[:, 1] = records["rate"]
+        numbers[:, 2] = records["effort"]
+        numbers[:, 3:6] = records["force"]
+        numbers[:, 6:9] = records["torque"]
+    head = JOINTS_HEADER.pack(MAGIC, KIND_JOINTS, float(header.step), float(header.sim_time),
+                              float(header.utime), float(header.world_revision), j, 0)
+    return b"".join((head, numbers.tobytes(), records["at_limit"].astype("i1").tobytes(),
+                     (records["active"] != 0).astype("u1").tobytes()))

@@ -2,7 +2,11 @@
 
 Runs LCM's receive loop on its own thread (rbsim.lcm_ctypes); state pages are
 checked there and handed to the hub as a frame to build (frames.frame_from_pages),
-which is built once, on the asyncio loop, only if a browser is sent it.
+which is built once, on the asyncio loop, only if a browser is sent it. In a
+world with joints, a state waits for the joints of its step (rbserver publishes
+them right after its pages) and goes with them as one value: the joints frame
+then the state frame. A world description with joints waits for a state that
+places its anchors on its bodies (joint_anchors.py).
 Requests from browsers are published with this bridge's client id and a
 sequence number of its own; the ack that echoes it goes back to the browser
 that asked (or a timeout note after ACK_TIMEOUT s).
@@ -21,6 +25,7 @@ from rbsim import ack_t, command_t, status_t, world_t, wrench_t
 from rbsim.lcm_ctypes import Lcm
 
 from . import frames, wire
+from .joint_anchors import JointAnchors
 from .server import ACK_TIMEOUT, Lazy, dumps
 
 log = logging.getLogger("rbview")
@@ -37,11 +42,17 @@ class FrameBuilder:
     def __init__(self):
         self.static_mask = None
         self.world_revision = None
+        self.joint_count = 0
         self.contacts = None  # (step, total, records)
 
     def set_world(self, world):
         self.world_revision = world["revision"]
+        self.joint_count = len(world["joints"])
         self.static_mask = np.array([b["is_static"] for b in world["bodies"]], dtype=bool)
+
+    def has_joints(self, revision):
+        """Whether states of this revision come with joints (the description in force says so)."""
+        return revision == self.world_revision and self.joint_count > 0
 
     def set_contacts(self, header, records):
         self.contacts = (header.step, header.total_contacts, records)
@@ -65,6 +76,11 @@ class FrameBuilder:
         parts = self._parts(pages)
         return Lazy(lambda: frames.frame_from_pages(*parts))
 
+    @staticmethod
+    def with_joints(state, header, records):
+        """A state's lazy frame with its step's joints: (joints frame, state frame), built when sent."""
+        return Lazy(lambda: (frames.joints_frame(header, records), state.get()))
+
 
 class LiveSource:
     def __init__(self, hub, url, prefix):
@@ -79,12 +95,16 @@ class LiveSource:
         self.state_pages = wire.Pages()
         self.contact_pages = wire.Pages()
         self.world_pages = wire.Pages()
+        self.joints_decoder = wire.JointsPageDecoder()
+        self.joint_pages = wire.Pages()
+        self.anchors = JointAnchors()
+        self.state_waiting = None  # ((revision, step), lazy frame): a state waiting for its joints
         self.decode_errors = 0
         self.have_world = threading.Event()
         self.lcm = Lcm(url)
         for suffix, handler in (("STATE", self._on_state), ("CONTACTS", self._on_contacts),
                                 ("WORLD", self._on_world), ("STATUS", self._on_status),
-                                ("ACK", self._on_ack)):
+                                ("ACK", self._on_ack), ("JOINTS", self._on_joints)):
             self.lcm.subscribe(prefix + suffix, handler, queue_capacity=64)
         self.lcm.start()
         self._asker = threading.Thread(target=self._ask_for_world, daemon=True)
@@ -117,7 +137,38 @@ class LiveSource:
             return
         if not wire.pages_tile(pages):
             return self._bad(channel, "pages that do not tile the bodies")
-        self.hub.post("state", self.builder.lazy_frame(pages))
+        header = pages[0]
+        world = self.anchors.state(header.world_revision, header.step, header.total_bodies,
+                                   lambda: wire.merge_state(pages)[3])
+        if world is not None:
+            self._publish_world(world)
+        frame = self.builder.lazy_frame(pages)
+        if not self.builder.has_joints(header.world_revision):
+            self.hub.post("state", frame)
+            return
+        # Its joints come next. If the last state's never came, that one goes alone
+        # now (the page keeps the joints it had): a lost joints page delays states
+        # by one state period at most, never stops them.
+        if self.state_waiting is not None:
+            self.hub.post("state", self.state_waiting[1])
+        self.state_waiting = ((header.world_revision, header.step), frame)
+
+    def _on_joints(self, channel, data, _recv_utime):
+        try:
+            page = self.joints_decoder.decode(data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        pages = self.joint_pages.add(page.key(), page, page.num_pages)
+        if pages is None:
+            return
+        merged = wire.merge_joints(pages)
+        if merged is None:
+            return self._bad(channel, "pages that do not tile the joints")
+        header, _names, records = merged
+        waiting = self.state_waiting
+        if waiting is not None and waiting[0] == (header.world_revision, header.step):
+            self.state_waiting = None
+            self.hub.post("state", self.builder.with_joints(waiting[1], header, records))
 
     def _on_contacts(self, channel, data, _recv_utime):
         try:
@@ -140,10 +191,15 @@ class LiveSource:
         if pages is None:
             return
         world = wire.world_to_dict(pages)
-        if len(world["bodies"]) != pages[0].total_bodies:
-            return self._bad(channel, "pages that do not add up to total_bodies")
-        self.builder.set_world(world)
+        if not wire.world_is_whole(world, pages):
+            return self._bad(channel, "pages that do not add up to total_bodies and total_joints")
         self.have_world.set()
+        world = self.anchors.world(world)
+        if world is not None:
+            self._publish_world(world)
+
+    def _publish_world(self, world):
+        self.builder.set_world(world)
         self.hub.post("world", dumps(world))
 
     def _on_status(self, channel, data, _recv_utime):

@@ -13,8 +13,9 @@ Seeking never changes whether playback runs: a paused replay stays paused on
 the row sought, a playing one plays on from it (Gazebo's log seek unpaused
 playback, gazebosim/gz-sim#720).
 
-Memory: one frame per row (64 + 52 bytes per body), e.g. 100 bodies at 100 Hz
-for 10 min is 0.3 GB; a log needing more than MAX_FRAME_BYTES is refused.
+Memory: one frame per row (64 + 52 bytes per body, and 48 + 38 bytes per joint
+in a world with joints), e.g. 100 bodies at 100 Hz for 10 min is 0.3 GB; a log
+needing more than MAX_FRAME_BYTES is refused.
 """
 
 import bisect
@@ -25,7 +26,8 @@ import time
 from rbsim import world_t
 from rbsim.lcm_ctypes import EventLog
 
-from . import wire
+from . import frames, wire
+from .joint_anchors import JointAnchors
 from .live import FrameBuilder
 from .server import dumps
 
@@ -37,16 +39,23 @@ TICK = 1 / 120  # s of wall clock between playback updates
 
 
 class Row:
-    __slots__ = ("step", "sim_time", "utime", "revision", "frame")
+    __slots__ = ("step", "sim_time", "utime", "revision", "frame", "joints")
 
     def __init__(self, step, sim_time, utime, revision, frame):
         self.step, self.sim_time, self.utime, self.revision, self.frame = step, sim_time, utime, revision, frame
+        self.joints = None  # the joints frame of the same step, if the log has it
+
+    def frames(self):
+        """What the hub sends for this row: the state frame, after its joints frame if any."""
+        return self.frame if self.joints is None else (self.joints, self.frame)
 
 
 def load(path, prefix):
     """Reads the log: (rows, worlds by revision)."""
     decoder = wire.StatePageDecoder()
-    state_pages, contact_pages, world_pages = wire.Pages(), wire.Pages(), wire.Pages()
+    joints_decoder = wire.JointsPageDecoder()
+    state_pages, contact_pages, world_pages, joint_pages = wire.Pages(), wire.Pages(), wire.Pages(), wire.Pages()
+    anchors = JointAnchors()
     builders = {}  # revision -> FrameBuilder (its world's static mask)
     worlds = {}
     rows, seen = [], set()
@@ -64,8 +73,24 @@ def load(path, prefix):
                     pages = world_pages.add((page.utime, page.step, page.world_revision), page, page.num_pages)
                     if pages is not None:
                         world = wire.world_to_dict(pages)
-                        worlds[world["revision"]] = world
-                        builders.setdefault(world["revision"], FrameBuilder()).set_world(world)
+                        if not wire.world_is_whole(world, pages):
+                            raise wire.WireError("world pages that do not add up to their totals")
+                        world = anchors.world(world)
+                        if world is not None:
+                            worlds[world["revision"]] = world
+                            builders.setdefault(world["revision"], FrameBuilder()).set_world(world)
+                elif channel == prefix + "JOINTS":
+                    page = joints_decoder.decode(event.data)
+                    pages = joint_pages.add(page.key(), page, page.num_pages)
+                    if pages is not None:
+                        merged = wire.merge_joints(pages)
+                        if merged is None:
+                            raise wire.WireError("joints pages that do not tile the joints")
+                        header, _names, records = merged
+                        # rbserver publishes a step's joints right after its state.
+                        if rows and (rows[-1].revision, rows[-1].step) == (header.world_revision, header.step):
+                            rows[-1].joints = frames.joints_frame(header, records)
+                            total_bytes += len(rows[-1].joints)
                 elif channel == prefix + "CONTACTS":
                     page = wire.decode_contacts(event.data)
                     pages = contact_pages.add((page.utime, page.step), page, page.num_pages)
@@ -82,6 +107,11 @@ def load(path, prefix):
                     if not wire.pages_tile(pages):
                         raise wire.WireError("state pages that do not tile the bodies")
                     header = pages[0]
+                    world = anchors.state(header.world_revision, header.step, header.total_bodies,
+                                          lambda pages=pages: wire.merge_state(pages)[3])
+                    if world is not None:
+                        worlds[world["revision"]] = world
+                        builders.setdefault(world["revision"], FrameBuilder()).set_world(world)
                     key = (header.world_revision, header.step)
                     if key in seen:
                         continue
@@ -100,6 +130,9 @@ def load(path, prefix):
                 bad += 1
                 if bad <= 10:
                     log.warning("%s: event %d on %s ignored: %s", path, event.eventnum, channel, error)
+    world = anchors.flush()
+    if world is not None:
+        worlds[world["revision"]] = world
     if not rows:
         raise ValueError("%s: no complete %sSTATE in the log (wrong --prefix?)" % (path, prefix))
     missing = sorted({r.revision for r in rows} - set(worlds))
@@ -152,7 +185,7 @@ class LogSource:
         if row.revision != self._world_revision:
             self._world_revision = row.revision
             self.hub.post("world", dumps(self.worlds[row.revision]))
-        self.hub.post("state", row.frame)
+        self.hub.post("state", row.frames())
         self._post_position()
 
     def _post_position(self):

@@ -110,7 +110,10 @@ class Session:
                 self.seen["state"] = state.seq
                 self.frames_sent += 1
                 value = state.value
-                await self.socket.send(value.get() if isinstance(value, Lazy) else value)
+                value = value.get() if isinstance(value, Lazy) else value
+                # A world with joints: the step's joints frame, then its state frame.
+                for frame in value if isinstance(value, tuple) else (value,):
+                    await self.socket.send(frame)
 
 
 class Hub:
@@ -130,7 +133,8 @@ class Hub:
 
     # -- from source threads -------------------------------------------------------------
     def post(self, kind, value):
-        """Thread-safe: a new value (str JSON or bytes frame) for slot ``kind``."""
+        """Thread-safe: a new value for slot ``kind``: str JSON, or for "state" a bytes
+        frame, a tuple of frames sent one after the other, or a Lazy giving either."""
         self.loop.call_soon_threadsafe(self._set, kind, value)
 
     def post_reply(self, session, message):

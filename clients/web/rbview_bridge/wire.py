@@ -8,7 +8,9 @@ on the names and frozen strings, which are fixed within one world revision
 that layout is checked (every byte but the numbers, one numpy take) and its
 numbers are then read in place as strided numpy views, one per run of
 equal-size body records (frames.frame_from_pages turns them into the frame).
-Contacts are fixed-size records and are read as one numpy structured array.
+Joint states (joints_t) arrive with every state and are read the same way (a
+layout per page, then in place). Contacts are fixed-size records and are read
+as one numpy structured array.
 The rarer messages (world, status, acks) go through the lcm-gen decoders.
 
 Wire layout (LCM type specification, big-endian): world_state_t is an 8-byte
@@ -24,11 +26,13 @@ import struct
 
 import numpy as np
 
-from rbsim import ack_t, contacts_t, status_t, world_state_t, world_t
+from rbsim import ack_t, contacts_t, joints_t, status_t, world_state_t, world_t
 
 STATE_FINGERPRINT = world_state_t._get_packed_fingerprint()
 CONTACTS_FINGERPRINT = contacts_t._get_packed_fingerprint()
+JOINTS_FINGERPRINT = joints_t._get_packed_fingerprint()
 _STATE_HEADER = struct.Struct(">qqdqiiiii")
+_JOINTS_HEADER = _STATE_HEADER  # utime q, step q, sim_time d, world_revision q, then the five int32 paging fields
 _CONTACTS_HEADER = struct.Struct(">qqdiiiii")
 _BODY_NUMBERS = 13 * 8
 # contact_t: body_a i, body_b i, position 3d, normal 3d, depth d, normal_velocity d,
@@ -37,6 +41,13 @@ CONTACT_DTYPE = np.dtype([
     ("body_a", ">i4"), ("body_b", ">i4"), ("position", ">f8", 3), ("normal", ">f8", 3),
     ("depth", ">f8"), ("normal_velocity", ">f8"), ("classification", "i1"),
     ("normal_impulse", ">f8"), ("friction_impulse", ">f8", 3)])
+# joint_state_t after its name: position d, rate d, rotation 4d, force 3d, torque 3d,
+# effort d, at_limit int8, error d, active boolean (one byte); packed, 114 bytes.
+JOINT_DTYPE = np.dtype({
+    "names": ["position", "rate", "rotation", "force", "torque", "effort", "at_limit", "error", "active"],
+    "formats": [">f8", ">f8", (">f8", 4), (">f8", 3), (">f8", 3), ">f8", "i1", ">f8", "u1"],
+    "offsets": [0, 8, 16, 48, 72, 96, 104, 105, 113],
+    "itemsize": 114})
 
 # Limits on what a page may claim, so that a forged header cannot make us allocate.
 MAX_BODIES = 1_000_000
@@ -184,13 +195,17 @@ class StatePageDecoder:
             layout.runs.append((i, j - i, int(offsets[i]), stride))
             i = j
         # Every byte but the numbers': id, name length, name, frozen length, frozen.
-        starts = np.concatenate([offsets - name_lengths - 8, frozen_at])
-        widths = np.concatenate([name_lengths + 8, frozen_lengths + 4])
-        layout.check_index = (np.repeat(starts, widths)
-                              + np.arange(int(widths.sum())) - np.repeat(np.cumsum(widths) - widths, widths))
+        layout.check_index = _byte_ranges(np.concatenate([offsets - name_lengths - 8, frozen_at]),
+                                          np.concatenate([name_lengths + 8, frozen_lengths + 4]))
         raw = np.frombuffer(data, dtype=np.uint8)
         layout.check_values = raw.take(layout.check_index)
         return layout
+
+
+def _byte_ranges(starts, widths):
+    """The indices of the bytes [start, start + width) of every range, in one array."""
+    return (np.repeat(starts, widths)
+            + np.arange(int(widths.sum())) - np.repeat(np.cumsum(widths) - widths, widths))
 
 
 class ContactsPage:
@@ -211,6 +226,96 @@ def decode_contacts(data):
         raise WireError("contacts_t page with inconsistent sizes")
     page.records = np.frombuffer(data, dtype=CONTACT_DTYPE, offset=8 + _CONTACTS_HEADER.size)
     return page
+
+
+class JointsPage:
+    """One joints_t page: its header fields, the joints' names and their numbers
+    as a structured array (JOINT_DTYPE, one record per joint, creation order)."""
+
+    __slots__ = ("utime", "step", "sim_time", "world_revision", "page", "num_pages", "total_joints",
+                 "first_joint_index", "num_joints", "names", "records")
+
+    def key(self):
+        return (self.utime, self.step, self.world_revision)
+
+
+class JointsPageDecoder:
+    """Decodes joints_t pages as StatePageDecoder does states: a joint record is
+    its name then fixed-size numbers, so where the numbers are depends only on
+    the names; they are found once per page layout, and a later page of that
+    layout is checked (its names' bytes, one numpy take) and its numbers read
+    with one more take (a ragdoll world has hundreds of joints at the state rate:
+    lcm-gen's per-joint decoding would cost a good part of a core)."""
+
+    def __init__(self, max_layouts=64):
+        self._layouts = {}  # (len, revision, page, first, n) -> (offsets, names, check_index, check_values)
+        self._max_layouts = max_layouts
+
+    def decode(self, data):
+        if not isinstance(data, bytes):
+            data = bytes(data)
+        if len(data) < 8 + _JOINTS_HEADER.size or data[:8] != JOINTS_FINGERPRINT:
+            raise WireError("not a joints_t (size %d or fingerprint)" % len(data))
+        page = JointsPage()
+        (page.utime, page.step, page.sim_time, page.world_revision, page.page, page.num_pages,
+         page.total_joints, page.first_joint_index, page.num_joints) = _JOINTS_HEADER.unpack_from(data, 8)
+        if not (0 <= page.num_joints <= MAX_BODIES and 0 <= page.total_joints <= MAX_BODIES
+                and 1 <= page.num_pages <= MAX_PAGES and 0 <= page.page < page.num_pages
+                and 0 <= page.first_joint_index <= page.total_joints - page.num_joints):
+            raise WireError("joints_t page with inconsistent paging fields")
+        raw = np.frombuffer(data, dtype=np.uint8)
+        key = (len(data), page.world_revision, page.page, page.first_joint_index, page.num_joints)
+        layout = self._layouts.get(key)
+        if layout is None or not np.array_equal(raw.take(layout[2]), layout[3]):
+            layout = self._find_layout(data, page.num_joints)
+            self._layouts.pop(key, None)
+            if len(self._layouts) >= self._max_layouts:
+                self._layouts.pop(next(iter(self._layouts)))
+            self._layouts[key] = layout
+        offsets, page.names = layout[0], layout[1]
+        page.records = raw.take(offsets[:, None] + np.arange(JOINT_DTYPE.itemsize)).view(JOINT_DTYPE).reshape(-1)
+        return page
+
+    @staticmethod
+    def _find_layout(data, count):
+        offsets = np.empty(count, dtype=np.int64)
+        name_lengths = np.empty(count, dtype=np.int64)
+        names = []
+        at = 8 + _JOINTS_HEADER.size
+        end = len(data)
+        for i in range(count):
+            if at + 4 > end:
+                raise WireError("joints_t truncated in joint %d" % i)
+            (name_len,) = struct.unpack_from(">i", data, at)
+            at += 4
+            if name_len < 1 or at + name_len + JOINT_DTYPE.itemsize > end or data[at + name_len - 1] != 0:
+                raise WireError("joints_t joint %d: bad name length %d" % (i, name_len))
+            names.append(bytes(data[at:at + name_len - 1]).decode("utf-8", "replace"))
+            name_lengths[i] = name_len
+            at += name_len
+            offsets[i] = at
+            at += JOINT_DTYPE.itemsize
+        if at != end:
+            raise WireError("joints_t has %d trailing bytes" % (end - at))
+        check_index = _byte_ranges(offsets - name_lengths - 4, name_lengths + 4)
+        return offsets, names, check_index, np.frombuffer(data, dtype=np.uint8).take(check_index)
+
+
+def merge_joints(pages):
+    """Complete joints_t pages -> (header page, names, records) or None if they do not tile
+    total_joints (in creation order, once each) or mix revisions."""
+    first = pages[0]
+    expected = 0
+    for p in pages:
+        if (p.total_joints != first.total_joints or p.first_joint_index != expected
+                or p.world_revision != first.world_revision):
+            return None
+        expected += p.num_joints
+    if expected != first.total_joints:
+        return None
+    if len(pages) == 1:
+        return first, first.names, first.records
+    return first, [n for p in pages for n in p.names], np.concatenate([p.records for p in pages])
 
 
 def decode_with(message_type, data):
@@ -259,8 +364,20 @@ def world_to_dict(pages):
                 p["orientation"] = _finite_list(part.orientation)
                 body["parts"].append(p)
             bodies.append(body)
+    joints = [{
+        "name": j.name, "type": j.type, "body_a": j.body_a, "body_b": j.body_b,
+        "anchor_a": _finite_list(j.anchor_a), "anchor_b": _finite_list(j.anchor_b), "axis": _finite_list(j.axis),
+        "limit_enabled": bool(j.limit_enabled), "lower_limit": float(j.lower_limit),
+        "upper_limit": float(j.upper_limit), "length": float(j.length), "spring": bool(j.spring),
+        "cone_angle": float(j.cone_angle),
+    } for page in pages for j in page.joints]
     return {"type": "world", "revision": first.world_revision, "step": first.step,
-            "dt": float(first.dt), "gravity": _finite_list(first.gravity), "bodies": bodies}
+            "dt": float(first.dt), "gravity": _finite_list(first.gravity), "bodies": bodies, "joints": joints}
+
+
+def world_is_whole(world, pages):
+    """Whether the description's bodies and joints add up to the totals its pages claim."""
+    return len(world["bodies"]) == pages[0].total_bodies and len(world["joints"]) == pages[0].total_joints
 
 
 def status_to_dict(s):

@@ -1,13 +1,14 @@
 // The WebSocket to the rbview bridge: JSON text messages (world, status,
-// acks, replay position) and binary state frames. After each state frame the
-// page answers {"type": "ready"}, which is what lets the bridge send the next
-// (newest) one: a slow page gets fewer frames, never older ones.
-import { parseStateFrame } from "./frame.js";
+// acks, replay position) and binary frames (a step's state, after its joints'
+// in a world with joints). After each state frame the page answers
+// {"type": "ready"}, which is what lets the bridge send the next (newest) one:
+// a slow page gets fewer frames, never older ones.
+import { parseFrame } from "./frame.js";
 
 export class Connection {
   constructor(url, handlers) {
     this.url = url;
-    this.handlers = handlers; // {hello, world, status, state, replay, closed}
+    this.handlers = handlers; // {hello, world, status, joints, state, replay, closed}
     this.nextId = 1;
     this.pending = new Map(); // request id -> resolve
     this.open();
@@ -30,11 +31,21 @@ export class Connection {
 
   receive(data) {
     if (data instanceof ArrayBuffer) {
-      const frame = parseStateFrame(data);
+      const frame = parseFrame(data);
+      // A step's joints come just before its state, under the same "ready":
+      // kept until the state is here, and both handed over together.
+      if (frame && frame.kind === "joints") {
+        this.jointsOfNextState = frame;
+        return;
+      }
       // Ready for the next one right away: drawing happens at the display's
       // pace from the newest frame held, so this only bounds what is in flight.
       this.send({ type: "ready" });
-      if (frame) this.handlers.state(frame);
+      const joints = this.jointsOfNextState;
+      this.jointsOfNextState = null;
+      if (!frame) return;
+      if (joints && joints.step === frame.step && joints.revision === frame.revision) this.handlers.joints(joints);
+      this.handlers.state(frame);
       return;
     }
     const message = JSON.parse(data);

@@ -54,4 +54,29 @@ export class Hud {
   }
 
   selected(text) { this.set("selected", text); }
+
+  // The selected body's joints, one line each (jointLines); none: hidden.
+  joints(lines) {
+    const element = this.jointsElement || (this.jointsElement = $("hud-joints"));
+    const text = lines.join("\n");
+    if (element.textContent !== text) element.textContent = text;
+    element.classList.toggle("hidden", lines.length === 0);
+  }
+}
+
+function jointPosition(joint, state) {
+  const unit = joint.type === "revolute" || joint.type === "spherical" ? "rad" : "m";
+  if (joint.type === "fixed" || (joint.type === "spherical" && !state.position)) return "";
+  return ` ${state.position >= 0 ? " " : ""}${state.position.toFixed(3)} ${unit}`;
+}
+
+// "name (type) position unit, at the lower limit" for each joint of a body
+// (JointsView.jointsOfBody); the position as the joints frame gives it.
+export function jointLines(joints) {
+  return joints.map(({ name, type, state }) => {
+    if (!state) return `${name} (${type})`;
+    const limit = state.atLimit < 0 ? ", at lower limit" : state.atLimit > 0 ? ", at upper limit" : "";
+    const inactive = state.active ? "" : ", not enforced (a body is frozen)";
+    return `${name} (${type})${jointPosition({ type }, state)}${limit}${inactive}`;
+  });
 }

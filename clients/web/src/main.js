@@ -4,7 +4,7 @@ import * as THREE from "three";
 import "./style.css";
 import { Connection } from "./connection.js";
 import { Viewer } from "./scene.js";
-import { Hud } from "./hud.js";
+import { Hud, jointLines } from "./hud.js";
 import { Plots } from "./plots.js";
 
 // The HUD's per-state text (sim time, step, at rest) is written at most this
@@ -22,7 +22,7 @@ const plots = new Plots($("plots"));
 const message = $("message");
 
 const state = {
-  world: null, status: null, hello: null, replay: null, frame: null,
+  world: null, status: null, hello: null, replay: null, frame: null, joints: null,
   framesReceived: 0, rendersThisSecond: 0, statesThisSecond: 0, fps: 0, statesPerSecond: 0,
   latencies: [], drawnSteps: [],
 };
@@ -61,6 +61,10 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
     state.status = status;
     hud.status(status);
   },
+  joints(frame) {
+    state.joints = frame;
+    viewer.joints.setStates(frame);
+  },
   state(frame) {
     state.frame = frame;
     state.framesReceived++;
@@ -93,6 +97,7 @@ function writeFrameToHud() {
   hudTimer = 0;
   hudWritten = performance.now();
   hud.frame(state.frame);
+  hud.joints(jointLines(viewer.joints.jointsOfBody(viewer.selected)));
 }
 function frameToHud() {
   if (hudTimer) return;
@@ -116,6 +121,7 @@ $("btn-rtf").onclick = () => {
   act(`real-time factor ${f}`, { type: "command", command: "set_real_time_factor", real_time_factor: f });
 };
 $("toggle-contacts").onchange = (e) => { viewer.showContacts = e.target.checked; viewer.frameDrawn = null; };
+$("toggle-joints").onchange = (e) => { viewer.joints.visible = e.target.checked; viewer.frameDrawn = null; };
 $("toggle-follow").onchange = (e) => {
   viewer.follow = e.target.checked;
   if (viewer.follow && viewer.selected >= 0) viewer.focusOn(viewer.selected);
@@ -133,6 +139,7 @@ function selectBody(index) {
   plots.select(index);
   const body = index >= 0 && state.world ? state.world.bodies[index] : null;
   hud.selected(body ? `${body.name} (${body.shape_type}${body.is_static ? ", static" : `, ${body.mass.toFixed(3)} kg`})` : "none");
+  hud.joints(jointLines(viewer.joints.jointsOfBody(index)));
   if (body && viewer.follow) viewer.focusOn(index);
 }
 
@@ -205,7 +212,8 @@ function hover(x, y) {
     tooltip.classList.add("hidden");
     return;
   }
-  tooltip.textContent = state.world.bodies[hit.body].name;
+  // The body's name, and its joints' positions and limits (one line each).
+  tooltip.textContent = [state.world.bodies[hit.body].name, ...jointLines(viewer.joints.jointsOfBody(hit.body))].join("\n");
   tooltip.style.left = `${x + 12}px`;
   tooltip.style.top = `${y + 12}px`;
   tooltip.classList.remove("hidden");
@@ -252,6 +260,13 @@ window.rbview = {
     const i = this.bodyIndex(name);
     const p = viewer.bodyPosition(i);
     return p ? viewer.screenPoint(p) : null;
+  },
+  // How many joints are drawn now (0 with the joints toggle off).
+  jointsDrawn: () => viewer.joints.drawnCount,
+  // Where joint `name`'s marker is drawn (world), or null.
+  jointMarker(name) {
+    const p = viewer.frameDrawn ? viewer.joints.markerOf(viewer.frameDrawn, name) : null;
+    return p ? p.toArray() : null;
   },
   drawnPosition(name) {
     const p = viewer.frameDrawn ? viewer.bodyPosition(this.bodyIndex(name)) : null;

@@ -1,9 +1,10 @@
-// The 3D view: bodies as instanced pieces, the ground, contacts, the push
-// arrow; orbit/pan/zoom, picking and following a body. World frame z up.
+// The 3D view: bodies as instanced pieces, the ground, contacts, joints, the
+// push arrow; orbit/pan/zoom, picking and following a body. World frame z up.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { bodyPieces, planeOf, bodySize } from "./shapes.js";
 import { SphereImpostors } from "./sphere_impostors.js";
+import { JointsView } from "./joints.js";
 
 // Above this many spheres they are drawn as impostors (sphere_impostors.js).
 const IMPOSTOR_SPHERES = 200;
@@ -47,6 +48,7 @@ export class Viewer {
     this.follow = false;
     this.showContacts = false;
     this.makeContacts();
+    this.joints = new JointsView(this.scene);
     this.arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xff5533, 0.12, 0.07);
     this.arrow.visible = false;
     this.scene.add(this.arrow);
@@ -114,6 +116,7 @@ export class Viewer {
       this.worldObjects.add(mesh);
       this.groups.push({ mesh, pieces });
     }
+    this.joints.setWorld(world);
     this.selected = -1;
     this.frameDrawn = null;
   }
@@ -175,6 +178,7 @@ export class Viewer {
       plane.object.matrix.multiplyMatrices(this.poseMatrix(plane.body, pose), plane.local);
     }
     this.updateContacts();
+    this.joints.update(frame);
     this.frameDrawn = frame;
     return true;
   }
