@@ -11,6 +11,7 @@
 #include <random>
 #include <rbsim/command_t.hpp>
 
+#include "checkpoint_commands.h"
 #include "e2e_paths.h"
 #include "server_test.h"
 
@@ -21,45 +22,18 @@ using Checkpoints = ServerTest;
 
 const std::string kWorld = std::string(kWorldsDir) + "/replay_pile.yaml";
 
-// A command_t with any path, sent as the main client (its acks come back to it).
-client::Request sendCommand(client::Client& via, int8_t command, const std::string& path) {
-  static int64_t seq = 1000000;
-  rbsim::command_t message{};
-  message.client = via.clientId();
-  message.seq = ++seq;
-  message.command = command;
-  message.path = path;
-  lcm::LCM lcm(kUrl);
-  lcm.publish(via.channel("COMMAND"), &message);
-  return client::Request{message.seq, client::AckKind::Command, true};
-}
-
-bool sameBodies(const rbsim::world_state_t& a, const rbsim::world_state_t& b) {
-  if (a.bodies.size() != b.bodies.size()) return false;
-  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
-    const auto& x = a.bodies[i];
-    const auto& y = b.bodies[i];
-    if (x.name != y.name || std::memcmp(x.position, y.position, sizeof x.position) != 0 ||
-        std::memcmp(x.orientation, y.orientation, sizeof x.orientation) != 0 ||
-        std::memcmp(x.linear_velocity, y.linear_velocity, sizeof x.linear_velocity) != 0 ||
-        std::memcmp(x.angular_velocity, y.angular_velocity, sizeof x.angular_velocity) != 0)
-      return false;
-  }
-  return true;
-}
-
 TEST_F(Checkpoints, SaveOverTheBusAndResetToItContinuesIdentically) {
   const std::string directory = scratchPath("checkpoints");
   startServer(kWorld, {"--paused", "--state-rate", "0", "--checkpoint-dir", directory});
   stepAndWait(300);
-  const rbsim::ack_t saved = expectAccepted(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "at300.rbck"));
+  const rbsim::ack_t saved = expectAccepted(sendPathCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "at300.rbck"));
   EXPECT_NE(saved.reason.find("at300.rbck"), std::string::npos) << saved.reason;
   ASSERT_TRUE(std::filesystem::is_regular_file(directory + "/at300.rbck"));
   stepAndWait(400);
   const rbsim::world_state_t first = history().at(700);
 
   // Back to the checkpoint: the same step, and the same states after it.
-  expectAccepted(sendCommand(client(), rbsim::command_t::RESET, "at300.rbck"));
+  expectAccepted(sendPathCommand(client(), rbsim::command_t::RESET, "at300.rbck"));
   waitFor("the state of step 300 after the reset", [&] {
     return client().latestState() && client().latestState()->step == 300;
   });
@@ -69,16 +43,16 @@ TEST_F(Checkpoints, SaveOverTheBusAndResetToItContinuesIdentically) {
 
   // Client paths never leave the checkpoint directory.
   for (const char* bad : {"../escape.rbck", "/tmp/abs.rbck", ".hidden", "sub/dir.rbck", "a b"}) {
-    const rbsim::ack_t ack = expectRejected(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, bad));
+    const rbsim::ack_t ack = expectRejected(sendPathCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, bad));
     EXPECT_NE(ack.reason.find("plain file name"), std::string::npos) << ack.reason;
-    expectRejected(sendCommand(client(), rbsim::command_t::RESET, bad));
+    expectRejected(sendPathCommand(client(), rbsim::command_t::RESET, bad));
   }
   EXPECT_FALSE(std::filesystem::exists(scratchPath("escape.rbck")));
   // A file that is not a checkpoint, and one that is missing.
   std::ofstream(directory + "/garbage.rbck") << "not a checkpoint at all";
-  const rbsim::ack_t garbage = expectRejected(sendCommand(client(), rbsim::command_t::RESET, "garbage.rbck"));
+  const rbsim::ack_t garbage = expectRejected(sendPathCommand(client(), rbsim::command_t::RESET, "garbage.rbck"));
   EXPECT_NE(garbage.reason.find("not an rbsim checkpoint"), std::string::npos) << garbage.reason;
-  expectRejected(sendCommand(client(), rbsim::command_t::RESET, "missing.rbck"));
+  expectRejected(sendPathCommand(client(), rbsim::command_t::RESET, "missing.rbck"));
 }
 
 TEST_F(Checkpoints, AWorldWithJointsIsSavedAndResetToIdentically) {
@@ -88,10 +62,10 @@ TEST_F(Checkpoints, AWorldWithJointsIsSavedAndResetToIdentically) {
   startServer(std::string(kWorldsDir) + "/../../../config/worlds/joints.yaml",
               {"--paused", "--state-rate", "0", "--checkpoint-dir", directory});
   stepAndWait(300);
-  expectAccepted(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "joints.rbck"));
+  expectAccepted(sendPathCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "joints.rbck"));
   stepAndWait(500);
   const rbsim::world_state_t first = history().at(800);
-  expectAccepted(sendCommand(client(), rbsim::command_t::RESET, "joints.rbck"));
+  expectAccepted(sendPathCommand(client(), rbsim::command_t::RESET, "joints.rbck"));
   waitFor("the state of step 300 after the reset", [&] {
     return client().latestState() && client().latestState()->step == 300;
   });
@@ -101,7 +75,7 @@ TEST_F(Checkpoints, AWorldWithJointsIsSavedAndResetToIdentically) {
 
 TEST_F(Checkpoints, SaveIsRejectedWithoutACheckpointDirectory) {
   startServer(kWorld, {});
-  const rbsim::ack_t ack = expectRejected(sendCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "x.rbck"));
+  const rbsim::ack_t ack = expectRejected(sendPathCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "x.rbck"));
   EXPECT_NE(ack.reason.find("disabled"), std::string::npos) << ack.reason;
 }
 

@@ -9,12 +9,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <rbsim/command_t.hpp>
 #include <string>
 
+#include "checkpoint_commands.h"
 #include "e2e_paths.h"
 #include "server_test.h"
 
@@ -62,41 +62,14 @@ class RobotSession : public ServerTest {
     push.target = 1.5;
     expectAccepted(client().commandJoint(push));
   }
-
-  // A command_t with a checkpoint file name, from the main client.
-  client::Request checkpointCommand(int8_t command, const std::string& path) {
-    static int64_t seq = 2000000;
-    rbsim::command_t message{};
-    message.client = client().clientId();
-    message.seq = ++seq;
-    message.command = command;
-    message.path = path;
-    lcm::LCM lcm(kUrl);
-    lcm.publish(client().channel("COMMAND"), &message);
-    return client::Request{message.seq, client::AckKind::Command, true};
-  }
 };
-
-bool sameBodies(const rbsim::world_state_t& a, const rbsim::world_state_t& b) {
-  if (a.bodies.size() != b.bodies.size()) return false;
-  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
-    const auto& x = a.bodies[i];
-    const auto& y = b.bodies[i];
-    if (x.name != y.name || std::memcmp(x.position, y.position, sizeof x.position) != 0 ||
-        std::memcmp(x.orientation, y.orientation, sizeof x.orientation) != 0 ||
-        std::memcmp(x.linear_velocity, y.linear_velocity, sizeof x.linear_velocity) != 0 ||
-        std::memcmp(x.angular_velocity, y.angular_velocity, sizeof x.angular_velocity) != 0)
-      return false;
-  }
-  return true;
-}
 
 TEST_F(RobotSession, ASpawnedRobotIsLoggedCheckpointedAndResetToIdentically) {
   const std::string directory = scratchPath("checkpoints");
   startServer(writeWorld(), {"--paused", "--state-rate", "0", "--checkpoint-dir", directory});
   expectAccepted(client().spawn(kSpawnArm));
   waitFor("the world with the arm", [&] {
-    const auto world = client().world();
+    const auto& world = client().world();
     return world && world->total_bodies == 4 && world->total_joints == 2;
   });
   // The load report is in the server's log, as a world file's is at start.
@@ -107,7 +80,7 @@ TEST_F(RobotSession, ASpawnedRobotIsLoggedCheckpointedAndResetToIdentically) {
 
   driveTheArm();
   stepAndWait(200);
-  expectAccepted(checkpointCommand(rbsim::command_t::SAVE_CHECKPOINT, "arm.rbck"));
+  expectAccepted(sendPathCommand(client(), rbsim::command_t::SAVE_CHECKPOINT, "arm.rbck"));
   stepAndWait(300);
   const rbsim::world_state_t first = history().at(500);
   // The arm moved between the checkpoint and step 500 (the servo and the
@@ -123,7 +96,7 @@ TEST_F(RobotSession, ASpawnedRobotIsLoggedCheckpointedAndResetToIdentically) {
     EXPECT_GT(moved, 1e-3) << "the arm's fore link did not move after the checkpoint";
   }
 
-  expectAccepted(checkpointCommand(rbsim::command_t::RESET, "arm.rbck"));
+  expectAccepted(sendPathCommand(client(), rbsim::command_t::RESET, "arm.rbck"));
   waitFor("the state of step 200 after the reset", [&] {
     return client().latestState() && client().latestState()->step == 200;
   });

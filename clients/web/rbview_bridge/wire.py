@@ -111,12 +111,39 @@ class _Layout:
     __slots__ = ("offsets", "ids", "names", "frozen", "runs", "check_index", "check_values")
 
 
+def _check_paging(kind, page_index, num_pages, total, first, count):
+    """A page's paging fields are consistent (as lcm-gen's decoder would not check)."""
+    if not (0 <= count <= MAX_BODIES and 0 <= total <= MAX_BODIES
+            and 1 <= num_pages <= MAX_PAGES and 0 <= page_index < num_pages
+            and 0 <= first <= total - count):
+        raise WireError("%s page with inconsistent paging fields" % kind)
+
+
+class _LayoutCache:
+    """Page layouts by (length, revision, page, first, count), the oldest
+    dropped past ``size``: a layout found once serves every later page that
+    still fits it."""
+
+    def __init__(self, size):
+        self._layouts = {}
+        self._size = size
+
+    def get(self, key, data, fits, find):
+        layout = self._layouts.get(key)
+        if layout is None or not fits(data, layout):
+            layout = find()
+            self._layouts.pop(key, None)
+            if len(self._layouts) >= self._size:
+                self._layouts.pop(next(iter(self._layouts)))
+            self._layouts[key] = layout
+        return layout
+
+
 class StatePageDecoder:
     """Decodes world_state_t pages, remembering each page layout's body offsets."""
 
     def __init__(self, max_layouts=64):
-        self._layouts = {}  # (len, revision, page, first, n) -> _Layout
-        self._max_layouts = max_layouts
+        self._layouts = _LayoutCache(max_layouts)  # of _Layout
 
     def decode(self, data):
         if not isinstance(data, bytes):
@@ -126,18 +153,10 @@ class StatePageDecoder:
         page = StatePage()
         (page.utime, page.step, page.sim_time, page.world_revision, page.page, page.num_pages,
          page.total_bodies, page.first_body_index, page.num_bodies) = _STATE_HEADER.unpack_from(data, 8)
-        if not (0 <= page.num_bodies <= MAX_BODIES and 0 <= page.total_bodies <= MAX_BODIES
-                and 1 <= page.num_pages <= MAX_PAGES and 0 <= page.page < page.num_pages
-                and 0 <= page.first_body_index <= page.total_bodies - page.num_bodies):
-            raise WireError("world_state_t page with inconsistent paging fields")
+        _check_paging("world_state_t", page.page, page.num_pages, page.total_bodies, page.first_body_index,
+                      page.num_bodies)
         key = (len(data), page.world_revision, page.page, page.first_body_index, page.num_bodies)
-        layout = self._layouts.get(key)
-        if layout is None or not self._layout_fits(data, layout):
-            layout = self._find_layout(data, page.num_bodies)
-            self._layouts.pop(key, None)
-            if len(self._layouts) >= self._max_layouts:
-                self._layouts.pop(next(iter(self._layouts)))
-            self._layouts[key] = layout
+        layout = self._layouts.get(key, data, self._layout_fits, lambda: self._find_layout(data, page.num_bodies))
         page.data = data
         page.layout = layout
         return page
@@ -248,8 +267,7 @@ class JointsPageDecoder:
     lcm-gen's per-joint decoding would cost a good part of a core)."""
 
     def __init__(self, max_layouts=64):
-        self._layouts = {}  # (len, revision, page, first, n) -> (offsets, names, check_index, check_values)
-        self._max_layouts = max_layouts
+        self._layouts = _LayoutCache(max_layouts)  # of (offsets, names, check_index, check_values)
 
     def decode(self, data):
         if not isinstance(data, bytes):
@@ -259,19 +277,14 @@ class JointsPageDecoder:
         page = JointsPage()
         (page.utime, page.step, page.sim_time, page.world_revision, page.page, page.num_pages,
          page.total_joints, page.first_joint_index, page.num_joints) = _JOINTS_HEADER.unpack_from(data, 8)
-        if not (0 <= page.num_joints <= MAX_BODIES and 0 <= page.total_joints <= MAX_BODIES
-                and 1 <= page.num_pages <= MAX_PAGES and 0 <= page.page < page.num_pages
-                and 0 <= page.first_joint_index <= page.total_joints - page.num_joints):
-            raise WireError("joints_t page with inconsistent paging fields")
+        _check_paging("joints_t", page.page, page.num_pages, page.total_joints, page.first_joint_index,
+                      page.num_joints)
         raw = np.frombuffer(data, dtype=np.uint8)
         key = (len(data), page.world_revision, page.page, page.first_joint_index, page.num_joints)
-        layout = self._layouts.get(key)
-        if layout is None or not np.array_equal(raw.take(layout[2]), layout[3]):
-            layout = self._find_layout(data, page.num_joints)
-            self._layouts.pop(key, None)
-            if len(self._layouts) >= self._max_layouts:
-                self._layouts.pop(next(iter(self._layouts)))
-            self._layouts[key] = layout
+        def fits(_, layout):  # the names' bytes are what they were
+            return bool(np.array_equal(raw.take(layout[2]), layout[3]))
+
+        layout = self._layouts.get(key, data, fits, lambda: self._find_layout(data, page.num_joints))
         offsets, page.names = layout[0], layout[1]
         page.records = raw.take(offsets[:, None] + np.arange(JOINT_DTYPE.itemsize)).view(JOINT_DTYPE).reshape(-1)
         return page

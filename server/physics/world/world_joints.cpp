@@ -166,14 +166,18 @@ int World::jointCount() const { return static_cast<int>(m_joints.size()); }
 JointId World::jointIdAt(int denseIndex) const { return m_jointIds[static_cast<std::size_t>(denseIndex)]; }
 
 std::string World::invalidJointReason(JointId id) const {
-  const std::string named = "joint id (index " + std::to_string(id.index) + ", generation " +
-                            std::to_string(id.generation) + ", world " + std::to_string(id.world) + ")";
+  // As for bodies, the message is made only for an id that fails: a robot
+  // client's joint commands and state reads look joints up every cycle.
+  const auto named = [&] {
+    return "joint id (index " + std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
+           ", world " + std::to_string(id.world) + ")";
+  };
   if (id.isNull()) return "a null joint id";
-  if (id.world != m_tag) return named + " is of another world";
-  if (id.index < 0 || static_cast<std::size_t>(id.index) > m_jointSlots.size())
-    return named + " names no slot of this world";
+  if (id.world != m_tag) return named() + " is of another world";
+  if (id.index < 1 || static_cast<std::size_t>(id.index) > m_jointSlots.size())
+    return named() + " names no slot of this world";
   const Slot& slot = m_jointSlots[static_cast<std::size_t>(id.index - 1)];
-  if (slot.denseIndex < 0 || slot.generation != id.generation) return named + " is stale: its joint was removed";
+  if (slot.denseIndex < 0 || slot.generation != id.generation) return named() + " is stale: its joint was removed";
   return {};
 }
 
