@@ -278,6 +278,7 @@ class JointParser {
     return JointLimit{true, *lower, *upper};
   }
 
+ public:
   // drive: {target, stiffness, damping} or {target, frequency,
   // damping_ratio}, with an optional max_effort.
   // The same keys but target make a distance joint's spring (`keys` and
@@ -323,6 +324,7 @@ class JointParser {
     return drive;
   }
 
+ private:
   std::string location(const YamlNode& node) const {
     return m_reader.sourceName() + ":" + std::to_string(node.mark.line + 1) + ":" + std::to_string(node.mark.column + 1) +
            ": " + node.path;
@@ -333,6 +335,11 @@ class JointParser {
 };
 
 }  // namespace
+
+Expected<JointDrive> parseJointDrive(const YamlReader& reader, const YamlNode& node) {
+  const JointBodyLookup noBodies = [](const std::string&) { return std::optional<bool>(); };
+  return JointParser(reader, noBodies).parseDrive(node, kDriveKeys, "a drive");
+}
 
 std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
                                  std::vector<NamedJointDef>& joints) {

@@ -27,4 +27,9 @@ using JointBodyLookup = std::function<std::optional<bool>(const std::string& nam
 std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
                                  std::vector<NamedJointDef>& joints);
 
+// A joint's `drive:` map as a joint in `joints:` takes it: {target,
+// stiffness, damping} or {target, frequency, damping_ratio}, and
+// max_effort; a target not given is 0.
+Expected<JointDrive> parseJointDrive(const YamlReader& reader, const YamlNode& node);
+
 }  // namespace rbsim

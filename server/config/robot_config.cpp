@@ -5,6 +5,7 @@
 #include <set>
 #include <string_view>
 
+#include "config/joint_config.h"
 #include "config/orientation_config.h"
 #include "meshio/contained_path.h"
 #include "robot/urdf_robot.h"
@@ -13,9 +14,9 @@ namespace rbsim {
 
 namespace {
 
-constexpr std::array<std::string_view, 9> kRobotKeys = {
-    "name", "urdf", "position", "orientation", "rpy", "fixed_base", "merge_fixed_links", "joint_positions",
-    "package_paths"};
+constexpr std::array<std::string_view, 10> kRobotKeys = {
+    "name",          "urdf",          "position", "orientation", "rpy", "fixed_base", "merge_fixed_links",
+    "joint_positions", "joint_drives", "package_paths"};
 constexpr double kMaxLength = 1e6;           // m, as the bodies' positions
 constexpr double kMaxJointPosition = 1e6;    // rad or m
 constexpr std::size_t kMaxNameLength = 128;  // characters, as body names
@@ -24,6 +25,35 @@ std::filesystem::path resolved(const std::filesystem::path& base, const std::str
   std::filesystem::path path(file);
   if (path.is_relative() && !base.empty()) path = base / path;
   return path.lexically_normal();
+}
+
+// joint_drives: {JOINT: {target, stiffness, damping, ...}}: a position drive
+// on each named joint of the robot, as a world file's joint takes one, so
+// that a robot holds its pose from the first step (a URDF has no drives).
+// A drive without a target holds the joint where the robot was placed.
+std::optional<Error> applyJointDrives(const YamlReader& reader, const YamlNode& node, RobotModel& robot) {
+  Expected<YamlMap> drives = reader.map(node);
+  if (!drives) return drives.error();
+  for (const YamlMap::Entry& entry : drives->entries()) {
+    const auto joint = std::find_if(robot.joints.begin(), robot.joints.end(), [&](const NamedJointDef& j) {
+      const std::string& name = j.def.name;
+      const std::size_t slash = name.find('/');
+      return slash != std::string::npos && name.compare(slash + 1, std::string::npos, entry.key) == 0;
+    });
+    if (joint == robot.joints.end())
+      return reader.error(entry.keyMark, entry.value.path, "the robot has no joint named \"" + entry.key + "\"");
+    JointDef& def = joint->def;
+    if (def.type != JointType::Revolute && def.type != JointType::Prismatic)
+      return reader.error(entry.keyMark, entry.value.path,
+                          "joint \"" + entry.key + "\" has no axis for a drive (a drive acts on a revolute or "
+                          "prismatic joint's coordinate)");
+    Expected<JointDrive> drive = parseJointDrive(reader, entry.value);
+    if (!drive) return drive.error();
+    Expected<YamlMap> fields = reader.map(entry.value);
+    if (fields && fields->find("target") == nullptr) drive->target = def.position;
+    def.drive = *drive;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -120,6 +150,8 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
         return reader.error(positions->value, message.substr(kPositions.size()));
       return reader.error(*urdfNode, message);
     }
+    if (const YamlMap::Entry* drives = map->find("joint_drives"))
+      if (auto error = applyJointDrives(reader, drives->value, *robot)) return *error;
     for (const BodyDef& body : robot->bodies)
       if (taken(body.name))
         return reader.error(*nameNode, "robot \"" + *name + "\" makes a body named \"" + body.name +

@@ -12,6 +12,8 @@
 //       fixed_base: true           # the root link static (welded to the world)
 //       merge_fixed_links: false   # links held by fixed joints as one body
 //       joint_positions: {shoulder_joint: 0.3}   # rad or m
+//       joint_drives: {shoulder_joint: {stiffness: 200, damping: 20}}  # as a joint's drive:
+//                                  # no target: hold where the joint is placed
 //       package_paths: [robots]    # where package://NAME/... is looked up
 //
 // Errors name the world file's line and key, and the URDF's line.

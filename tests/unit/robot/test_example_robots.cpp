@@ -180,11 +180,16 @@ TEST(ExampleRobots, TheArmWorldFileMakesTheArmsJointsWithTheUrdfsFramesAndLimits
     EXPECT_EQ(def.actuatorLimits.rate, data.rate);
     EXPECT_EQ(def.damping, data.damping);
     EXPECT_EQ(def.friction, data.friction);
-    EXPECT_FALSE(def.drive.enabled) << "a world file gives a robot's joints no drives";
+    // joint_drives: a servo on every joint, holding it where it is placed.
+    EXPECT_TRUE(def.drive.enabled);
+    EXPECT_EQ(def.drive.target, data.position);
+    EXPECT_EQ(def.drive.stiffness, 2000.0);
+    EXPECT_EQ(def.drive.damping, 100.0);
   }
 }
 
-// Held by position drives on the pose it starts in, the arm stays on its
+// Held by the world file's position drives on the pose it starts in
+// (joint_drives: stiffness 2000 N·m/rad, damping 100 N·m·s/rad), the arm stays on its
 // joints for a second and settles where each drive balances the weight it
 // carries: at rest, the drive's effort and gravity's torque about the axis
 // of everything beyond the joint add up to what the joint's dry friction
@@ -201,14 +206,6 @@ TEST(ExampleRobots, TheArmHeldByPositionDrivesStaysOnItsJointsAndCarriesItsWeigh
     links[k] = world->findBody(std::string("arm/") + kLinks[k].name);
     ASSERT_FALSE(joints[k].isNull());
     ASSERT_FALSE(links[k].isNull());
-    const JointDrive drive{true,
-                           kJoints[k].position,
-                           2000.0,
-                           100.0,
-                           0.0,
-                           0.0,
-                           std::numeric_limits<double>::infinity()};
-    ASSERT_TRUE(world->setJointDrive(joints[k], drive).ok());
   }
   double worstError = 0.0, worstGap = 0.0;
   const int steps = static_cast<int>(std::lround(1.0 / world->settings().dt));

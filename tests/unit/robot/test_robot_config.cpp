@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "config/config_loader.h"
@@ -118,6 +121,88 @@ TEST(RobotConfig, TheLoadReportComesWithTheConfig) {
   ASSERT_FALSE(config->robotReport.empty());
   EXPECT_NE(config->robotReport.front().find("robot 'arm' from two_link_arm.urdf"), std::string::npos)
       << config->robotReport.front();
+}
+
+// joint_drives: a URDF has no drives, so a world file gives them, and a
+// robot holds its pose from the first step. Held against gravity, each
+// servo rests where its spring's effort balances the closed-form gravity
+// torque (test_robot_arm.cpp), to within what the joint's dry friction
+// holds (URDF <dynamics friction>: 0.05 N·m on the shoulder, none on the
+// elbow).
+TEST(RobotConfig, JointDrivesHoldARobotWhereItIsPlacedOrAtTheirTargets) {
+  const Expected<WorldDef> def = parse(
+      "world: {dt: 0.001, gravity: [0, 0, -9.81]}\n"
+      "contact: {sleeping: false}\n"
+      "robots:\n"
+      "  - name: arm\n"
+      "    urdf: two_link_arm.urdf\n"
+      "    fixed_base: true\n"
+      "    joint_positions: {shoulder: 0.3, elbow: 0.5}\n"
+      "    joint_drives:\n"
+      "      shoulder: {stiffness: 2000, damping: 100}\n"
+      "      elbow: {target: 0.6, stiffness: 2000, damping: 100, max_effort: 40}\n");
+  ASSERT_TRUE(def.ok()) << def.error().message;
+  ASSERT_EQ(def->joints.size(), 2u);
+  const JointDef& shoulderDef = def->joints[0].def;
+  const JointDef& elbowDef = def->joints[1].def;
+  ASSERT_EQ(shoulderDef.name, "arm/shoulder");
+  EXPECT_TRUE(shoulderDef.drive.enabled);
+  EXPECT_EQ(shoulderDef.drive.target, 0.3) << "no target: where the joint is placed";
+  EXPECT_EQ(shoulderDef.drive.stiffness, 2000.0);
+  EXPECT_EQ(shoulderDef.drive.damping, 100.0);
+  EXPECT_EQ(elbowDef.drive.target, 0.6);
+  EXPECT_EQ(elbowDef.drive.maxEffort, 40.0);
+
+  Expected<World> world = World::fromDef(*def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  for (int k = 0; k < 4000; ++k) world->step();
+  const JointState s = world->jointState(world->findJoint("arm/shoulder"));
+  const JointState e = world->jointState(world->findJoint("arm/elbow"));
+  EXPECT_LT(std::abs(s.rate) + std::abs(e.rate), 1e-9) << "settled";
+  // The two-link arm: m1 = 2 kg at 0.25 m, l1 = 0.5 m, m2 = 1 kg at 0.25 m;
+  // the efforts that hold it where it is.
+  constexpr double g = 9.81;
+  const double a1 = s.position, a12 = s.position + e.position;
+  const double elbowHold = -g * 1.0 * 0.25 * std::cos(a12);
+  const double shoulderHold = -g * (2.0 * 0.25 * std::cos(a1) + 1.0 * (0.5 * std::cos(a1) + 0.25 * std::cos(a12)));
+  EXPECT_LE(std::abs(s.position - (0.3 - shoulderHold / 2000.0)), 0.05 / 2000.0 + 1e-9);
+  EXPECT_NEAR(e.position, 0.6 - elbowHold / 2000.0, 1e-9);
+  EXPECT_GT(std::abs(shoulderHold / 2000.0), 1e-3) << "the sag is measurable, so the drive is what holds the arm";
+}
+
+TEST(RobotConfig, JointDrivesNameTheRobotsAxisJoints) {
+  const std::string unknown = errorOf(
+      "robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    joint_drives:\n      wrist: {stiffness: 1}\n");
+  EXPECT_NE(unknown.find("w.yaml:5:7: robots[0].joint_drives.wrist: the robot has no joint named \"wrist\""),
+            std::string::npos)
+      << unknown;
+  const std::string noGain = errorOf(
+      "robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    joint_drives:\n      elbow: {target: 1}\n");
+  EXPECT_NE(noGain.find("robots[0].joint_drives.elbow"), std::string::npos) << noGain;
+  EXPECT_NE(noGain.find("stiffness"), std::string::npos) << noGain;
+  const std::string notAMap =
+      errorOf("robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    joint_drives: [elbow]\n");
+  EXPECT_NE(notAMap.find("robots[0].joint_drives"), std::string::npos) << notAMap;
+
+  // A fixed joint between two links with mass stays a joint, without an axis.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rbsim_joint_drives_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "welded.urdf")
+      << "<robot name=\"w\">\n"
+         "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" "
+         "iyz=\"0\" izz=\"0.1\"/></inertial></link>\n"
+         "<link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" "
+         "iyz=\"0\" izz=\"0.1\"/></inertial></link>\n"
+         "<joint name=\"weld\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"
+         "</robot>\n";
+  const Expected<WorldDef> welded = parseWorldConfig(
+      "robots:\n  - name: w\n    urdf: welded.urdf\n    joint_drives: {weld: {stiffness: 1}}\n", "w.yaml",
+      dir.string());
+  std::filesystem::remove_all(dir);
+  ASSERT_FALSE(welded.ok());
+  EXPECT_NE(welded.error().message.find("robots[0].joint_drives.weld: joint \"weld\" has no axis for a drive"),
+            std::string::npos)
+      << welded.error().message;
 }
 
 TEST(RobotConfig, MistakesPointAtTheWorldFilesLineAndKey) {
