@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <sstream>
 #include <set>
 #include <string_view>
 
@@ -52,6 +54,18 @@ std::optional<Error> applyJointDrives(const YamlReader& reader, const YamlNode& 
     Expected<YamlMap> fields = reader.map(entry.value);
     if (fields && fields->find("target") == nullptr) drive->target = def.position;
     def.drive = *drive;
+    // Said in the load report, with what the URDF gave the joint.
+    const bool prismatic = def.type == JointType::Prismatic;
+    std::ostringstream line;
+    line.precision(6);
+    line << "joint '" << def.name << "': position drive (joint_drives), target " << drive->target
+         << (prismatic ? " m" : " rad");
+    if (drive->frequency > 0.0)
+      line << ", frequency " << drive->frequency << " Hz, damping ratio " << drive->dampingRatio;
+    else
+      line << ", stiffness " << drive->stiffness << ", damping " << drive->damping;
+    if (std::isfinite(drive->maxEffort)) line << ", max effort " << drive->maxEffort << (prismatic ? " N" : " N·m");
+    robot.report.push_back(line.str());
   }
   return std::nullopt;
 }

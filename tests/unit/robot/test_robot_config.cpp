@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -168,6 +169,20 @@ TEST(RobotConfig, JointDrivesHoldARobotWhereItIsPlacedOrAtTheirTargets) {
   EXPECT_LE(std::abs(s.position - (0.3 - shoulderHold / 2000.0)), 0.05 / 2000.0 + 1e-9);
   EXPECT_NEAR(e.position, 0.6 - elbowHold / 2000.0, 1e-9);
   EXPECT_GT(std::abs(shoulderHold / 2000.0), 1e-3) << "the sag is measurable, so the drive is what holds the arm";
+}
+
+TEST(RobotConfig, TheLoadReportSaysWhichDrivesTheWorldFileGave) {
+  const Expected<Config> config = parseConfig(
+      "robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    joint_positions: {shoulder: 0.3}\n"
+      "    joint_drives: {shoulder: {stiffness: 2000, damping: 100}, elbow: {target: 0.5, frequency: 4, max_effort: 9}}\n",
+      kUrdfDir + "/w.yaml", kUrdfDir);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  const auto said = [&](const std::string& line) {
+    return std::find(config->robotReport.begin(), config->robotReport.end(), line) != config->robotReport.end();
+  };
+  EXPECT_TRUE(said("joint 'arm/shoulder': position drive (joint_drives), target 0.3 rad, stiffness 2000, damping 100"));
+  EXPECT_TRUE(said("joint 'arm/elbow': position drive (joint_drives), target 0.5 rad, frequency 4 Hz, damping ratio 1, "
+                   "max effort 9 N·m"));
 }
 
 TEST(RobotConfig, JointDrivesNameTheRobotsAxisJoints) {
