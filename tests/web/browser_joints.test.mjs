@@ -133,7 +133,7 @@ test("the joints' states reach the page: positions, limits, selection and hover"
   const carriage = await page.evaluate(() => rbview.screenOf("carriage"));
   await page.mouse.click(carriage.x, carriage.y);
   await page.waitForFunction(() => /^lift \(prismatic\) -0\.500 m, at lower limit$/
-    .test(document.getElementById("hud-joints").textContent), null, { timeout: 5000 });
+    .test(document.getElementById("hud-joints").textContent), null, { timeout: 20000 });
   assert.match(await page.locator("#hud-selected").textContent(), /^carriage \(box/);
   await screenshot(page, "joints-selected");
 
@@ -142,7 +142,7 @@ test("the joints' states reach the page: positions, limits, selection and hover"
   const door = await page.evaluate(() => rbview.screenOf("door"));
   await page.mouse.move(door.x, door.y);
   await page.waitForFunction(() => document.getElementById("tooltip").textContent.startsWith("door\ndoor_hinge (revolute) "),
-    null, { timeout: 5000 });
+    null, { timeout: 20000 });
   noConsoleErrors();
 });
 
