@@ -3,14 +3,24 @@
 // that it runs the very same scenes, timing loop and statistics as Bullet,
 // ODE and MuJoCo, in the same session:
 //   taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3
+// --threads N (ours alone; taken out before the harness reads the options)
+// sets world.threads: 1 (the default here, one core as the peers) steps on
+// the caller alone, 0 on every core the process may run on (pin it to
+// both: taskset -c 0,1).
 // One timed step = World::step(): collision detection, contact response, integration.
 #include "scene.hpp"
+
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "rbsim/physics/world.h"
 
 namespace {
 
 rbsim::Vec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
+
+int g_threads = 1;  // --threads
 
 struct RbsimEngine : anchors::Engine {
   std::optional<rbsim::World> world;
@@ -24,6 +34,7 @@ struct RbsimEngine : anchors::Engine {
     settings.dt = scene.dt;
     settings.gravity = rbsim::Vec3(0, 0, scene.gravity);
     settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
+    settings.threads = g_threads;
     world.emplace(settings);
     int index = 0;
     for (const anchors::BodyDef& b : scene.bodies) {
@@ -78,13 +89,21 @@ struct RbsimEngine : anchors::Engine {
     return std::string("rbsim World::step: semi-implicit Euler, double; sequential impulses, ") +
            std::to_string(world->settings().contact.solver.velocityIterations) +
            " iterations, patch friction 0.5, split impulses, shock propagation; sleeping " +
-           (sleeping ? "on" : "off");
+           (sleeping ? "on" : "off") + "; threads " + std::to_string(rbsim::resolveThreadCount(g_threads));
   }
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return anchors::run_main(argc, argv, "rbsim", "0.1.0",
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::string(argv[i]) == "--threads" && i + 1 < argc) {
+      g_threads = std::atoi(argv[++i]);
+      continue;
+    }
+    args.push_back(argv[i]);
+  }
+  return anchors::run_main(static_cast<int>(args.size()), args.data(), "rbsim", "0.1.0",
                            [] { return std::make_unique<RbsimEngine>(); });
 }

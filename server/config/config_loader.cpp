@@ -47,7 +47,7 @@ constexpr std::array<std::string_view, 8> kTopLevelKeys = {
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 3> kSpawnKeys = {"bodies", "robots", "joints"};
-constexpr std::array<std::string_view, 4> kWorldKeys = {"dt", "gravity", "integrator", "damping"};
+constexpr std::array<std::string_view, 5> kWorldKeys = {"dt", "gravity", "integrator", "damping", "threads"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
 constexpr std::array<std::string_view, 16> kBodyKeys = {
     "name",     "shape",       "mass", "density",         "center_of_mass",   "inertia",
@@ -273,6 +273,13 @@ Expected<WorldSettings> ConfigParser::parseSettings(const YamlNode& node) const 
     settings.linearDamping = *linear;
     settings.angularDamping = *angular;
   }
+
+  // 0 (the default): as many threads as the process has cores.
+  Expected<double> threads = m_reader.number(*map, "threads", NumberRule::nonNegative(kMaxThreads), 0.0);
+  if (!threads) return threads.error();
+  if (*threads != static_cast<double>(static_cast<int>(*threads)))
+    return m_reader.error(map->find("threads")->value, "expected a whole number (0: one per core)");
+  settings.threads = static_cast<int>(*threads);
   return settings;
 }
 

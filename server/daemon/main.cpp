@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
   // The guard's limits live with the server's other limits in the config
   // file; the world (and RESET's copy of it, made from this one) obeys them.
   world->setStateLimits(settings.stateLimits);
+  if (options->threads) (void)world->setThreads(*options->threads);  // in range: parseOptions checked
   // Bodies that explicit Euler would spin out of their motion: over the run
   // when it has a duration, else over the next 10 s (a horizon any run
   // reaches soon; the drift only grows after it).

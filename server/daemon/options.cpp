@@ -1,5 +1,7 @@
 #include "daemon/options.h"
 
+#include "rbsim/physics/world_settings.h"
+
 #include <cmath>
 #include <cstdlib>
 
@@ -37,6 +39,8 @@ options (each overrides the config file's key):
   --lcm-url URL            LCM provider URL (lcm.url)
   --channel-prefix P       channel name prefix, default RBSIM_ (lcm.channel_prefix)
   --state-rate HZ          RBSIM_STATE rate in Hz of simulated time; 0 = every step (lcm.state_rate)
+  --threads N              threads that share each step, 0 = one per core (world.threads);
+                           every count gives the same results, bit for bit
   --record FILE            write every published and received message to an LCM log (server.record)
   --paused                 start paused (server.start_paused)
   --read-only              reject every wrench and command (with an ack saying so); state,
@@ -96,7 +100,7 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
                arg == "--record" || arg == "--log-level" || arg == "--real-time-factor" ||
                arg == "--duration" || arg == "--state-rate" || arg == "--replay" ||
                arg == "--replay-output" || arg == "--checkpoint-dir" || arg == "--checkpoint-every" ||
-               arg == "--resume" || arg == "--instance-check") {
+               arg == "--resume" || arg == "--instance-check" || arg == "--threads") {
       const auto text = value();
       if (!text) return text.error();
       if (arg == "--config") options.configPath = *text;
@@ -123,6 +127,14 @@ Expected<Options> parseOptions(const std::vector<std::string>& arguments) {
         const auto number = parseNumber(arg, *text, true);
         if (!number) return number.error();
         (arg == "--real-time-factor" ? options.realTimeFactor : options.stateRate) = *number;
+      }
+      if (arg == "--threads") {
+        const auto number = parseNumber(arg, *text, true);
+        if (!number) return number.error();
+        if (*number != static_cast<double>(static_cast<int>(*number)) || *number > kMaxThreads)
+          return Error{"--threads: a whole number from 0 (one per core) to " + std::to_string(kMaxThreads) +
+                       ", got " + *text};
+        options.threads = static_cast<int>(*number);
       }
       if (arg == "--duration") {
         const auto number = parseNumber(arg, *text, false);

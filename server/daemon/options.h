@@ -20,6 +20,7 @@ struct Options {
   std::optional<std::string> channelPrefix;
   std::optional<std::string> recordPath;
   std::optional<double> stateRate;  // Hz
+  std::optional<int> threads;       // the step's threads (world.threads); 0: one per core
   std::optional<std::string> logLevel;
   bool startPaused = false;
   bool readOnly = false;

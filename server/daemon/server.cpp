@@ -123,7 +123,8 @@ int Server::run(SignalEvents& signals) {
   m_clock.anchor(now);
   const Nanoseconds runStart = now;
   logInfo("stepping " + std::to_string(world().bodyCount()) + " bodies at dt = " +
-          std::to_string(world().settings().dt) + " s, real-time factor " +
+          std::to_string(world().settings().dt) + " s on " +
+          std::to_string(resolveThreadCount(world().settings().threads)) + " thread(s), real-time factor " +
           std::to_string(m_settings.realTimeFactor) + (m_session.paused() ? " (paused)" : ""));
 
   pollfd fds[2] = {{m_lcm->getFileno(), POLLIN, 0}, {signals.fileDescriptor(), POLLIN, 0}};

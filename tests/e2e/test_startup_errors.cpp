@@ -84,6 +84,17 @@ TEST_F(Startup, BadCommandLine) {
   EXPECT_CONTAINS(expectFailure({"--config", world(), "--frobnicate"}), "--frobnicate");
   EXPECT_CONTAINS(expectFailure({"--paused"}), "--config");
   EXPECT_CONTAINS(expectFailure({"--config", world(), "--channel-prefix", "A.*"}), "prefix");
+  for (const char* threads : {"-1", "1.5", "257", "many"})
+    EXPECT_CONTAINS(expectFailure({"--config", world(), "--threads", threads}), "--threads");
+}
+
+TEST_F(Startup, ABadThreadCountInTheFileNamesFileLineAndKey) {
+  const std::string bad = writeConfig("bad_threads.yaml",
+                                      "world:\n  dt: 0.001\n  threads: 2.5\nbodies:\n"
+                                      "  - {name: ball, shape: {type: sphere, radius: 0.1}}\n");
+  const std::string output = expectFailure({"--config", bad});
+  EXPECT_CONTAINS(output, bad + ":3:");
+  EXPECT_CONTAINS(output, "threads");
 }
 
 TEST_F(Startup, UnwritableRecordFile) {

@@ -14,8 +14,8 @@ import re
 import sys
 
 # Lowest first. common/ holds plain utilities (Expected, DeepCopyPtr) that
-# know nothing of physics; world/ sits on top and ties the others together.
-LAYERS = ["common", "math", "geometry", "mass", "body", "collision", "solver", "joint", "world"]
+# know nothing of physics; parallel/ the thread pool the step's loops share; world/ sits on top and ties the others together.
+LAYERS = ["common", "parallel", "math", "geometry", "mass", "body", "collision", "solver", "joint", "world"]
 
 # The public headers (include/rbsim/physics/, the library's API) sit in the
 # layers of what they declare.

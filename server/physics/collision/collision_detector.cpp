@@ -1,5 +1,6 @@
 #include "physics/collision/collision_detector.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -35,7 +36,7 @@ uint64_t pairKey(int32_t serialA, int32_t serialB) {
 CollisionDetector::CollisionDetector(const ContactSettings& settings, double fatMargin)
     : m_settings(settings), m_broadPhase(fatMargin, settings.margin) {}
 
-void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep& step) {
+void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep& step, TaskPool& pool) {
   // One pass in body order gathers what the broad phase and the pairs need
   // into a compact array. Each body's collider is looked up only when the
   // body at that index changes: its description (which the entry keeps
@@ -92,51 +93,76 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
   m_previousContacts.swap(m_contacts);
   m_previousContactKeys.swap(m_contactKeys);
   m_previousPairKeys.swap(m_pairKeys);
-  m_previousContactCursor = m_previousPairCursor = 0;
+  const std::vector<BodyPair>& pairs = m_broadPhase.pairs();
+  m_pairKeys.resize(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    m_pairKeys[k] = pairKey(m_geometry[at(pairs[k].a)].serial, m_geometry[at(pairs[k].b)].serial);
+  // Runs of a fixed number of pairs, whatever the thread count, joined in
+  // order: the same contacts, in the same order, as one loop over the pairs.
+  constexpr std::size_t kPairsPerRun = 64;
+  m_runs.resize(std::max(m_runs.size(), chunkCount(pairs.size(), kPairsPerRun)));
+  forEachChunk(pool, pairs.size(), kPairsPerRun, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    collideRun(m_runs[chunk], begin, end);
+  });
   m_contacts.clear();
   m_contactKeys.clear();
-  m_pairKeys.clear();
-  for (const BodyPair& pair : m_broadPhase.pairs()) {
-    const BodyGeometry& a = m_geometry[at(pair.a)];
-    const BodyGeometry& b = m_geometry[at(pair.b)];
-    const uint64_t key = pairKey(a.serial, b.serial);
-    m_pairKeys.push_back(key);
-    if (!(a.unchanged && b.unchanged && reusePair(key, pair.a, pair.b)))
-      collidePair(pair.a, pair.b);
-    m_contactKeys.resize(m_contacts.size(), key);
+  for (std::size_t chunk = 0; chunk < chunkCount(pairs.size(), kPairsPerRun); ++chunk) {
+    const PairRun& run = m_runs[chunk];
+    m_contacts.insert(m_contacts.end(), run.contacts.begin(), run.contacts.end());
+    m_contactKeys.insert(m_contactKeys.end(), run.contactKeys.begin(), run.contactKeys.end());
   }
 }
 
-bool CollisionDetector::reusePair(uint64_t key, int indexA, int indexB) {
-  while (m_previousPairCursor < m_previousPairKeys.size() &&
-         m_previousPairKeys[m_previousPairCursor] < key)
-    ++m_previousPairCursor;
-  if (m_previousPairCursor == m_previousPairKeys.size() ||
-      m_previousPairKeys[m_previousPairCursor] != key)
-    return false;
-  while (m_previousContactCursor < m_previousContactKeys.size() &&
-         m_previousContactKeys[m_previousContactCursor] < key)
-    ++m_previousContactCursor;
-  for (; m_previousContactCursor < m_previousContactKeys.size() &&
-         m_previousContactKeys[m_previousContactCursor] == key;
-       ++m_previousContactCursor) {
-    BodyContact contact = m_previousContacts[m_previousContactCursor];
+void CollisionDetector::collideRun(PairRun& run, std::size_t firstPair, std::size_t endPair) const {
+  run.contacts.clear();
+  run.contactKeys.clear();
+  // Where this run's pairs start in the previous lists (both sorted by key).
+  const uint64_t firstKey = m_pairKeys[firstPair];
+  run.previousPairCursor = static_cast<std::size_t>(
+      std::lower_bound(m_previousPairKeys.begin(), m_previousPairKeys.end(), firstKey) -
+      m_previousPairKeys.begin());
+  run.previousContactCursor = static_cast<std::size_t>(
+      std::lower_bound(m_previousContactKeys.begin(), m_previousContactKeys.end(), firstKey) -
+      m_previousContactKeys.begin());
+  const std::vector<BodyPair>& pairs = m_broadPhase.pairs();
+  for (std::size_t k = firstPair; k < endPair; ++k) {
+    const BodyPair& pair = pairs[k];
+    const BodyGeometry& a = m_geometry[at(pair.a)];
+    const BodyGeometry& b = m_geometry[at(pair.b)];
+    const uint64_t key = m_pairKeys[k];
+    if (!(a.unchanged && b.unchanged && reusePair(run, key, pair.a, pair.b)))
+      collidePair(run, pair.a, pair.b);
+    run.contactKeys.resize(run.contacts.size(), key);
+  }
+}
+
+bool CollisionDetector::reusePair(PairRun& run, uint64_t key, int indexA, int indexB) const {
+  std::size_t& pairCursor = run.previousPairCursor;
+  std::size_t& contactCursor = run.previousContactCursor;
+  while (pairCursor < m_previousPairKeys.size() && m_previousPairKeys[pairCursor] < key) ++pairCursor;
+  if (pairCursor == m_previousPairKeys.size() || m_previousPairKeys[pairCursor] != key) return false;
+  while (contactCursor < m_previousContactKeys.size() && m_previousContactKeys[contactCursor] < key)
+    ++contactCursor;
+  for (; contactCursor < m_previousContactKeys.size() && m_previousContactKeys[contactCursor] == key;
+       ++contactCursor) {
+    BodyContact contact = m_previousContacts[contactCursor];
     contact.bodyA = indexA;  // dense indices may have moved since
     contact.bodyB = indexB;
-    m_contacts.push_back(contact);
+    run.contacts.push_back(contact);
   }
   return true;
 }
 
-void CollisionDetector::collidePair(int indexA, int indexB) {
+void CollisionDetector::collidePair(PairRun& run, int indexA, int indexB) const {
   const double reach = m_geometry[at(indexA)].reach + m_geometry[at(indexB)].reach;
-  if (reach == 0.0) return collidePair(indexA, indexB, m_settings);
+  if (reach == 0.0) return collidePair(run, indexA, indexB, m_settings);
   ContactSettings settings = m_settings;
   settings.margin += reach;
-  collidePair(indexA, indexB, settings);
+  collidePair(run, indexA, indexB, settings);
 }
 
-void CollisionDetector::collidePair(int indexA, int indexB, const ContactSettings& settings) {
+void CollisionDetector::collidePair(PairRun& run, int indexA, int indexB,
+                                    const ContactSettings& settings) const {
   const BodyGeometry& a = m_geometry[at(indexA)];
   const BodyGeometry& b = m_geometry[at(indexB)];
   // The broad phase only pairs bodies that have colliders.
@@ -157,9 +183,9 @@ void CollisionDetector::collidePair(int indexA, int indexB, const ContactSetting
   };
 
   // Pieces of B placed in the world, with their boxes grown by half the margin.
-  m_placedB.clear();
+  run.placedB.clear();
   for (const ConvexPiece& piece : colliderB.pieces)
-    m_placedB.push_back(
+    run.placedB.push_back(
         {PlacedConvex{&piece.geometry, poseB * piece.placement}, grownBox(piece, poseB)});
 
   BodyContact contact;
@@ -167,14 +193,14 @@ void CollisionDetector::collidePair(int indexA, int indexB, const ContactSetting
   contact.bodyB = indexB;
   if (colliderA.plane) {
     const HalfSpace plane = worldHalfSpace(*colliderA.plane, poseA);
-    for (std::size_t j = 0; j < m_placedB.size(); ++j) {
-      if (!reaches(m_placedB[j].box, plane)) continue;
+    for (std::size_t j = 0; j < run.placedB.size(); ++j) {
+      if (!reaches(run.placedB[j].box, plane)) continue;
       contact.pieceA = 0;
       contact.pieceB = static_cast<int>(j);
       contact.manifold = {};
-      collidePlaneConvex(plane.normal, plane.offset, m_placedB[j].convex, settings,
+      collidePlaneConvex(plane.normal, plane.offset, run.placedB[j].convex, settings,
                          contact.manifold);
-      if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+      if (contact.manifold.pointCount > 0) run.contacts.push_back(contact);
     }
   }
   for (std::size_t i = 0; i < colliderA.pieces.size(); ++i) {
@@ -190,15 +216,15 @@ void CollisionDetector::collidePair(int indexA, int indexB, const ContactSetting
         // The narrow phase puts the plane first; A is the convex here.
         collidePlaneConvex(plane.normal, plane.offset, placedA, settings, contact.manifold);
         flipManifold(contact.manifold);
-        if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+        if (contact.manifold.pointCount > 0) run.contacts.push_back(contact);
       }
     }
-    for (std::size_t j = 0; j < m_placedB.size(); ++j) {
-      if (!boxA.overlaps(m_placedB[j].box)) continue;
+    for (std::size_t j = 0; j < run.placedB.size(); ++j) {
+      if (!boxA.overlaps(run.placedB[j].box)) continue;
       contact.pieceB = static_cast<int>(j);
       contact.manifold = {};
-      collideConvex(placedA, m_placedB[j].convex, settings, contact.manifold);
-      if (contact.manifold.pointCount > 0) m_contacts.push_back(contact);
+      collideConvex(placedA, run.placedB[j].convex, settings, contact.manifold);
+      if (contact.manifold.pointCount > 0) run.contacts.push_back(contact);
     }
   }
 }

@@ -13,6 +13,7 @@
 #include "physics/collision/body_contact.h"
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/contact_generation.h"
+#include "physics/parallel/task_pool.h"
 
 namespace rbsim {
 
@@ -41,8 +42,10 @@ class CollisionDetector {
   // Finds every contact of the bodies' current state; `bodies` in ascending
   // serial order, as a World keeps them (world/contact_detection.h passes
   // a world's). Deterministic: the contacts come sorted by (serial A,
-  // serial B, piece A, piece B), bodies by their index in `bodies`.
-  void detect(std::span<const Body> bodies, const DetectionStep& step);
+  // serial B, piece A, piece B), bodies by their index in `bodies`. The
+  // pairs' narrow phase is shared among the pool's threads; the contacts
+  // are the same for every thread count.
+  void detect(std::span<const Body> bodies, const DetectionStep& step, TaskPool& pool);
 
   const std::vector<BodyContact>& contacts() const { return m_contacts; }
   int contactPointCount() const;
@@ -75,11 +78,23 @@ class CollisionDetector {
     bool unchanged = false;
   };
 
-  void collidePair(int indexA, int indexB);
-  void collidePair(int indexA, int indexB, const ContactSettings& settings);
+  // The narrow phase of a run of consecutive candidate pairs, done by one
+  // thread into its own lists; the runs' lists are joined in pair order.
+  struct PairRun {
+    std::vector<BodyContact> contacts;
+    std::vector<uint64_t> contactKeys;  // (serial A, serial B) of each contact
+    std::vector<PlacedPiece> placedB;   // scratch
+    // Merge walks over the previous detect()'s lists: pairs come in key order.
+    std::size_t previousContactCursor = 0;
+    std::size_t previousPairCursor = 0;
+  };
+
+  void collideRun(PairRun& run, std::size_t firstPair, std::size_t endPair) const;
+  void collidePair(PairRun& run, int indexA, int indexB) const;
+  void collidePair(PairRun& run, int indexA, int indexB, const ContactSettings& settings) const;
   // Copies the previous detect()'s manifolds of the pair (serial order key);
   // false when the pair was not a candidate then.
-  bool reusePair(uint64_t key, int indexA, int indexB);
+  bool reusePair(PairRun& run, uint64_t key, int indexA, int indexB) const;
 
   ContactSettings m_settings;
   BroadPhase m_broadPhase;
@@ -89,12 +104,10 @@ class CollisionDetector {
   std::vector<BodyContact> m_previousContacts;
   std::vector<uint64_t> m_previousContactKeys;
   std::vector<uint64_t> m_previousPairKeys;
-  std::size_t m_previousContactCursor = 0;  // merge walks: pairs come in key order
-  std::size_t m_previousPairCursor = 0;
+  std::vector<PairRun> m_runs;
   std::vector<BroadPhaseBody> m_broadPhaseInputs;
   std::vector<BodyGeometry> m_geometry;  // by dense body index, for the current detect()
   double m_maxRadius = 0.0;  // m: of every collider seen (never shrinks: a bound)
-  std::vector<PlacedPiece> m_placedB;    // scratch
 };
 
 }  // namespace rbsim

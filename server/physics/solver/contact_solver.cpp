@@ -79,20 +79,21 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
                           std::vector<SolverBody>& bodies, const std::vector<int32_t>& serials,
                           const std::vector<SolvedManifold>& previous,
                           const ContactSolverSettings& settings, double dt,
-                          std::vector<SolvedManifold>& result, const std::vector<int>& levels,
-                          const VelocityProjection* equalities) {
-  prepare(contacts, materials, bodies, serials, previous, settings, dt, levels);
+                          std::vector<SolvedManifold>& result, TaskPool& pool,
+                          const std::vector<int>& levels, const VelocityProjection* equalities) {
+  prepare(contacts, materials, bodies, serials, previous, settings, dt, levels, pool);
   // Collisions in chains first, from the velocities after the forces: a
   // warm start would add last step's impulses, which the sweeps below may
   // take back but the pairwise pass could not.
   propagateCollisions(bodies, settings, dt, equalities);
-  if (settings.warmStarting) warmStart(bodies);
-  if (equalities) equalities->project(bodies);
   const bool shock = settings.shockPropagation && !levels.empty();
+  batchSweeps(bodies, levels, shock && settings.velocityIterations > 0);
+  if (settings.warmStarting) warmStart(bodies, pool);
+  if (equalities) equalities->project(bodies);
   for (int i = 0; i < settings.velocityIterations; ++i) {
     const bool last = i == settings.velocityIterations - 1;
     if (!(shock && last)) {
-      solveVelocities(bodies, false);
+      solveVelocities(bodies, false, pool);
       if (equalities) equalities->project(bodies);
       continue;
     }
@@ -108,7 +109,7 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
       saved.tangent[1] = c.tangentImpulse[1];
       saved.twist = c.twistImpulse;
     }
-    solveVelocities(bodies, true);
+    solveVelocities(bodies, true, pool);
     if (equalities) equalities->project(bodies);
     for (std::size_t m = 0; m < m_constraints.size(); ++m) {
       ManifoldConstraint& c = m_constraints[m];
@@ -119,44 +120,50 @@ void ContactSolver::solve(const std::vector<BodyContact>& contacts,
       c.twistImpulse = saved.twist;
     }
   }
-  solvePositions(bodies, settings.positionIterations);
+  solvePositions(bodies, settings.positionIterations, pool);
 
-  result.clear();
-  result.reserve(m_constraints.size());
-  for (std::size_t m = 0; m < m_constraints.size(); ++m) {
-    const ManifoldConstraint& c = m_constraints[m];
-    const BodyContact& contact = contacts[m];
-    SolvedManifold solved = manifoldIdentity(
-        contact, serials[static_cast<std::size_t>(c.bodyA)], serials[static_cast<std::size_t>(c.bodyB)]);
-    const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-    const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-    solved.frictionImpulse = c.tangentImpulse[0] * c.tangent1 + c.tangentImpulse[1] * c.tangent2;
-    solved.twistImpulse = c.twistImpulse;
-    double totalNormal = 0.0;
-    for (int p = 0; p < c.pointCount; ++p)
-      totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
-    // Sticking: the patch does not slip (after the solve) while it carries load.
-    const double slip1 = c.tangentRows[0].velocity(a.linearVelocity, a.angularVelocity,
-                                                   b.linearVelocity, b.angularVelocity);
-    const double slip2 = c.tangentRows[1].velocity(a.linearVelocity, a.angularVelocity,
-                                                   b.linearVelocity, b.angularVelocity);
-    solved.sticking = totalNormal > 0.0 &&
-                      slip1 * slip1 + slip2 * slip2 < settings.stickVelocity * settings.stickVelocity;
-    for (int p = 0; p < c.pointCount; ++p) {
-      const PointConstraint& pc = c.points[p];
-      const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
-      SolvedContactPoint& out = solved.points[p];
-      out.point = 0.5 * (raw.pointA + raw.pointB);
-      out.depth = pc.depth;
-      out.normalImpulse = pc.normalImpulse + pc.collisionImpulse;
-      out.tangentImpulse =
-          totalNormal > 0.0 ? Vec3(solved.frictionImpulse * (out.normalImpulse / totalNormal)) : Vec3::Zero();
-      out.relativeNormalVelocity = pc.relativeNormalVelocity;
-      out.featureId = pc.featureId;
-      out.sticking = solved.sticking;
-    }
-    result.push_back(solved);
+  result.resize(m_constraints.size());
+  constexpr std::size_t kResultsPerChunk = 64;
+  forEachChunk(pool, m_constraints.size(), kResultsPerChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m) result[m] = resultOf(m, contacts[m], bodies, serials, settings);
+  });
+}
+
+SolvedManifold ContactSolver::resultOf(std::size_t m, const BodyContact& contact,
+                                       const std::vector<SolverBody>& bodies,
+                                       const std::vector<int32_t>& serials,
+                                       const ContactSolverSettings& settings) const {
+  const ManifoldConstraint& c = m_constraints[m];
+  SolvedManifold solved = manifoldIdentity(
+      contact, serials[static_cast<std::size_t>(c.bodyA)], serials[static_cast<std::size_t>(c.bodyB)]);
+  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+  solved.frictionImpulse = c.tangentImpulse[0] * c.tangent1 + c.tangentImpulse[1] * c.tangent2;
+  solved.twistImpulse = c.twistImpulse;
+  double totalNormal = 0.0;
+  for (int p = 0; p < c.pointCount; ++p)
+    totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
+  // Sticking: the patch does not slip (after the solve) while it carries load.
+  const double slip1 = c.tangentRows[0].velocity(a.linearVelocity, a.angularVelocity,
+                                                 b.linearVelocity, b.angularVelocity);
+  const double slip2 = c.tangentRows[1].velocity(a.linearVelocity, a.angularVelocity,
+                                                 b.linearVelocity, b.angularVelocity);
+  solved.sticking = totalNormal > 0.0 &&
+                    slip1 * slip1 + slip2 * slip2 < settings.stickVelocity * settings.stickVelocity;
+  for (int p = 0; p < c.pointCount; ++p) {
+    const PointConstraint& pc = c.points[p];
+    const ContactPoint& raw = contact.manifold.points[static_cast<std::size_t>(p)];
+    SolvedContactPoint& out = solved.points[p];
+    out.point = 0.5 * (raw.pointA + raw.pointB);
+    out.depth = pc.depth;
+    out.normalImpulse = pc.normalImpulse + pc.collisionImpulse;
+    out.tangentImpulse =
+        totalNormal > 0.0 ? Vec3(solved.frictionImpulse * (out.normalImpulse / totalNormal)) : Vec3::Zero();
+    out.relativeNormalVelocity = pc.relativeNormalVelocity;
+    out.featureId = pc.featureId;
+    out.sticking = solved.sticking;
   }
+  return solved;
 }
 
 void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
@@ -165,42 +172,55 @@ void ContactSolver::prepare(const std::vector<BodyContact>& contacts,
                             const std::vector<int32_t>& serials,
                             const std::vector<SolvedManifold>& previous,
                             const ContactSolverSettings& settings, double dt,
-                            const std::vector<int>& levels) {
+                            const std::vector<int>& levels, TaskPool& pool) {
   m_constraints.resize(contacts.size());
-  std::size_t previousIndex = 0;  // both lists are sorted by the same key: merge walk
+  // Last step's manifold of each contact: both lists are sorted by the same
+  // key, so one merge walk finds them all.
+  m_previousOf.resize(contacts.size());
+  std::size_t previousIndex = 0;
   for (std::size_t m = 0; m < contacts.size(); ++m) {
     const BodyContact& contact = contacts[m];
-    const PairMaterial& material = materials[m];
-    ManifoldConstraint& c = m_constraints[m];
-    c.bodyA = contact.bodyA;
-    c.bodyB = contact.bodyB;
-    c.normal = contact.manifold.normal;
-    tangentBasis(c.normal, c.tangent1, c.tangent2);
-    c.pointCount = contact.manifold.pointCount;
-    const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-    const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-    c.inverseMassA = a.inverseMass;
-    c.inverseMassB = b.inverseMass;
-
-    const ShockHold hold = chooseShockHold(c, a, b, levels);
-    const Vec3 centroid = setPatchRows(c, contact.manifold, a, b);
-    setTiltAxes(c, contact.manifold, centroid, a, b);
-    const BlockInverses inverses = setNormalBlockCoupling(c, a, b, hold);
-    const ManifoldKey key{serials[static_cast<std::size_t>(c.bodyA)],
-                          serials[static_cast<std::size_t>(c.bodyB)], contact.pieceA,
+    const ManifoldKey key{serials[static_cast<std::size_t>(contact.bodyA)],
+                          serials[static_cast<std::size_t>(contact.bodyB)], contact.pieceA,
                           contact.pieceB};
-    const SolvedManifold* old = previousManifold(previous, key, previousIndex);
-    setPointTargets(c, contact.manifold, a, b, material.restitution,
-                    settings.warmStarting ? old : nullptr, settings, dt);
-    c.restitution = material.restitution;
-    c.propagated = false;
-    c.gap = c.pointCount > 0 ? -c.points[0].depth : 0.0;
-    for (int p = 1; p < c.pointCount; ++p) c.gap = std::min(c.gap, -c.points[p].depth);
-    c.blockInvertible = inverses.regular;
-    c.shockBlockInvertible = inverses.shock;
-    setBlockGoals(c, inverses, settings, dt);
-    setFrictionPatch(c, a, b, hold, material, old, settings.warmStarting);
+    m_previousOf[m] = previousManifold(previous, key, previousIndex);
   }
+  constexpr std::size_t kContactsPerChunk = 32;
+  forEachChunk(pool, contacts.size(), kContactsPerChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m)
+      prepareOne(m, contacts[m], materials[m], bodies, m_previousOf[m], settings, dt, levels);
+  });
+}
+
+void ContactSolver::prepareOne(std::size_t m, const BodyContact& contact, const PairMaterial& material,
+                               const std::vector<SolverBody>& bodies, const SolvedManifold* old,
+                               const ContactSolverSettings& settings, double dt,
+                               const std::vector<int>& levels) {
+  ManifoldConstraint& c = m_constraints[m];
+  c.bodyA = contact.bodyA;
+  c.bodyB = contact.bodyB;
+  c.normal = contact.manifold.normal;
+  tangentBasis(c.normal, c.tangent1, c.tangent2);
+  c.pointCount = contact.manifold.pointCount;
+  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+  c.inverseMassA = a.inverseMass;
+  c.inverseMassB = b.inverseMass;
+
+  const ShockHold hold = chooseShockHold(c, a, b, levels);
+  const Vec3 centroid = setPatchRows(c, contact.manifold, a, b);
+  setTiltAxes(c, contact.manifold, centroid, a, b);
+  const BlockInverses inverses = setNormalBlockCoupling(c, a, b, hold);
+  setPointTargets(c, contact.manifold, a, b, material.restitution,
+                  settings.warmStarting ? old : nullptr, settings, dt);
+  c.restitution = material.restitution;
+  c.propagated = false;
+  c.gap = c.pointCount > 0 ? -c.points[0].depth : 0.0;
+  for (int p = 1; p < c.pointCount; ++p) c.gap = std::min(c.gap, -c.points[p].depth);
+  c.blockInvertible = inverses.regular;
+  c.shockBlockInvertible = inverses.shock;
+  setBlockGoals(c, inverses, settings, dt);
+  setFrictionPatch(c, a, b, hold, material, old, settings.warmStarting);
 }
 
 // Shock propagation: in the last sweep the body nearer the ground (fewer
@@ -479,28 +499,97 @@ void ContactSolver::setFrictionPatch(ManifoldConstraint& c, const SolverBody& a,
   }
 }
 
-void ContactSolver::warmStart(std::vector<SolverBody>& bodies) const {
-  for (const ManifoldConstraint& c : m_constraints) {
-    if (c.propagated) continue;  // its impulses are the pass's, and applied
-    SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-    SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-    double lambda[3] = {0.0, 0.0, 0.0};
-    for (int p = 0; p < c.pointCount; ++p) {
-      const PointConstraint& pc = c.points[p];
-      lambda[0] += pc.normalImpulse;
-      lambda[1] += pc.direction[1] * pc.normalImpulse;
-      lambda[2] += pc.direction[2] * pc.normalImpulse;
+void ContactSolver::batchSweeps(const std::vector<SolverBody>& bodies, const std::vector<int>& levels,
+                                bool shock) {
+  m_moves.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) m_moves[i] = bodies[i].inverseMass > 0.0 ? 1 : 0;
+  m_constraintBodies.resize(m_constraints.size());
+  for (std::size_t m = 0; m < m_constraints.size(); ++m)
+    m_constraintBodies[m] = {m_constraints[m].bodyA, m_constraints[m].bodyB};
+  m_batcher.build(m_constraintBodies, m_moves, {}, m_sweep);
+  if (!shock) return;
+  // The shock sweep holds each contact's lower body still: it passes the
+  // weight upwards in one sweep only if each level's contacts are solved
+  // after those below them have moved it.
+  m_shockStage.resize(m_constraints.size());
+  for (std::size_t m = 0; m < m_constraints.size(); ++m)
+    m_shockStage[m] = std::min(levels[static_cast<std::size_t>(m_constraints[m].bodyA)],
+                               levels[static_cast<std::size_t>(m_constraints[m].bodyB)]);
+  m_batcher.build(m_constraintBodies, m_moves, m_shockStage, m_shockSweep);
+}
+
+template <class Solve>
+void ContactSolver::sweep(const SweepBatches& batches, TaskPool& pool, Solve&& solve) {
+  // A batch smaller than this is solved on the calling thread: sharing it
+  // would cost more than it saves.
+  constexpr std::size_t kSmallestShared = 48;
+  constexpr std::size_t kConstraintsPerTask = 16;
+  for (int b = 0; b < batches.batchCount(); ++b) {
+    const std::span<const int> batch = batches.batch(b);
+    if (batches.inOrder[static_cast<std::size_t>(b)] || batch.size() < kSmallestShared ||
+        pool.threadCount() == 1) {
+      for (const int m : batch) solve(static_cast<std::size_t>(m));
+      continue;
     }
-    const auto apply = [&](const VelocityRow& row, double impulse) {
-      row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linearVelocity, a.angularVelocity,
-                b.linearVelocity, b.angularVelocity);
-    };
-    apply(c.normalRow, lambda[0]);
-    for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], lambda[k + 1]);
-    apply(c.tangentRows[0], c.tangentImpulse[0]);
-    apply(c.tangentRows[1], c.tangentImpulse[1]);
-    if (c.twistImpulse != 0.0) apply(c.twistRow, c.twistImpulse);
+    forEachChunk(pool, batch.size(), kConstraintsPerTask, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) solve(static_cast<std::size_t>(batch[k]));
+    });
   }
+}
+
+void ContactSolver::warmStart(std::vector<SolverBody>& bodies, TaskPool& pool) {
+  sweep(m_sweep, pool, [&](std::size_t m) { warmStartOne(m_constraints[m], bodies); });
+}
+
+namespace {
+
+// The velocities a constraint's impulses change: the body's own, or, for a
+// body that must not change (static: other threads may read it; held still
+// by the shock sweep), a copy put back after every impulse.
+struct ImpulseTarget {
+  ImpulseTarget(SolverBody& body, bool fixed, Vec3 SolverBody::*linearOf, Vec3 SolverBody::*angularOf)
+      : keptLinear(body.*linearOf),
+        keptAngular(body.*angularOf),
+        copyLinear(keptLinear),
+        copyAngular(keptAngular),
+        linear(fixed ? copyLinear : body.*linearOf),
+        angular(fixed ? copyAngular : body.*angularOf),
+        fixed(fixed) {}
+  void restore() {
+    if (!fixed) return;
+    copyLinear = keptLinear;
+    copyAngular = keptAngular;
+  }
+  const Vec3 keptLinear, keptAngular;
+  Vec3 copyLinear, copyAngular;
+  Vec3& linear;
+  Vec3& angular;
+  const bool fixed;
+};
+
+}  // namespace
+
+void ContactSolver::warmStartOne(const ManifoldConstraint& c, std::vector<SolverBody>& bodies) const {
+  if (c.propagated) return;  // its impulses are the pass's, and applied
+  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], c.inverseMassA == 0.0,
+                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
+  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], c.inverseMassB == 0.0,
+                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
+  double lambda[3] = {0.0, 0.0, 0.0};
+  for (int p = 0; p < c.pointCount; ++p) {
+    const PointConstraint& pc = c.points[p];
+    lambda[0] += pc.normalImpulse;
+    lambda[1] += pc.direction[1] * pc.normalImpulse;
+    lambda[2] += pc.direction[2] * pc.normalImpulse;
+  }
+  const auto apply = [&](const VelocityRow& row, double impulse) {
+    row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linear, a.angular, b.linear, b.angular);
+  };
+  apply(c.normalRow, lambda[0]);
+  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], lambda[k + 1]);
+  apply(c.tangentRows[0], c.tangentImpulse[0]);
+  apply(c.tangentRows[1], c.tangentImpulse[1]);
+  if (c.twistImpulse != 0.0) apply(c.twistRow, c.twistImpulse);
 }
 
 Vec3 ContactSolver::solveNormalBlock(ManifoldConstraint& c, const Vec3& u, bool exact, bool shock,
@@ -552,98 +641,100 @@ Vec3 ContactSolver::solveNormalBlock(ManifoldConstraint& c, const Vec3& u, bool 
   return total;
 }
 
-void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock) {
-  for (ManifoldConstraint& c : m_constraints) {
-    SolverBody& realA = bodies[static_cast<std::size_t>(c.bodyA)];
-    SolverBody& realB = bodies[static_cast<std::size_t>(c.bodyB)];
-    // A body the shock sweep holds still: its velocities are read, and the
-    // impulses on it go to a copy that is thrown away (and never changes).
-    const bool holdA = shock && c.held == ShockHold::A;
-    const bool holdB = shock && c.held == ShockHold::B;
-    const bool oneSided = holdA || holdB;
-    Vec3 heldLinear = holdA ? realA.linearVelocity : realB.linearVelocity;
-    Vec3 heldAngular = holdA ? realA.angularVelocity : realB.angularVelocity;
-    const Vec3 vHeld = heldLinear, wHeld = heldAngular;
-    Vec3& vA = holdA ? heldLinear : realA.linearVelocity;
-    Vec3& wA = holdA ? heldAngular : realA.angularVelocity;
-    Vec3& vB = holdB ? heldLinear : realB.linearVelocity;
-    Vec3& wB = holdB ? heldAngular : realB.angularVelocity;
-    const auto apply = [&](const VelocityRow& row, double impulse) {
-      row.apply(impulse, c.inverseMassA, c.inverseMassB, vA, wA, vB, wB);
-      if (oneSided) {
-        heldLinear = vHeld;
-        heldAngular = wHeld;
-      }
-    };
-
-    // Friction first, limited by the normal impulses of the previous
-    // iteration, then the normal impulses (non-penetration has the last word).
-    double totalNormal = 0.0;
-    for (int p = 0; p < c.pointCount; ++p)
-      totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
-    {
-      const double* mass = oneSided ? c.shockTangentMass : c.tangentMass;
-      const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
-      double new1 = old1 - mass[0] * c.tangentRows[0].velocity(vA, wA, vB, wB);
-      double new2 = old2 - mass[1] * c.tangentRows[1].velocity(vA, wA, vB, wB);
-      // Coulomb: the accumulated tangential impulse stays in the disc of radius μ Σjn.
-      const double limit = c.friction * totalNormal;
-      const double magnitude = std::sqrt(new1 * new1 + new2 * new2);
-      if (magnitude > limit) {
-        const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
-        new1 *= scale;
-        new2 *= scale;
-      }
-      c.tangentImpulse[0] = new1;
-      c.tangentImpulse[1] = new2;
-      apply(c.tangentRows[0], new1 - old1);
-      apply(c.tangentRows[1], new2 - old2);
-    }
-    if (c.twistRadius > 0.0) {
-      // Torsion: the patch resists spinning about the normal up to μ r Σjn
-      // (nothing for a single point).
-      const double spin = c.twistRow.velocity(vA, wA, vB, wB);
-      const double limit = c.friction * c.twistRadius * totalNormal;
-      const double mass = oneSided ? c.shockTwistMass : c.twistMass;
-      const double accumulated = std::clamp(c.twistImpulse - mass * spin, -limit, limit);
-      apply(c.twistRow, accumulated - c.twistImpulse);
-      c.twistImpulse = accumulated;
-    }
-    Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), 0.0, 0.0);
-    for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = c.tiltRows[k].velocity(vA, wA, vB, wB);
-    const Vec3 delta = solveNormalBlock(c, u, shock ? c.block.shockExact : c.block.velocityExact,
-                                        shock, &PointConstraint::normalImpulse,
-                                        &PointConstraint::targetVelocity, c.block.velocityGoal);
-    apply(c.normalRow, delta[0]);
-    for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
-  }
+void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock, TaskPool& pool) {
+  sweep(shock ? m_shockSweep : m_sweep, pool,
+        [&](std::size_t m) { solveVelocity(m_constraints[m], bodies, shock); });
 }
 
-void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iterations) {
+void ContactSolver::solveVelocity(ManifoldConstraint& c, std::vector<SolverBody>& bodies, bool shock) {
+  // A body the shock sweep holds still: its velocities are read, and the
+  // impulses on it go to a copy that is thrown away (and never changes).
+  // A static body is treated alike (its impulses would add zeros), so that
+  // contacts on the ground may share it across threads.
+  const bool holdA = shock && c.held == ShockHold::A;
+  const bool holdB = shock && c.held == ShockHold::B;
+  const bool oneSided = holdA || holdB;
+  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], holdA || c.inverseMassA == 0.0,
+                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
+  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], holdB || c.inverseMassB == 0.0,
+                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
+  Vec3& vA = a.linear;
+  Vec3& wA = a.angular;
+  Vec3& vB = b.linear;
+  Vec3& wB = b.angular;
+  const auto apply = [&](const VelocityRow& row, double impulse) {
+    row.apply(impulse, c.inverseMassA, c.inverseMassB, vA, wA, vB, wB);
+    a.restore();
+    b.restore();
+  };
+  // Friction first, limited by the normal impulses of the previous
+  // iteration, then the normal impulses (non-penetration has the last word).
+  double totalNormal = 0.0;
+  for (int p = 0; p < c.pointCount; ++p)
+    totalNormal += c.points[p].normalImpulse + c.points[p].collisionImpulse;
+  {
+    const double* mass = oneSided ? c.shockTangentMass : c.tangentMass;
+    const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
+    double new1 = old1 - mass[0] * c.tangentRows[0].velocity(vA, wA, vB, wB);
+    double new2 = old2 - mass[1] * c.tangentRows[1].velocity(vA, wA, vB, wB);
+    // Coulomb: the accumulated tangential impulse stays in the disc of radius μ Σjn.
+    const double limit = c.friction * totalNormal;
+    const double magnitude = std::sqrt(new1 * new1 + new2 * new2);
+    if (magnitude > limit) {
+      const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
+      new1 *= scale;
+      new2 *= scale;
+    }
+    c.tangentImpulse[0] = new1;
+    c.tangentImpulse[1] = new2;
+    apply(c.tangentRows[0], new1 - old1);
+    apply(c.tangentRows[1], new2 - old2);
+  }
+  if (c.twistRadius > 0.0) {
+    // Torsion: the patch resists spinning about the normal up to μ r Σjn
+    // (nothing for a single point).
+    const double spin = c.twistRow.velocity(vA, wA, vB, wB);
+    const double limit = c.friction * c.twistRadius * totalNormal;
+    const double mass = oneSided ? c.shockTwistMass : c.twistMass;
+    const double accumulated = std::clamp(c.twistImpulse - mass * spin, -limit, limit);
+    apply(c.twistRow, accumulated - c.twistImpulse);
+    c.twistImpulse = accumulated;
+  }
+  Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), 0.0, 0.0);
+  for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = c.tiltRows[k].velocity(vA, wA, vB, wB);
+  const Vec3 delta = solveNormalBlock(c, u, shock ? c.block.shockExact : c.block.velocityExact,
+                                      shock, &PointConstraint::normalImpulse,
+                                      &PointConstraint::targetVelocity, c.block.velocityGoal);
+  apply(c.normalRow, delta[0]);
+  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
+}
+
+void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iterations, TaskPool& pool) {
   // Pseudo-velocities that remove a fraction of the penetration beyond the
   // slop; they move positions only and are discarded after the step.
-  for (int iteration = 0; iteration < iterations; ++iteration) {
-    for (ManifoldConstraint& c : m_constraints) {
-      bool needed = false;
-      for (int p = 0; p < c.pointCount; ++p)
-        needed = needed || c.points[p].positionTarget > 0.0 || c.points[p].pseudoImpulse > 0.0;
-      if (!needed) continue;
-      SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-      SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-      Vec3 u(c.normalRow.velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular), 0.0, 0.0);
-      for (int k = 0; k + 1 < c.block.size; ++k)
-        u[k + 1] = c.tiltRows[k].velocity(a.pseudoLinear, a.pseudoAngular, b.pseudoLinear, b.pseudoAngular);
-      const Vec3 delta = solveNormalBlock(c, u, c.block.positionExact, false,
-                                          &PointConstraint::pseudoImpulse,
-                                          &PointConstraint::positionTarget, c.block.positionGoal);
-      const auto apply = [&](const VelocityRow& row, double impulse) {
-        row.apply(impulse, c.inverseMassA, c.inverseMassB, a.pseudoLinear, a.pseudoAngular,
-                  b.pseudoLinear, b.pseudoAngular);
-      };
-      apply(c.normalRow, delta[0]);
-      for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
-    }
-  }
+  for (int iteration = 0; iteration < iterations; ++iteration)
+    sweep(m_sweep, pool, [&](std::size_t m) { solvePosition(m_constraints[m], bodies); });
+}
+
+void ContactSolver::solvePosition(ManifoldConstraint& c, std::vector<SolverBody>& bodies) {
+  bool needed = false;
+  for (int p = 0; p < c.pointCount; ++p)
+    needed = needed || c.points[p].positionTarget > 0.0 || c.points[p].pseudoImpulse > 0.0;
+  if (!needed) return;
+  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], c.inverseMassA == 0.0,
+                  &SolverBody::pseudoLinear, &SolverBody::pseudoAngular);
+  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], c.inverseMassB == 0.0,
+                  &SolverBody::pseudoLinear, &SolverBody::pseudoAngular);
+  Vec3 u(c.normalRow.velocity(a.linear, a.angular, b.linear, b.angular), 0.0, 0.0);
+  for (int k = 0; k + 1 < c.block.size; ++k)
+    u[k + 1] = c.tiltRows[k].velocity(a.linear, a.angular, b.linear, b.angular);
+  const Vec3 delta = solveNormalBlock(c, u, c.block.positionExact, false, &PointConstraint::pseudoImpulse,
+                                      &PointConstraint::positionTarget, c.block.positionGoal);
+  const auto apply = [&](const VelocityRow& row, double impulse) {
+    row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linear, a.angular, b.linear, b.angular);
+  };
+  apply(c.normalRow, delta[0]);
+  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
 }
 
 }  // namespace rbsim

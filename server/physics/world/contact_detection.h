@@ -14,17 +14,20 @@ inline DetectionStep detectionStep(const WorldSettings& settings) {
   return {settings.dt, settings.contact.model == ContactModel::Impulse};
 }
 
+// On the calling thread.
 inline void detectContacts(CollisionDetector& detector, const World& world) {
-  detector.detect(world.internalBodies(), detectionStep(world.settings()));
+  TaskPool caller(1);
+  detector.detect(world.internalBodies(), detectionStep(world.settings()), caller);
 }
 
-// With the world's bounds on its bodies' speeds (negative: unknown).
+// With the world's bounds on its bodies' speeds (negative: unknown), on
+// the pool's threads.
 inline void detectContacts(CollisionDetector& detector, const World& world, double maxSquaredSpeed,
-                           double maxSquaredSpin) {
+                           double maxSquaredSpin, TaskPool& pool) {
   DetectionStep step = detectionStep(world.settings());
   step.maxSquaredSpeed = maxSquaredSpeed;
   step.maxSquaredSpin = maxSquaredSpin;
-  detector.detect(world.internalBodies(), step);
+  detector.detect(world.internalBodies(), step, pool);
 }
 
 }  // namespace rbsim

@@ -1,4 +1,5 @@
 #include "rbsim/physics/world.h"
+#include "physics/world/for_each_body.h"
 
 #include <algorithm>
 #include <atomic>
@@ -356,6 +357,7 @@ Expected<bool> World::applyWrench(BodyId id, const Wrench& wrench) {
   const Body& target = bodyRef(id);
   if (target.isStatic()) return true;  // nothing moves it
   ExternalLoad& load = m_loads[denseIndexOf(id)];
+  m_loadsSeen = true;
   switch (wrench.frame) {
     case Wrench::Frame::World:
       load.addWorldWrench(wrench.force, wrench.torque, target.worldToBody(wrench.point));
@@ -392,6 +394,14 @@ Expected<bool> World::setBodyVelocities(BodyId id, const Vec3& linearVelocity, c
   target.setVelocities(linearVelocity, angularVelocity);
   target.wake();
   m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;
+  return true;
+}
+
+Expected<bool> World::setThreads(int threads) {
+  if (threads < 0 || threads > kMaxThreads)
+    return Error{"threads must be 0 (one per core) to " + std::to_string(kMaxThreads) + ", not " +
+                 std::to_string(threads)};
+  m_settings.threads = threads;
   return true;
 }
 
@@ -439,19 +449,16 @@ void World::step() {
   guardStates();
 }
 
-ForceInputs World::forcesOn(std::size_t denseIndex) {
+ForceInputs World::forcesOn(std::size_t denseIndex) const {
   ForceInputs inputs;
   inputs.gravity = m_settings.gravity;
-  if (const ExternalLoad& load = m_loads[denseIndex]; load.active) {
-    inputs.load = &load;
-    m_loadsSeen = true;
-  }
+  if (const ExternalLoad& load = m_loads[denseIndex]; load.active) inputs.load = &load;
   return inputs;
 }
 
 void World::clearLoads() {
   // Every pushed body was integrated (a push wakes a sleeping one; static
-  // bodies take none; frozen ones drop theirs), and the integration noted it.
+  // bodies take none; frozen ones drop theirs).
   if (!m_loadsSeen) return;
   for (ExternalLoad& load : m_loads)
     if (load.active) load.clear();
@@ -514,18 +521,18 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
   // Continuous collision may still move flagged bodies after this: those are
   // judged in guardStates, after it.
   const bool laterMoves = m_continuousBodies > 0;
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+  forEachBody([&](std::size_t i, SpeedBound& bound) {
     Body& body = m_bodies[i];
     if (body.isStatic() || body.isSleeping()) {
       m_judged[i] = 1;  // nothing to check: it does not move this step
-      continue;
+      return;
     }
-    if (body.isFrozen()) continue;
+    if (body.isFrozen()) return;
     if (!skip.empty() && skip[i]) {
       // In contact: the solver moves it later in this step, and guardStates
       // judges it then, against the pose it has now.
       body.keepPoseAsGood();
-      continue;
+      return;
     }
     const ForceInputs inputs = forcesOn(i);
     const RigidState next =
@@ -535,13 +542,13 @@ void World::integrateFree(double h, const std::vector<char>& skip) {
     // again in guardStates, and frozen there at the pose it has now.
     // For the guard and for the next step's collision detection.
     const SpeedBounds speeds = speedBounds(next, body.dynamics().inverseMass, body.dynamics().inverseInertiaBody);
-    noteSpeeds(speeds.squaredSpeed, speeds.squaredSpin);
+    bound.note(speeds.squaredSpeed, speeds.squaredSpin);
     const bool judgedHere = speeds.squaredSpeed <= maxLinear2 && speeds.squaredSpin <= maxAngular2 &&
                             !(laterMoves && body.description().continuousCollision);
     if (!judgedHere) body.keepPoseAsGood();
     m_judged[i] = judgedHere ? 1 : 0;
     body.moveTo(next);
-  }
+  });
 }
 
 Vec3 World::totalLinearMomentum() const {

@@ -15,6 +15,7 @@
 #include "physics/solver/velocity_projection.h"
 #include "physics/world/impacts.h"
 #include "rbsim/physics/world.h"
+#include "physics/world/for_each_body.h"
 
 namespace rbsim {
 
@@ -37,7 +38,7 @@ int World::contactPointCount() const {
 }
 
 void World::findContacts() {
-  detectContacts(*m_detector, *this, m_maxSquaredSpeed, m_maxSquaredSpin);
+  detectContacts(*m_detector, *this, m_maxSquaredSpeed, m_maxSquaredSpin, taskPool());
 }
 
 void World::stepImpulse() {
@@ -115,11 +116,11 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
   m_solverBodies.assign(n, SolverBody{});
   step.fast.assign(n, 0);
   step.jointed = jointed;
-  for (std::size_t i = 0; i < n; ++i) {
+  forEachBody([&](std::size_t i, SpeedBound&) {
     const Body& body = m_bodies[i];
     SolverBody& sb = m_solverBodies[i];
     sb.position = body.state().position;
-    if (!step.solving[i]) continue;
+    if (!step.solving[i]) return;
     const ForceInputs inputs = forcesOn(i);
     const Momenta momenta = integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
     sb.inverseMass = body.dynamics().inverseMass;
@@ -137,8 +138,8 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
       speed2 += spin2 * radius * radius;
     }
     step.fast[i] = speed2 >= slow2;
-    step.anyFast = step.anyFast || step.fast[i];
-  }
+  });
+  step.anyFast = std::find(step.fast.begin(), step.fast.end(), 1) != step.fast.end();
 }
 
 void World::findImpacts(ContactStep& step) {
@@ -264,7 +265,7 @@ void World::solveContacts(const std::vector<BodyContact>& active,
         combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
                          m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
   m_solver->solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
-                 contactLevels(active), equalities);
+                  taskPool(), contactLevels(active), equalities);
 }
 
 std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) const {
@@ -320,8 +321,8 @@ void World::integrateSolvedBodies(const ContactStep& step, const std::vector<Sol
     pushed[static_cast<std::size_t>(m.bodyA)] = 1;
     pushed[static_cast<std::size_t>(m.bodyB)] = 1;
   }
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-    if (!step.solving[i] || (!jointed.empty() && jointed[i])) continue;  // jointed: stepJointedBodies
+  forEachBody([&](std::size_t i, SpeedBound& bound) {
+    if (!step.solving[i] || (!jointed.empty() && jointed[i])) return;  // jointed: stepJointedBodies
     Body& body = m_bodies[i];
     const SolverBody& sb = m_solverBodies[i];
     const ForceInputs inputs = forcesOn(i);
@@ -353,8 +354,8 @@ void World::integrateSolvedBodies(const ContactStep& step, const std::vector<Sol
                     sb.angularVelocity + sb.pseudoAngular, h);
       body.moveTo(state);
     }
-    noteSpeeds(body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
-  }
+    bound.note(body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
+  });
 }
 
 void World::keepSleepingContacts(const std::vector<BodyContact>& detected,

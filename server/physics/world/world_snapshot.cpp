@@ -633,6 +633,7 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     if (description->continuousCollision && !description->isStatic) ++world.m_continuousBodies;
     world.m_bodies.push_back(std::move(body));
     world.m_loads.push_back(load);
+    world.m_loadsSeen = world.m_loadsSeen || load.active;
     world.m_denseIds.push_back(id);
   }
   if (in.failed()) return failure();

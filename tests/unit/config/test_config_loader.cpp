@@ -211,6 +211,19 @@ TEST(ConfigLoader, EveryIntegratorName) {
   }
 }
 
+TEST(ConfigLoader, ThreadsDefaultToOnePerCoreAndTakeAWholeCount) {
+  const Expected<WorldDef> byDefault = parse("world: {dt: 0.01}\n");
+  ASSERT_TRUE(byDefault.ok()) << byDefault.error().message;
+  EXPECT_EQ(byDefault->settings.threads, 0);
+  const Expected<WorldDef> two = parse("world: {threads: 2}\n");
+  ASSERT_TRUE(two.ok()) << two.error().message;
+  EXPECT_EQ(two->settings.threads, 2);
+  EXPECT_EQ(errorOf("world: {threads: 1.5}\n"),
+            "test.yaml:1:18: world.threads: expected a whole number (0: one per core)");
+  EXPECT_NE(errorOf("world: {threads: -1}\n").find("test.yaml:1:18: world.threads"), std::string::npos);
+  EXPECT_NE(errorOf("world: {threads: 1000}\n").find("test.yaml:1:18: world.threads"), std::string::npos);
+}
+
 TEST(ConfigLoader, RollPitchYawIsAboutFixedAxesXThenYThenZ) {
   const Expected<WorldDef> world = parse(R"(
 bodies:
@@ -423,7 +436,7 @@ TEST(ConfigLoaderErrors, UnknownKeys) {
             "server, limits");
   EXPECT_EQ(errorOf("world: {dt: 0.01, gravty: [0, 0, -1]}\n"),
             "test.yaml:1:19: world.gravty: unknown key; the world has: dt, gravity, integrator, "
-            "damping");
+            "damping, threads");
   EXPECT_EQ(errorOf("world: {damping: {linear: 1, angle: 2}}\n"),
             "test.yaml:1:30: world.damping.angle: unknown key; damping has: linear, angular");
   EXPECT_EQ(errorOf(R"(

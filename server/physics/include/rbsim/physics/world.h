@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "physics/common/deep_copy_ptr.h"
+#include "physics/parallel/task_pool.h"
 #include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/body_view.h"
 #include "rbsim/physics/contacts.h"
@@ -190,6 +191,9 @@ class World {
   const WorldSettings& settings() const { return m_settings; }
   void setGravity(const Vec3& gravity) { m_settings.gravity = gravity; }
   void setIntegrator(IntegratorKind kind) { m_settings.integrator = kind; }
+  // The step's threads (WorldSettings::threads; 0: one per core). Every
+  // count gives the same bits, so it may change between any two steps.
+  Expected<bool> setThreads(int threads);
   int64_t stepCount() const { return m_stepCount; }
   double time() const { return static_cast<double>(m_stepCount) * m_settings.dt; }  // s
 
@@ -243,9 +247,9 @@ class World {
   std::string invalidIdReason(BodyId id) const;
   // The joints of a snapshot, after its bodies (world_snapshot.cpp).
   Expected<bool> readJointsSnapshot(ByteReader& in);
-  // Gravity and the body's external load, for the integrator; notes that a
-  // load was seen, so that clearLoads() has something to do.
-  ForceInputs forcesOn(std::size_t denseIndex);
+  // Gravity and the body's external load, for the integrator. Reads only,
+  // so the step's threads may ask for different bodies at once.
+  ForceInputs forcesOn(std::size_t denseIndex) const;
   // External loads act for one step: cleared here, once, at its end.
   void clearLoads();
   void findContacts();
@@ -349,7 +353,12 @@ class World {
   // contact stops it (no tunnelling through thin geometry).
   void applyContinuousCollision(const std::vector<RigidState>& starts);
 
+  // The step's threads (settings.threads): the pool is made at the first
+  // step, a copy of the world makes its own.
+  TaskPool& taskPool() { return m_pool.get(m_settings.threads); }
+
   WorldSettings m_settings;
+  OwnTaskPool m_pool;
   DeepCopyPtr<CollisionDetector> m_detector;
   uint32_t m_tag;  // stamped on the ids it hands out (ids.h); copies keep it
   DeepCopyPtr<ContactSolver> m_solver;
@@ -379,7 +388,7 @@ class World {
   int m_continuousBodies = 0; // dynamic bodies flagged for continuous collision
   int m_frozenBodies = 0;
   std::vector<FreezeEvent> m_freezeEvents;  // of the last step
-  bool m_loadsSeen = false;  // some body integrated this step had an external load
+  bool m_loadsSeen = false;  // some body may hold an external load (set where loads are added)
   // Bounds on every awake body's squared speeds after the last step, for
   // the detector (collision/collision_detector.h: DetectionStep); negative
   // when a change from outside (a new body, new velocities) made them
@@ -392,6 +401,24 @@ class World {
     m_stepSquaredSpeed = std::max(m_stepSquaredSpeed, squaredSpeed);
     m_stepSquaredSpin = std::max(m_stepSquaredSpin, squaredSpin);
   }
+  // The largest squared speeds one chunk of a parallel loop over the bodies saw.
+  struct SpeedBound {
+    double squaredSpeed = 0.0;
+    double squaredSpin = 0.0;
+    void note(double speed2, double spin2) {
+      squaredSpeed = std::max(squaredSpeed, speed2);
+      squaredSpin = std::max(squaredSpin, spin2);
+    }
+  };
+  std::vector<SpeedBound> m_chunkSpeeds;  // scratch of forEachBody
+  // Calls visit(i, bound) for every dense index i on the step's threads, in
+  // chunks of a fixed size; visit may change body i and its own entries of
+  // per-body arrays, nothing else, and notes the body's speeds in `bound`
+  // (its chunk's). The chunks' bounds then go to noteSpeeds in chunk order:
+  // a maximum is exact, so the result is the serial loop's.
+  // (Defined in world/for_each_body.h, where Body is complete.)
+  template <class Visit>
+  void forEachBody(Visit&& visit);
   // False only when the last sleep update found every body awake (and
   // nothing since could have put one to sleep): the wake pass is skipped.
   bool m_maybeAsleep = true;

@@ -66,7 +66,13 @@ struct WorldSettings {
   double angularDamping = 0.0;             // 1/s, default for bodies that set none
   ContactConfig contact;
   StateLimits limits;                      // the numerical guard's speed limits
+  // Threads that share the step's work: 0 takes the cores this process may
+  // run on, 1 steps on the caller alone. The result does not depend on it:
+  // every count gives the same bits (parallel/task_pool.h).
+  int threads = 0;
 };
+
+inline constexpr int kMaxThreads = 256;
 
 // A whole world as loaded from a config file, before it is built.
 struct WorldDef {

@@ -1,0 +1,129 @@
+#pragma once
+// A fixed set of worker threads that run the tasks of one parallel loop at
+// a time: the world's step hands them its per-pair, per-contact and
+// per-body work (world.threads).
+//
+// Determinism is the callers' part, by construction: a loop is cut into
+// tasks whose number and bounds do not depend on the thread count
+// (forEachChunk), each task writes only what its index owns, and results
+// that must be combined (a sum, a maximum, a list) are kept per task and
+// combined afterwards in task order. Which thread runs which task then does
+// not matter: 1, 2 or 8 threads give the same bits. (Threads that change
+// results are a known complaint about other engines, mujoco#1093.)
+//
+// The threads are made once, with the pool. A loop costs no allocation and
+// takes no lock: tasks are claimed from an atomic counter, and the threads
+// wait between loops on an atomic (a futex on Linux) after a short spin.
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <thread>
+#include <vector>
+
+namespace rbsim {
+
+class TaskPool {
+ public:
+  // threads >= 1: threads − 1 workers are started; the caller of run() is
+  // the last thread. 1 runs every loop on the caller, as a plain loop.
+  explicit TaskPool(int threads);
+  TaskPool(const TaskPool&) = delete;
+  TaskPool& operator=(const TaskPool&) = delete;
+  ~TaskPool();
+
+  int threadCount() const { return static_cast<int>(m_workers.size()) + 1; }
+
+  // Calls task(i) once for every i in [0, count) and returns when all have
+  // returned. Tasks run concurrently on any of the threads, in any order:
+  // each must write only what belongs to its index. Tasks must not throw,
+  // and must not call run() on the same pool.
+  template <class Task>
+  void run(std::size_t count, Task&& task) {
+    if (count == 0) return;
+    if (m_workers.empty() || count == 1) {
+      for (std::size_t i = 0; i < count; ++i) task(i);
+      return;
+    }
+    runErased(count, &callTask<Task>, &task);
+  }
+
+ private:
+  using TaskCall = void (*)(void* task, std::size_t index);
+  template <class Task>
+  static void callTask(void* task, std::size_t index) {
+    (*static_cast<Task*>(task))(index);
+  }
+
+  void runErased(std::size_t count, TaskCall call, void* task);
+  void workerLoop();
+  // Claims and runs tasks of the current loop until none is left.
+  void runClaimedTasks();
+
+  std::vector<std::thread> m_workers;
+  // The current loop, published by m_generation (release) before the
+  // workers read it (acquire).
+  TaskCall m_call = nullptr;
+  void* m_task = nullptr;
+  std::size_t m_count = 0;
+  std::atomic<std::size_t> m_next{0};        // the next unclaimed task
+  std::atomic<uint32_t> m_generation{0};     // bumped for each loop, and to stop
+  std::atomic<int> m_busyWorkers{0};         // workers not yet done with the current loop
+  bool m_stopping = false;
+};
+
+// How many chunks of chunkSize items cover count items.
+inline std::size_t chunkCount(std::size_t count, std::size_t chunkSize) {
+  return (count + chunkSize - 1) / chunkSize;
+}
+
+// Runs body(chunk, begin, end) over [0, count) cut into chunks of
+// chunkSize items: chunk k covers [k chunkSize, min((k + 1) chunkSize,
+// count)). The cut depends only on count and chunkSize, never on the thread
+// count, so per-chunk results combined in chunk order are deterministic.
+template <class Body>
+void forEachChunk(TaskPool& pool, std::size_t count, std::size_t chunkSize, Body&& body) {
+  const std::size_t chunks = chunkCount(count, chunkSize);
+  pool.run(chunks, [&](std::size_t chunk) {
+    const std::size_t begin = chunk * chunkSize;
+    const std::size_t end = begin + chunkSize < count ? begin + chunkSize : count;
+    body(chunk, begin, end);
+  });
+}
+
+// The number of threads `threads` asks for: itself when positive, else the
+// cores this process may run on (at least 1).
+int resolveThreadCount(int threads);
+
+// The pool of an object that may be copied (a world is, for checkpoints):
+// made when first asked for, remade when the thread count changes, and
+// never shared. A copy starts without one and makes its own when it first
+// needs it, so two copies can step on different threads at once.
+class OwnTaskPool {
+ public:
+  OwnTaskPool() = default;
+  OwnTaskPool(const OwnTaskPool&) {}
+  OwnTaskPool& operator=(const OwnTaskPool&) { return *this; }
+  OwnTaskPool(OwnTaskPool&&) noexcept = default;
+  OwnTaskPool& operator=(OwnTaskPool&&) noexcept = default;
+  ~OwnTaskPool() = default;
+
+  // requested: a thread count, or 0 for one per core (resolveThreadCount,
+  // asked once, when the pool is made).
+  TaskPool& get(int requested) {
+    if (!m_pool || requested != m_requested) {
+      m_pool.reset();  // its threads end before the new ones start
+      m_pool = std::make_unique<TaskPool>(resolveThreadCount(requested));
+      m_requested = requested;
+    }
+    return *m_pool;
+  }
+
+ private:
+  std::unique_ptr<TaskPool> m_pool;
+  int m_requested = 0;
+};
+
+
+}  // namespace rbsim
