@@ -61,16 +61,18 @@ void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
   m_task = task;
   m_count = count;
   m_next.store(0, std::memory_order_relaxed);
-  m_busyWorkers.store(static_cast<int>(m_workers.size()), std::memory_order_relaxed);
-  m_generation.fetch_add(1, std::memory_order_release);  // publishes the loop
+  m_loop.store(kOpen, std::memory_order_release);  // publishes the loop to joiners
+  m_generation.fetch_add(1, std::memory_order_release);
   m_generation.notify_all();
   runClaimedTasks();
-  // Every worker must be done with this loop (not only its tasks: also its
-  // reads of m_call and m_task) before the next loop may overwrite them.
-  waitUntil([&] { return m_busyWorkers.load(std::memory_order_acquire) == 0; },
+  // Every task is claimed: close the loop, then wait for the workers that
+  // joined it to finish theirs (and their reads of m_call and m_task),
+  // before the next loop may overwrite them.
+  if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return;  // nobody joined
+  waitUntil([&] { return m_loop.load(std::memory_order_acquire) == 0; },
             [&] {
-              const int busy = m_busyWorkers.load(std::memory_order_acquire);
-              if (busy != 0) m_busyWorkers.wait(busy, std::memory_order_acquire);
+              const uint32_t inside = m_loop.load(std::memory_order_acquire);
+              if (inside != 0) m_loop.wait(inside, std::memory_order_acquire);
             });
 }
 
@@ -87,9 +89,17 @@ void TaskPool::workerLoop() {
               [&] { m_generation.wait(seen, std::memory_order_acquire); });
     seen = m_generation.load(std::memory_order_acquire);
     if (m_stopping) return;
+    // Join the loop if it is still open; a closed one is done without us.
+    uint32_t loop = m_loop.load(std::memory_order_acquire);
+    bool joined = false;
+    while ((loop & kOpen) != 0 && !joined)
+      joined = m_loop.compare_exchange_weak(loop, loop + 1, std::memory_order_acq_rel,
+                                            std::memory_order_acquire);
+    if (!joined) continue;
     runClaimedTasks();
-    // The last worker out wakes the caller, which may be asleep on it.
-    if (m_busyWorkers.fetch_sub(1, std::memory_order_acq_rel) == 1) m_busyWorkers.notify_one();
+    // The last worker out of a closed loop wakes the caller, which may be
+    // asleep on it.
+    if (m_loop.fetch_sub(1, std::memory_order_acq_rel) == 1) m_loop.notify_one();
   }
 }
 

@@ -62,14 +62,20 @@ class TaskPool {
   void runClaimedTasks();
 
   std::vector<std::thread> m_workers;
-  // The current loop, published by m_generation (release) before the
-  // workers read it (acquire).
+  // The current loop. Written by run() only while no worker is inside a
+  // loop; a worker reads them after it has joined the open loop (acquire).
   TaskCall m_call = nullptr;
   void* m_task = nullptr;
   std::size_t m_count = 0;
-  std::atomic<std::size_t> m_next{0};        // the next unclaimed task
-  std::atomic<uint32_t> m_generation{0};     // bumped for each loop, and to stop
-  std::atomic<int> m_busyWorkers{0};         // workers not yet done with the current loop
+  std::atomic<std::size_t> m_next{0};  // the next unclaimed task
+  // kOpen while the caller is in the loop, plus the number of workers
+  // inside it. A worker joins only while it is open, so the caller waits
+  // for the workers that came in time, never for one still asleep or
+  // descheduled (on a busy machine a worker may wake milliseconds late: it
+  // then finds the loop closed and goes back to waiting).
+  static constexpr uint32_t kOpen = 1u << 31;
+  std::atomic<uint32_t> m_loop{0};
+  std::atomic<uint32_t> m_generation{0};  // bumped for each loop, and to stop: what workers wait on
   bool m_stopping = false;
 };
 

@@ -547,14 +547,14 @@ namespace {
 // body that must not change (static: other threads may read it; held still
 // by the shock sweep), a copy put back after every impulse.
 struct ImpulseTarget {
-  ImpulseTarget(SolverBody& body, bool fixed, Vec3 SolverBody::*linearOf, Vec3 SolverBody::*angularOf)
+  ImpulseTarget(SolverBody& body, bool unchanging, Vec3 SolverBody::*linearOf, Vec3 SolverBody::*angularOf)
       : keptLinear(body.*linearOf),
         keptAngular(body.*angularOf),
         copyLinear(keptLinear),
         copyAngular(keptAngular),
-        linear(fixed ? copyLinear : body.*linearOf),
-        angular(fixed ? copyAngular : body.*angularOf),
-        fixed(fixed) {}
+        linear(unchanging ? copyLinear : body.*linearOf),
+        angular(unchanging ? copyAngular : body.*angularOf),
+        fixed(unchanging) {}
   void restore() {
     if (!fixed) return;
     copyLinear = keptLinear;
