@@ -26,6 +26,7 @@ class RbsimEngine final : public sb::Engine {
     settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
     settings.contact.sleeping = engineSettings.sleep;
     if (engineSettings.iterations > 0) settings.contact.solver.velocityIterations = engineSettings.iterations;
+    settings.threads = engineSettings.threads;
     settings.contact.defaultMaterial.friction = sb::kFriction;
     settings.contact.defaultMaterial.staticFriction = sb::kFriction;
     settings.contact.defaultMaterial.restitution = sb::kRestitution;
@@ -69,10 +70,11 @@ class RbsimEngine final : public sb::Engine {
     std::snprintf(text, sizeof text,
                   "rbsim World::step: semi-implicit Euler, double; sequential impulses, %d velocity iterations, "
                   "%d split-impulse iterations, slop %.4f m, baumgarte %.2f, warm starting %s, shock propagation "
-                  "%s; friction 0.5, restitution 0; sleeping %s",
+                  "%s; friction 0.5, restitution 0; sleeping %s; threads %d",
                   solver.velocityIterations, solver.positionIterations, solver.linearSlop, solver.baumgarte,
                   solver.warmStarting ? "on" : "off", solver.shockPropagation ? "on" : "off",
-                  m_world->settings().contact.sleeping ? "on" : "off");
+                  m_world->settings().contact.sleeping ? "on" : "off",
+                  rbsim::resolveThreadCount(m_world->settings().threads));
     return text;
   }
 

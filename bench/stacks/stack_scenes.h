@@ -131,6 +131,7 @@ inline bool makeScene(const std::string& name, int n, Scene& s) {
 struct EngineSettings {
   bool sleep = false;   // the engine may put bodies at rest to sleep
   int iterations = -1;  // solver iterations; < 0: the engine's default
+  int threads = 1;      // threads of an engine that has them (rbsim's world.threads; 0: one per core)
 };
 
 struct BodyState {
@@ -163,12 +164,13 @@ struct Options {
   int sleep = -1;       // < 0: the scene's default
   double maxWall = 0;   // s of stepping per rep; 0: no cap
   std::string label;    // engine label in the output
+  int threads = 1;      // engines with threads (rbsim); the peers' adapters run on one
 };
 
 inline void usage(const char* program) {
   std::fprintf(stderr,
                "usage: %s --scene pyramid|stack [--n N] [--reps 3] [--steps S] [--dt DT] [--iters K]\n"
-               "          [--sleep 0|1] [--max-wall SEC] [--label NAME]\n"
+               "          [--sleep 0|1] [--max-wall SEC] [--label NAME] [--threads N]\n"
                "  pyramid: --n = base count (90: 4095 cubes), sleeping off by default\n"
                "  stack:   --n = cubes in the tower (20), sleeping on by default (as the anchors)\n",
                program);
@@ -191,6 +193,7 @@ inline bool parseOptions(int argc, char** argv, Options& o) {
     else if (arg == "--sleep") o.sleep = std::atoi(value);
     else if (arg == "--max-wall") o.maxWall = std::atof(value);
     else if (arg == "--label") o.label = value;
+    else if (arg == "--threads") o.threads = std::atoi(value);
     else {
       usage(argv[0]);
       return false;
@@ -403,6 +406,7 @@ inline int runMain(int argc, char** argv, const std::string& engineName, bool sl
   EngineSettings settings;
   settings.sleep = o.sleep < 0 ? s.sleep : o.sleep != 0;
   settings.iterations = o.iters;
+  settings.threads = o.threads;
   const std::string label =
       !o.label.empty() ? o.label : engineName + (sleepingEngine && !settings.sleep ? "-nosleep" : "");
 
