@@ -50,7 +50,7 @@ TaskPool::TaskPool(int threads) {
 }
 
 TaskPool::~TaskPool() {
-  m_stopping = true;
+  m_stopping.store(true, std::memory_order_release);
   m_generation.fetch_add(1, std::memory_order_release);
   m_generation.notify_all();
   for (std::thread& worker : m_workers) worker.join();
@@ -88,7 +88,7 @@ void TaskPool::workerLoop() {
     waitUntil([&] { return m_generation.load(std::memory_order_acquire) != seen; },
               [&] { m_generation.wait(seen, std::memory_order_acquire); });
     seen = m_generation.load(std::memory_order_acquire);
-    if (m_stopping) return;
+    if (m_stopping.load(std::memory_order_acquire)) return;
     // Join the loop if it is still open; a closed one is done without us.
     uint32_t loop = m_loop.load(std::memory_order_acquire);
     bool joined = false;

@@ -76,7 +76,9 @@ class TaskPool {
   static constexpr uint32_t kOpen = 1u << 31;
   std::atomic<uint32_t> m_loop{0};
   std::atomic<uint32_t> m_generation{0};  // bumped for each loop, and to stop: what workers wait on
-  bool m_stopping = false;
+  // Atomic: a worker that woke late for an earlier loop may read it while
+  // the destructor sets it.
+  std::atomic<bool> m_stopping{false};
 };
 
 // How many chunks of chunkSize items cover count items.
