@@ -543,38 +543,68 @@ void ContactSolver::warmStart(std::vector<SolverBody>& bodies, TaskPool& pool) {
 
 namespace {
 
-// The velocities a constraint's impulses change: the body's own, or, for a
-// body that must not change (static: other threads may read it; held still
-// by the shock sweep), a copy put back after every impulse.
-struct ImpulseTarget {
-  ImpulseTarget(SolverBody& body, bool unchanging, Vec3 SolverBody::*linearOf, Vec3 SolverBody::*angularOf)
-      : keptLinear(body.*linearOf),
-        keptAngular(body.*angularOf),
-        copyLinear(keptLinear),
-        copyAngular(keptAngular),
-        linear(unchanging ? copyLinear : body.*linearOf),
-        angular(unchanging ? copyAngular : body.*angularOf),
-        fixed(unchanging) {}
-  void restore() {
-    if (!fixed) return;
-    copyLinear = keptLinear;
-    copyAngular = keptAngular;
+// The velocities one constraint's impulses change, copied into locals and
+// written back once at the end: the compiler keeps them in registers, where
+// updating the bodies in place made every row re-read what the last one
+// wrote (the two bodies might, for all it knows, alias the rows). A body
+// that must not change (static: other threads may read it at the same time;
+// held still by the shock sweep) is read and never written, and its copy
+// does not move.
+struct PairVelocities {
+  PairVelocities(const SolverBody& a, const SolverBody& b, Vec3 SolverBody::*linearOf,
+                 Vec3 SolverBody::*angularOf, bool aMoves, bool bMoves)
+      : vA(a.*linearOf),
+        wA(a.*angularOf),
+        vB(b.*linearOf),
+        wB(b.*angularOf),
+        movesA(aMoves),
+        movesB(bMoves) {}
+
+  double velocity(const VelocityRow& row) const { return row.velocity(vA, wA, vB, wB); }
+  // VelocityRow::apply, with the bodies that must not change left out.
+  void apply(const VelocityRow& row, double impulse, double inverseMassA, double inverseMassB) {
+    if (movesA) {
+      vA -= (impulse * inverseMassA) * row.linear;
+      wA -= impulse * row.responseA;
+    }
+    if (movesB) {
+      vB += (impulse * inverseMassB) * row.linear;
+      wB += impulse * row.responseB;
+    }
   }
-  const Vec3 keptLinear, keptAngular;
-  Vec3 copyLinear, copyAngular;
-  Vec3& linear;
-  Vec3& angular;
-  const bool fixed;
+  // The same for a row of pure rotation (tilt, twist: no linear part),
+  // which a manifold's sweep meets three times: half the arithmetic.
+  double rotationVelocity(const VelocityRow& row) const {
+    return row.armB.dot(wB) - row.armA.dot(wA);
+  }
+  void applyRotation(const VelocityRow& row, double impulse) {
+    if (movesA) wA -= impulse * row.responseA;
+    if (movesB) wB += impulse * row.responseB;
+  }
+  void store(SolverBody& a, SolverBody& b, Vec3 SolverBody::*linearOf,
+             Vec3 SolverBody::*angularOf) const {
+    if (movesA) {
+      a.*linearOf = vA;
+      a.*angularOf = wA;
+    }
+    if (movesB) {
+      b.*linearOf = vB;
+      b.*angularOf = wB;
+    }
+  }
+
+  Vec3 vA, wA, vB, wB;
+  const bool movesA, movesB;
 };
 
 }  // namespace
 
 void ContactSolver::warmStartOne(const ManifoldConstraint& c, std::vector<SolverBody>& bodies) const {
   if (c.propagated) return;  // its impulses are the pass's, and applied
-  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], c.inverseMassA == 0.0,
-                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
-  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], c.inverseMassB == 0.0,
-                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
+  SolverBody& bodyA = bodies[static_cast<std::size_t>(c.bodyA)];
+  SolverBody& bodyB = bodies[static_cast<std::size_t>(c.bodyB)];
+  PairVelocities v(bodyA, bodyB, &SolverBody::linearVelocity, &SolverBody::angularVelocity,
+                   c.inverseMassA != 0.0, c.inverseMassB != 0.0);
   double lambda[3] = {0.0, 0.0, 0.0};
   for (int p = 0; p < c.pointCount; ++p) {
     const PointConstraint& pc = c.points[p];
@@ -583,13 +613,14 @@ void ContactSolver::warmStartOne(const ManifoldConstraint& c, std::vector<Solver
     lambda[2] += pc.direction[2] * pc.normalImpulse;
   }
   const auto apply = [&](const VelocityRow& row, double impulse) {
-    row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linear, a.angular, b.linear, b.angular);
+    v.apply(row, impulse, c.inverseMassA, c.inverseMassB);
   };
   apply(c.normalRow, lambda[0]);
-  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], lambda[k + 1]);
+  for (int k = 0; k + 1 < c.block.size; ++k) v.applyRotation(c.tiltRows[k], lambda[k + 1]);
   apply(c.tangentRows[0], c.tangentImpulse[0]);
   apply(c.tangentRows[1], c.tangentImpulse[1]);
-  if (c.twistImpulse != 0.0) apply(c.twistRow, c.twistImpulse);
+  if (c.twistImpulse != 0.0) v.applyRotation(c.twistRow, c.twistImpulse);
+  v.store(bodyA, bodyB, &SolverBody::linearVelocity, &SolverBody::angularVelocity);
 }
 
 Vec3 ContactSolver::solveNormalBlock(ManifoldConstraint& c, const Vec3& u, bool exact, bool shock,
@@ -648,24 +679,18 @@ void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock,
 
 void ContactSolver::solveVelocity(ManifoldConstraint& c, std::vector<SolverBody>& bodies, bool shock) {
   // A body the shock sweep holds still: its velocities are read, and the
-  // impulses on it go to a copy that is thrown away (and never changes).
-  // A static body is treated alike (its impulses would add zeros), so that
-  // contacts on the ground may share it across threads.
+  // impulses on it are dropped. A static body is treated alike (its
+  // impulses would add zeros), so that contacts on the ground may share it
+  // across threads.
   const bool holdA = shock && c.held == ShockHold::A;
   const bool holdB = shock && c.held == ShockHold::B;
   const bool oneSided = holdA || holdB;
-  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], holdA || c.inverseMassA == 0.0,
-                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
-  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], holdB || c.inverseMassB == 0.0,
-                  &SolverBody::linearVelocity, &SolverBody::angularVelocity);
-  Vec3& vA = a.linear;
-  Vec3& wA = a.angular;
-  Vec3& vB = b.linear;
-  Vec3& wB = b.angular;
+  SolverBody& bodyA = bodies[static_cast<std::size_t>(c.bodyA)];
+  SolverBody& bodyB = bodies[static_cast<std::size_t>(c.bodyB)];
+  PairVelocities v(bodyA, bodyB, &SolverBody::linearVelocity, &SolverBody::angularVelocity,
+                   !holdA && c.inverseMassA != 0.0, !holdB && c.inverseMassB != 0.0);
   const auto apply = [&](const VelocityRow& row, double impulse) {
-    row.apply(impulse, c.inverseMassA, c.inverseMassB, vA, wA, vB, wB);
-    a.restore();
-    b.restore();
+    v.apply(row, impulse, c.inverseMassA, c.inverseMassB);
   };
   // Friction first, limited by the normal impulses of the previous
   // iteration, then the normal impulses (non-penetration has the last word).
@@ -675,8 +700,8 @@ void ContactSolver::solveVelocity(ManifoldConstraint& c, std::vector<SolverBody>
   {
     const double* mass = oneSided ? c.shockTangentMass : c.tangentMass;
     const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
-    double new1 = old1 - mass[0] * c.tangentRows[0].velocity(vA, wA, vB, wB);
-    double new2 = old2 - mass[1] * c.tangentRows[1].velocity(vA, wA, vB, wB);
+    double new1 = old1 - mass[0] * v.velocity(c.tangentRows[0]);
+    double new2 = old2 - mass[1] * v.velocity(c.tangentRows[1]);
     // Coulomb: the accumulated tangential impulse stays in the disc of radius μ Σjn.
     const double limit = c.friction * totalNormal;
     const double magnitude = std::sqrt(new1 * new1 + new2 * new2);
@@ -693,20 +718,21 @@ void ContactSolver::solveVelocity(ManifoldConstraint& c, std::vector<SolverBody>
   if (c.twistRadius > 0.0) {
     // Torsion: the patch resists spinning about the normal up to μ r Σjn
     // (nothing for a single point).
-    const double spin = c.twistRow.velocity(vA, wA, vB, wB);
+    const double spin = v.rotationVelocity(c.twistRow);
     const double limit = c.friction * c.twistRadius * totalNormal;
     const double mass = oneSided ? c.shockTwistMass : c.twistMass;
     const double accumulated = std::clamp(c.twistImpulse - mass * spin, -limit, limit);
-    apply(c.twistRow, accumulated - c.twistImpulse);
+    v.applyRotation(c.twistRow, accumulated - c.twistImpulse);
     c.twistImpulse = accumulated;
   }
-  Vec3 u(c.normalRow.velocity(vA, wA, vB, wB), 0.0, 0.0);
-  for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = c.tiltRows[k].velocity(vA, wA, vB, wB);
+  Vec3 u(v.velocity(c.normalRow), 0.0, 0.0);
+  for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = v.rotationVelocity(c.tiltRows[k]);
   const Vec3 delta = solveNormalBlock(c, u, shock ? c.block.shockExact : c.block.velocityExact,
                                       shock, &PointConstraint::normalImpulse,
                                       &PointConstraint::targetVelocity, c.block.velocityGoal);
   apply(c.normalRow, delta[0]);
-  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
+  for (int k = 0; k + 1 < c.block.size; ++k) v.applyRotation(c.tiltRows[k], delta[k + 1]);
+  v.store(bodyA, bodyB, &SolverBody::linearVelocity, &SolverBody::angularVelocity);
 }
 
 void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iterations, TaskPool& pool) {
@@ -721,20 +747,17 @@ void ContactSolver::solvePosition(ManifoldConstraint& c, std::vector<SolverBody>
   for (int p = 0; p < c.pointCount; ++p)
     needed = needed || c.points[p].positionTarget > 0.0 || c.points[p].pseudoImpulse > 0.0;
   if (!needed) return;
-  ImpulseTarget a(bodies[static_cast<std::size_t>(c.bodyA)], c.inverseMassA == 0.0,
-                  &SolverBody::pseudoLinear, &SolverBody::pseudoAngular);
-  ImpulseTarget b(bodies[static_cast<std::size_t>(c.bodyB)], c.inverseMassB == 0.0,
-                  &SolverBody::pseudoLinear, &SolverBody::pseudoAngular);
-  Vec3 u(c.normalRow.velocity(a.linear, a.angular, b.linear, b.angular), 0.0, 0.0);
-  for (int k = 0; k + 1 < c.block.size; ++k)
-    u[k + 1] = c.tiltRows[k].velocity(a.linear, a.angular, b.linear, b.angular);
+  SolverBody& bodyA = bodies[static_cast<std::size_t>(c.bodyA)];
+  SolverBody& bodyB = bodies[static_cast<std::size_t>(c.bodyB)];
+  PairVelocities v(bodyA, bodyB, &SolverBody::pseudoLinear, &SolverBody::pseudoAngular,
+                   c.inverseMassA != 0.0, c.inverseMassB != 0.0);
+  Vec3 u(v.velocity(c.normalRow), 0.0, 0.0);
+  for (int k = 0; k + 1 < c.block.size; ++k) u[k + 1] = v.rotationVelocity(c.tiltRows[k]);
   const Vec3 delta = solveNormalBlock(c, u, c.block.positionExact, false, &PointConstraint::pseudoImpulse,
                                       &PointConstraint::positionTarget, c.block.positionGoal);
-  const auto apply = [&](const VelocityRow& row, double impulse) {
-    row.apply(impulse, c.inverseMassA, c.inverseMassB, a.linear, a.angular, b.linear, b.angular);
-  };
-  apply(c.normalRow, delta[0]);
-  for (int k = 0; k + 1 < c.block.size; ++k) apply(c.tiltRows[k], delta[k + 1]);
+  v.apply(c.normalRow, delta[0], c.inverseMassA, c.inverseMassB);
+  for (int k = 0; k + 1 < c.block.size; ++k) v.applyRotation(c.tiltRows[k], delta[k + 1]);
+  v.store(bodyA, bodyB, &SolverBody::pseudoLinear, &SolverBody::pseudoAngular);
 }
 
 }  // namespace rbsim
