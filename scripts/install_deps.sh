@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   # build
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git ninja-build ccache
   # LCM (C/C++ library, lcm-gen, logger/player, Java jar for lcm-spy)
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
   libjchart2d-java openjdk-17-jdk-headless openjdk-17-jre

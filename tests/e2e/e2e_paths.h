@@ -1,17 +1,21 @@
 #pragma once
-// What the end-to-end tests run and read, from the build (CMakeLists.txt
-// passes them as compile definitions).
+// What the end-to-end tests run and read, from the build. Defined in
+// e2e_paths.cpp, the one file that CMakeLists.txt compiles with the absolute
+// paths, so that the test sources compile to the same objects in any clone
+// (the compiler cache shares them; CI builds a fresh clone).
 
 namespace rbsim::e2e {
 
-inline constexpr const char* kRbserver = RBSIM_E2E_RBSERVER;
-inline constexpr const char* kRbctl = RBSIM_E2E_RBCTL;
-inline constexpr const char* kPdExample = RBSIM_E2E_PD_EXAMPLE;
-inline constexpr const char* kSpyLauncher = RBSIM_E2E_SPY_LAUNCHER;
-inline constexpr const char* kTypesJar = RBSIM_E2E_TYPES_JAR;  // "" without a JDK
-inline constexpr const char* kJarTool = RBSIM_E2E_JAR_TOOL;    // "" without a JDK
-inline constexpr const char* kWorldsDir = RBSIM_E2E_WORLDS_DIR;
-inline constexpr const char* kLcmTypesDir = RBSIM_E2E_LCMTYPES_DIR;
+extern const char* const kRbserver;
+extern const char* const kRbctl;
+extern const char* const kPdExample;
+extern const char* const kSpyLauncher;
+extern const char* const kTypesJar;  // "" without a JDK
+extern const char* const kJarTool;   // "" without a JDK
+extern const char* const kWorldsDir;        // tests/e2e/worlds
+extern const char* const kConfigWorldsDir;  // config/worlds
+extern const char* const kLcmTypesDir;
+extern const char* const kTestDataDir;      // tests/data
 
 // Every process of a test talks on this bus, named explicitly so that an
 // LCM_DEFAULT_URL in the environment cannot split server and clients. Each

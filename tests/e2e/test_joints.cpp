@@ -24,7 +24,7 @@
 namespace rbsim::e2e {
 namespace {
 
-const std::string kJointsWorld = std::string(RBSIM_E2E_CONFIG_WORLDS_DIR) + "/joints.yaml";
+const std::string kJointsWorld = std::string(kConfigWorldsDir) + "/joints.yaml";
 
 // The wheel of joints.yaml: a cylinder of 2 kg and radius 0.2 m on the axle
 // (world z): I = m r^2 / 2 about the axle.

@@ -37,7 +37,7 @@ class RobotSession : public ServerTest {
   std::string writeWorld() {
     const fs::path directory = scratchPath("world");
     fs::create_directories(directory / "robots");
-    fs::copy_file(fs::path(RBSIM_E2E_TEST_DATA_DIR) / "urdf" / "two_link_arm.urdf",
+    fs::copy_file(fs::path(kTestDataDir) / "urdf" / "two_link_arm.urdf",
                   directory / "robots" / "two_link_arm.urdf");
     const fs::path world = directory / "arm.yaml";
     std::ofstream(world) << "world: {dt: 0.001, gravity: [0, 0, -9.81]}\n"

@@ -7,12 +7,13 @@
 #include <string>
 
 #include "config/config_loader.h"
+#include "fuzz_paths.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace rbsim;
   const std::string text(reinterpret_cast<const char*>(data), size);
-  const auto def = parseBodyDef(text, "spawn_yaml", RBSIM_FUZZ_MESH_DIR);
+  const auto def = parseBodyDef(text, "spawn_yaml", rbsim::fuzz::kMeshDir);
   if (!def) return 0;
   World world = fuzz::smallWorld();
   if (!world.createBody(*def)) return 0;

@@ -22,6 +22,7 @@
 
 #include "bridge/command_handler.h"
 #include "bridge/wire_convert.h"
+#include "fuzz_paths.h"
 #include "input_records.h"
 #include "session/session.h"
 #include "small_world.h"
@@ -45,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace rbsim;
   Session session(fuzz::smallWorld());
   const ServerSettings settings;
-  CommandHandler handler(session, settings, RBSIM_FUZZ_MESH_DIR);
+  CommandHandler handler(session, settings, rbsim::fuzz::kMeshDir);
   int64_t receivedAt = 0;
   int stepsLeft = kMaxSteps;
 

@@ -11,6 +11,7 @@
 
 #include "bridge/message_decode.h"
 #include "config/config_loader.h"
+#include "fuzz_paths.h"
 #include "small_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -20,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   World world = fuzz::smallWorld();
   if (message.command == rbsim::command_t::SPAWN) {
-    const auto def = parseBodyDef(message.spawn_yaml, "spawn_yaml", RBSIM_FUZZ_MESH_DIR);
+    const auto def = parseBodyDef(message.spawn_yaml, "spawn_yaml", rbsim::fuzz::kMeshDir);
     if (!def) return 0;
     if (!world.createBody(*def)) return 0;
   } else if (message.command == rbsim::command_t::REMOVE) {

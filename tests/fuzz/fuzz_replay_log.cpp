@@ -18,6 +18,7 @@
 
 #include "bridge/command_handler.h"
 #include "bridge/message_decode.h"
+#include "fuzz_paths.h"
 #include "replay/lcm_log_reader.h"
 #include "replay/replay.h"
 #include "scratch_files.h"
@@ -57,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   Session session(fuzz::smallWorld());
   const ServerSettings settings;
-  CommandHandler handler(session, settings, RBSIM_FUZZ_MESH_DIR);
+  CommandHandler handler(session, settings, rbsim::fuzz::kMeshDir);
   Replay replay(session, handler, settings.channelPrefix, /*verify=*/true,
                 [](const std::string&, const std::vector<uint8_t>&, int64_t) {});
   (void)replay.run(path);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_paths.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
 
@@ -18,8 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   placement.name = "fuzz";
   RobotFiles files;
   files.sourceName = "fuzz.urdf";
-  files.directory = RBSIM_FUZZ_URDF_DIR;
-  files.packagePaths = {std::string(RBSIM_FUZZ_URDF_DIR) + "/packages"};
+  files.directory = rbsim::fuzz::kUrdfDir;
+  files.packagePaths = {std::string(rbsim::fuzz::kUrdfDir) + "/packages"};
   Expected<RobotModel> robot = buildRobot(xml, placement, files);
   if (!robot) return 0;
   WorldDef def;

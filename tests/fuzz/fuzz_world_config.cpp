@@ -8,13 +8,14 @@
 #include <string>
 
 #include "config/config_loader.h"
+#include "fuzz_paths.h"
 #include "rbsim/physics/world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace rbsim;
   const std::string text(reinterpret_cast<const char*>(data), size);
   // Relative mesh paths resolve as for config/*.yaml (config/meshes/...).
-  const auto config = parseConfig(text, "world.yaml", RBSIM_FUZZ_CONFIG_DIR);
+  const auto config = parseConfig(text, "world.yaml", rbsim::fuzz::kConfigDir);
   if (!config) return 0;
   auto world = World::fromDef(config->world);
   if (!world) return 0;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "config/config_loader.h"
+#include "fuzz_paths.h"
 #include "persist/session_checkpoint.h"
 #include "session/session.h"
 #include "small_world.h"
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
         "{name: g, shape: {type: box, half_extents: [0.2, 0.1, 0.01]}, position: [-1, 0, 0.3], "
         "mass: 2, center_of_mass: [0.05, 0, 0], inertia: [[0.01, -0.001, 0], [-0.001, 0.02, 0], "
         "[0, 0, 0.03]]}"}) {
-    const auto def = parseBodyDef(yaml, "seed", RBSIM_FUZZ_MESH_DIR);
+    const auto def = parseBodyDef(yaml, "seed", rbsim::fuzz::kMeshDir);
     if (!def || !busy.world().createBody(*def)) {
       std::fprintf(stderr, "cannot spawn %s\n", yaml);
       return 1;

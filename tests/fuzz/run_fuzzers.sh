@@ -11,11 +11,14 @@
 #   RBSIM_FUZZ_BUILD_DIR  build directory (default build-fuzz)
 #   RBSIM_FUZZ_SECONDS    seconds per target (default 15)
 #   RBSIM_FUZZ_JOBS       targets run at once (default 2, one per core)
+#   RBSIM_FUZZ_BUILD_ONLY 1: build the targets and stop (run_tests.sh times
+#                         the build and the runs apart)
 # Each target starts from its seed corpus (tests/fuzz/corpus/<target>), the
 # inputs that once found bugs (tests/fuzz/regressions/<target>) and what
 # earlier runs found (<build>/fuzz-corpus/<target>, not checked in).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/build_support.sh
 
 build=${RBSIM_FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${RBSIM_FUZZ_SECONDS:-15}
@@ -27,9 +30,12 @@ if ! command -v clang++ >/dev/null; then
   exit 1
 fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  CC=clang CXX=clang++ cmake -S . -B "$build" -DRBSIM_FUZZ=ON
+  CC=clang CXX=clang++ configure "$build" -DRBSIM_FUZZ=ON
 fi
 nice -n 5 cmake --build "$build" -j2 --target rbsim_fuzz_targets
+if [ "${RBSIM_FUZZ_BUILD_ONLY:-0}" = 1 ]; then
+  exit 0
+fi
 
 if [ $# -gt 0 ]; then
   targets=("$@")

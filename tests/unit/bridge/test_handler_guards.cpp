@@ -7,6 +7,7 @@
 
 #include "bridge/command_handler.h"
 #include "handler_test_messages.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -15,7 +16,7 @@ using test::commandMessage;
 using test::send;
 using test::wrenchMessage;
 
-const std::string kConfigData = std::string(RBSIM_TEST_DATA_DIR) + "/config";
+const std::string kConfigData = std::string(rbsim::test_support::kTestDataDir) + "/config";
 
 World oneBallWorld() {
   WorldSettings settings;

@@ -5,6 +5,7 @@
 
 #include "bridge/wire_convert.h"
 #include "config/config_loader.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -185,7 +186,7 @@ TEST(WireConvert, SpawnedCompoundRoundTripsInTheWorldDescription) {
       "    - {shape: {type: mesh, file: meshes/tetra.obj}, position: [0, 0.3, 0]}\n"
       "position: [1, 2, 3]\n";
   const Expected<BodyDef> def =
-      parseBodyDef(yaml, "spawn", std::string(RBSIM_TEST_DATA_DIR) + "/config");
+      parseBodyDef(yaml, "spawn", std::string(rbsim::test_support::kTestDataDir) + "/config");
   ASSERT_TRUE(def.ok()) << def.error().message;
   World world;
   const BodyId id = *world.createBody(*def);

@@ -11,14 +11,15 @@
 #include <vector>
 
 #include "config/config_loader.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
-const std::filesystem::path kDataDir = std::filesystem::path(RBSIM_TEST_DATA_DIR) / "config";
+const std::filesystem::path kDataDir = std::filesystem::path(rbsim::test_support::kTestDataDir) / "config";
 // The repository's config/ directory, next to tests/.
 const std::filesystem::path kRepoConfigDir =
-    (std::filesystem::path(RBSIM_TEST_DATA_DIR) / ".." / ".." / "config").lexically_normal();
+    (std::filesystem::path(rbsim::test_support::kTestDataDir) / ".." / ".." / "config").lexically_normal();
 
 // Raw string literals in these tests start with a newline so that the YAML
 // lines up on the page; drop it, so that the line after R"( is line 1.

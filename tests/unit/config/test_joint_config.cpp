@@ -9,6 +9,7 @@
 
 #include "config/config_loader.h"
 #include "rbsim/physics/world.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -123,7 +124,7 @@ TEST(JointConfig, RopesAndConesAreReadAsWritten) {
 }
 
 TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
-  const Expected<WorldDef> def = loadWorldConfig(std::string(RBSIM_TEST_DATA_DIR) + "/../../config/worlds/joints.yaml");
+  const Expected<WorldDef> def = loadWorldConfig(std::string(rbsim::test_support::kTestDataDir) + "/../../config/worlds/joints.yaml");
   ASSERT_TRUE(def.ok()) << def.error().message;
   Expected<World> world = World::fromDef(*def);
   ASSERT_TRUE(world.ok()) << world.error().message;

@@ -12,11 +12,12 @@
 #include <string_view>
 
 #include "config/config_loader.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
-const std::filesystem::path kDataDir = std::filesystem::path(RBSIM_TEST_DATA_DIR) / "config";
+const std::filesystem::path kDataDir = std::filesystem::path(rbsim::test_support::kTestDataDir) / "config";
 
 // Raw string literals start with a newline so the YAML lines up on the page;
 // dropped, so that the line after R"( is line 1.

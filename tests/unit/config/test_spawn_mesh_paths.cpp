@@ -11,14 +11,15 @@
 
 #include "config/config_loader.h"
 #include "meshio/contained_path.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kConfigData = fs::path(RBSIM_TEST_DATA_DIR) / "config";
-const fs::path kOutsideMesh = fs::path(RBSIM_TEST_DATA_DIR) / "meshes" / "cube.obj";
+const fs::path kConfigData = fs::path(rbsim::test_support::kTestDataDir) / "config";
+const fs::path kOutsideMesh = fs::path(rbsim::test_support::kTestDataDir) / "meshes" / "cube.obj";
 
 std::string spawnYaml(const std::string& file) {
   return "{name: spawned, shape: {type: mesh, file: '" + file + "'}, position: [0, 0, 1]}";

@@ -12,6 +12,7 @@
 #include "meshio/mesh_io.h"
 #include "physics/mass/mass_properties.h"
 #include "rbsim/physics/world.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -20,7 +21,7 @@ constexpr double kRelTol = 1e-12;
 constexpr double kPi = std::numbers::pi;
 
 const std::filesystem::path kLBlockMesh =
-    (std::filesystem::path(RBSIM_TEST_DATA_DIR) / ".." / ".." / "config" / "meshes" / "l_block.obj")
+    (std::filesystem::path(rbsim::test_support::kTestDataDir) / ".." / ".." / "config" / "meshes" / "l_block.obj")
         .lexically_normal();
 
 void expectRelNear(double actual, double expected, double relTol = kRelTol) {

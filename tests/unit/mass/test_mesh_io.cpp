@@ -16,6 +16,7 @@
 #include "meshio/mesh_io.h"
 #include "physics/geometry/triangle_mesh.h"
 #include "physics/mass/mass_properties.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -23,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string dataPath(const std::string& name) {
-  return std::string(RBSIM_TEST_DATA_DIR) + "/meshes/" + name;
+  return std::string(rbsim::test_support::kTestDataDir) + "/meshes/" + name;
 }
 
 // cube.obj: side 2 m from (1, 2, 3) to (3, 4, 5).

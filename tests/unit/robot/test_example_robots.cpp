@@ -27,12 +27,13 @@
 #include "config/config_loader.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
 const std::string kWorldFile =
-    std::string(RBSIM_TEST_DATA_DIR) + "/../../config/worlds/robot_arm.yaml";
+    std::string(rbsim::test_support::kTestDataDir) + "/../../config/worlds/robot_arm.yaml";
 
 constexpr double kGravity = 9.81;
 
@@ -250,7 +251,7 @@ Expected<RobotModel> loadHumanoid(const Vec3& position) {
   placement.position = position;
   RobotFiles files;
   files.sourceName = "humanoid30.urdf";
-  return loadRobot(std::string(RBSIM_TEST_DATA_DIR) + "/../../config/robots/humanoid30.urdf",
+  return loadRobot(std::string(rbsim::test_support::kTestDataDir) + "/../../config/robots/humanoid30.urdf",
                    placement, files);
 }
 

@@ -22,6 +22,7 @@
 
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -38,7 +39,7 @@ World loadArm(double dt, double shoulder, double elbow, bool drives) {
   RobotFiles files;
   files.sourceName = "two_link_arm.urdf";
   Expected<RobotModel> robot =
-      loadRobot(std::string(RBSIM_TEST_DATA_DIR) + "/urdf/two_link_arm.urdf", placement, files);
+      loadRobot(std::string(rbsim::test_support::kTestDataDir) + "/urdf/two_link_arm.urdf", placement, files);
   EXPECT_TRUE(robot.ok()) << robot.error().message;
   WorldDef def;
   def.settings.dt = dt;

@@ -14,11 +14,12 @@
 
 #include "config/config_loader.h"
 #include "rbsim/physics/world.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
-const std::string kUrdfDir = std::string(RBSIM_TEST_DATA_DIR) + "/urdf";
+const std::string kUrdfDir = std::string(rbsim::test_support::kTestDataDir) + "/urdf";
 
 Expected<WorldDef> parse(const std::string& yaml) { return parseWorldConfig(yaml, "w.yaml", kUrdfDir); }
 

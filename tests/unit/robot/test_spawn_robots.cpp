@@ -13,13 +13,14 @@
 
 #include "config/config_loader.h"
 #include "rbsim/physics/world.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kUrdfData = fs::path(RBSIM_TEST_DATA_DIR) / "urdf";
+const fs::path kUrdfData = fs::path(rbsim::test_support::kTestDataDir) / "urdf";
 
 // A scratch spawn directory: robots/ with the test pendulum and the
 // packaged-mesh robot and its package; a mesh outside it, and URDFs that

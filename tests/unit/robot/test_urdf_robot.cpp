@@ -10,11 +10,12 @@
 #include <string>
 
 #include "robot/urdf_robot.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
 
-const std::string kUrdfDir = std::string(RBSIM_TEST_DATA_DIR) + "/urdf";
+const std::string kUrdfDir = std::string(rbsim::test_support::kTestDataDir) + "/urdf";
 constexpr double kPi = 3.14159265358979323846;
 
 RobotFiles filesFor(const std::string& name) {

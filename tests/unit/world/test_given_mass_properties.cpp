@@ -7,6 +7,7 @@
 
 #include "meshio/mesh_io.h"
 #include "rbsim/physics/world.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -136,7 +137,7 @@ TEST(GivenMassProperties, CheckpointRoundTripIsBitIdentical) {
   part.angularVelocity = Vec3(0.5, 3.0, -1.0);
   ASSERT_TRUE(original.createBody(part).ok());
   // A mesh and a compound may have given mass properties too.
-  auto cube = loadMesh(std::string(RBSIM_TEST_DATA_DIR) + "/meshes/cube.obj");
+  auto cube = loadMesh(std::string(rbsim::test_support::kTestDataDir) + "/meshes/cube.obj");
   ASSERT_TRUE(cube.ok());
   BodyDef mesh = givenBody("mesh");
   mesh.shape = MeshShape{"cube.obj", std::make_shared<const TriangleMesh>(std::move(cube).value())};

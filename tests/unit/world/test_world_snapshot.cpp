@@ -11,6 +11,7 @@
 #include "meshio/mesh_io.h"
 #include "rbsim/physics/world.h"
 #include "scenes/scene_random.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -32,7 +33,7 @@ World makePile() {
   ground.shape = PlaneShape{};
   ground.isStatic = true;
   EXPECT_TRUE(world.createBody(ground).ok());
-  auto cube = loadMesh(std::string(RBSIM_TEST_DATA_DIR) + "/meshes/cube.obj");
+  auto cube = loadMesh(std::string(rbsim::test_support::kTestDataDir) + "/meshes/cube.obj");
   EXPECT_TRUE(cube.ok());
   const auto mesh = std::make_shared<const TriangleMesh>(std::move(cube).value());
   scenes::SceneRandom random(0x5eedu);
