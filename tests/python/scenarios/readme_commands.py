@@ -37,9 +37,10 @@ import subprocess
 import time
 import urllib.request
 
-from harness import BUILD, CLIENT_TIMEOUT, PYTHON, REPO, RBSERVER, Client, run, subprocess_env
+from harness import BUILD, PYTHON, REPO, RBSERVER, Client, run, subprocess_env
 
-DOCUMENTS = (["README.md"] + sorted(os.path.relpath(p, REPO) for p in glob.glob(os.path.join(REPO, "docs", "*.md")))
+DOCUMENTS = (["README.md"]
+             + sorted(os.path.relpath(p, REPO) for p in glob.glob(os.path.join(REPO, "docs", "*.md")))
              + ["clients/cpp/README.md", "clients/python/README.md"])
 DEFAULT_WORLD = os.path.join(REPO, "config", "default.yaml")
 RBSERVER_SHOWN = "build/server/daemon/rbserver"
@@ -84,9 +85,9 @@ NOT_RUN = {
     "build-fuzz/tests/fuzz/fuzz_obj_mesh build-fuzz/fuzz-artifacts/obj_mesh-crash-...":
         "a pattern for a crashing input's name, not a file",
     "taskset -c 1 build/bench/bench_free_bodies --benchmark_repetitions=5 --benchmark_report_aggregates_only=true":
-        "a benchmark: minutes of CPU on a quiet core",
+        "a benchmark: a minute of CPU or more, meant for a quiet core",
     "taskset -c 1 build/bench/bench_collision --benchmark_repetitions=5 --benchmark_report_aggregates_only=true":
-        "a benchmark: minutes of CPU on a quiet core",
+        "a benchmark: a minute of CPU or more, meant for a quiet core",
     "taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3":
         "needs the anchors harness, outside this repository",
     "bench/run_realtime_bench.sh build 60": "a benchmark: a minute, with a server of its own",
