@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs rbserver as a systemd service, as root, from the repository after
-# building (README, "Running it as a daemon"):
+# building (docs/server.md, "Running it as a daemon"):
 #   scripts/install_service.sh [BUILD_DIR]          (default build/)
 # DESTDIR=/some/root puts everything under that root instead (for packaging
 # and tests/python/test_systemd_units.py); nothing is started.
@@ -24,7 +24,7 @@ for unit in rbserver.service rbserver@.service rbsim-multicast-route.service; do
 done
 doc="$root/usr/local/share/doc/rbsim"
 install -d -m 0755 "$doc"
-install -m 0644 "$repo/README.md" "$repo/docs/lcm.md" "$repo/docs/cli.md" "$doc/"
+install -m 0644 "$repo/README.md" "$repo/docs/server.md" "$repo/docs/lcm.md" "$repo/docs/cli.md" "$doc/"
 [ -e "$build/docs/messages.md" ] && install -m 0644 "$build/docs/messages.md" "$doc/"
 if [ -z "$root" ] && [ -d /run/systemd/system ]; then systemctl daemon-reload; fi
 echo "installed; start with: systemctl enable --now rbserver (or rbserver@NAME for /etc/rbsim/NAME.yaml)"

@@ -9,7 +9,7 @@
 // at most kMaxClients ids are tracked; beyond that, the ids whose buckets
 // are full again are forgotten first, then the one seen longest ago.
 // (This limits honest clients that misbehave; it is no defence against a
-// sender who forges ids: LCM has no authentication, see README.)
+// sender who forges ids: LCM has no authentication, see docs/server.md.)
 
 #include <cstdint>
 #include <string>

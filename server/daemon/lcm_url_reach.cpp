@@ -41,11 +41,11 @@ std::string reachWarning(const std::string& url) {
   if (!ttl)
     return "cannot tell how far LCM URL " + shown +
            " reaches; if its traffic leaves this host, anyone on that network can command this server"
-           " (LCM has no authentication; see README, Deploying safely)";
+           " (LCM has no authentication; see \"Deploying safely\" in docs/server.md)";
   return "LCM URL " + shown + " has ttl=" + std::to_string(*ttl) +
          ": its multicast leaves this host, and anyone on that network can read the state and command"
          " this server (LCM has no authentication or encryption); use it only on an isolated network"
-         " (see README, Deploying safely)";
+         " (see \"Deploying safely\" in docs/server.md)";
 }
 
 }  // namespace rbsim

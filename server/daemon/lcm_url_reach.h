@@ -1,8 +1,8 @@
 #pragma once
 // How far an LCM URL's traffic reaches, so that rbserver can say so at start:
 // LCM has no authentication, so a server whose multicast leaves the host can
-// be commanded by anyone on the network it reaches (README "Deploying
-// safely").
+// be commanded by anyone on the network it reaches (docs/server.md,
+// "Deploying safely").
 
 #include <optional>
 #include <string>
