@@ -11,6 +11,7 @@ inline constexpr const char* kSpyLauncher = RBSIM_E2E_SPY_LAUNCHER;
 inline constexpr const char* kTypesJar = RBSIM_E2E_TYPES_JAR;  // "" without a JDK
 inline constexpr const char* kJarTool = RBSIM_E2E_JAR_TOOL;    // "" without a JDK
 inline constexpr const char* kWorldsDir = RBSIM_E2E_WORLDS_DIR;
+inline constexpr const char* kDefaultWorld = RBSIM_E2E_DEFAULT_WORLD;  // config/default.yaml
 inline constexpr const char* kLcmTypesDir = RBSIM_E2E_LCMTYPES_DIR;
 
 // Every process of a test talks on this bus, named explicitly so that an
