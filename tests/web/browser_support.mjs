@@ -144,6 +144,45 @@ export async function foreground(page, png, region) {
   }, { data: png.toString("base64"), region });
 }
 
+// The box around the pixels of a screenshot that are coloured like the bodies:
+// {count, left, top, right, bottom} (px). Dynamic bodies are drawn in
+// saturated hues (clients/web/src/scene.js, bodyColor); the background, the
+// ground plane, its grid and static bodies are greys, whose channels differ by
+// less than `minChroma` (of 255) however they are lit. Hide the panels first
+// (their text is coloured too): hidePanels().
+export async function colouredBounds(page, png, minChroma = 40) {
+  return page.evaluate(async ({ data, minChroma: min }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(0, 0, image.width, image.height).data;
+    const box = { count: 0, left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+    for (let y = 0; y < image.height; y++) {
+      for (let x = 0; x < image.width; x++) {
+        const o = 4 * (y * image.width + x);
+        const r = pixels[o], g = pixels[o + 1], b = pixels[o + 2];
+        if (Math.max(r, g, b) - Math.min(r, g, b) < min) continue;
+        box.count++;
+        box.left = Math.min(box.left, x);
+        box.right = Math.max(box.right, x);
+        box.top = Math.min(box.top, y);
+        box.bottom = Math.max(box.bottom, y);
+      }
+    }
+    return box;
+  }, { data: png.toString("base64"), minChroma });
+}
+
+// Hides (or shows again) the HUD, the controls and the other panels.
+export function hidePanels(page, hidden = true) {
+  return page.evaluate((h) => {
+    for (const panel of document.querySelectorAll(".panel")) panel.style.visibility = h ? "hidden" : "";
+  }, hidden);
+}
+
 export function writeArtifact(name, text) {
   writeFileSync(path.join(artifacts, name), text);
 }
