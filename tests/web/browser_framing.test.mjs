@@ -8,8 +8,8 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import path from "node:path";
 import {
-  repo, build, startProcess, rbview, launchBrowser, openPage, screenshot, colouredBounds, hidePanels, sleep,
-  stopAll, logs,
+  repo, build, startProcess, rbview, launchBrowser, openPage, screenshot, colouredBounds, countColours, hidePanels,
+  sleep, stopAll, logs,
 } from "./browser_support.mjs";
 
 const world = path.join(repo, "config", "worlds", "robot_arm.yaml");
@@ -33,16 +33,21 @@ function noConsoleErrors() {
   assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
 }
 
-// The bodies' pixels in a screenshot without the panels and the joints' axes
-// (drawn in colour, and longer than the links): {count, left, top, right, bottom}.
-async function bodiesOnScreen(name) {
+// A screenshot without the panels and the joints' axes (drawn in colour, and
+// longer than the links).
+async function bodiesOnly(name) {
   await page.uncheck("#toggle-joints");
   await hidePanels(page);
   await sleep(200);
   const { png } = await screenshot(page, name);
   await hidePanels(page, false);
   await page.check("#toggle-joints");
-  return colouredBounds(page, png);
+  return png;
+}
+
+// The bodies' pixels: {count, left, top, right, bottom}.
+async function bodiesOnScreen(name) {
+  return colouredBounds(page, await bodiesOnly(name));
 }
 
 // Which share of the view's width or height (the larger) a rectangle spans.
@@ -72,6 +77,15 @@ test("the first view frames the arm and its boxes", async () => {
   assert.ok(inside(rect), `the bodies' box is not all in view: ${JSON.stringify(rect)}`);
   assert.ok(share(rect) > 0.5, `the bodies' box spans ${share(rect)} of the view only: ${JSON.stringify(rect)}`);
   noConsoleErrors();
+});
+
+test("the ground's grid is drawn under the bodies, up to the camera", async () => {
+  // The grid's lines are unlit, in their own colours (clients/web/src/scene.js):
+  // the near third of the view, in front of the bodies, must cross some.
+  const png = await bodiesOnly("framing-grid");
+  const near = { x: 0, y: Math.round((2 * VIEW.height) / 3), width: VIEW.width, height: Math.round(VIEW.height / 3) };
+  const lines = await countColours(page, png, near, [0x6b7385, 0x4c566a]);
+  assert.ok(lines > 300, `only ${lines} pixels of grid lines in the near third of the view`);
 });
 
 test("Frame all (button and key A) frames every body again", async () => {

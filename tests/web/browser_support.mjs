@@ -176,6 +176,27 @@ export async function colouredBounds(page, png, minChroma = 40) {
   }, { data: png.toString("base64"), minChroma });
 }
 
+// How many pixels of `region` ({x, y, width, height}, px) of a screenshot have
+// one of `colours` (0xRRGGBB), each channel within `tolerance`.
+export async function countColours(page, png, region, colours, tolerance = 4) {
+  return page.evaluate(async ({ data, region: r, colours: wanted, tolerance: t }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(r.x, r.y, r.width, r.height).data;
+    const rgb = wanted.map((c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255]);
+    let count = 0;
+    for (let o = 0; o < pixels.length; o += 4) {
+      if (rgb.some(([cr, cg, cb]) => Math.abs(pixels[o] - cr) <= t && Math.abs(pixels[o + 1] - cg) <= t
+        && Math.abs(pixels[o + 2] - cb) <= t)) count++;
+    }
+    return count;
+  }, { data: png.toString("base64"), region, colours, tolerance });
+}
+
 // Hides (or shows again) the HUD, the controls and the other panels.
 export function hidePanels(page, hidden = true) {
   return page.evaluate((h) => {

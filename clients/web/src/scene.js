@@ -25,6 +25,35 @@ function bodyColor(body, index) {
   return new THREE.Color().setHSL(((index * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
 }
 
+// The grid on a plane, as THREE.GridHelper draws it (`size` m square, cells of
+// size/divisions, the two centre lines in `centreColor`) but lying in x-y and
+// made of one-cell segments. In chromium without a GPU (SwiftShader) the 40 m
+// lines of GridHelper vanished near the camera when it looked along the ground
+// (all of them showed from straight above): it drops a line that reaches
+// behind the camera, and the long lines did under any view from over the grid,
+// which is where the bodies are.
+function cellGrid(size, divisions, centreColor, lineColor) {
+  const step = size / divisions;
+  const half = size / 2;
+  const positions = [];
+  const colors = [];
+  const centre = new THREE.Color(centreColor);
+  const line = new THREE.Color(lineColor);
+  for (let i = 0; i <= divisions; i++) {
+    const across = -half + i * step;
+    const color = 2 * i === divisions ? centre : line;
+    for (let j = 0; j < divisions; j++) {
+      const from = -half + j * step;
+      positions.push(from, across, 0, from + step, across, 0, across, from, 0, across, from + step, 0);
+      for (let k = 0; k < 4; k++) colors.push(color.r, color.g, color.b);
+    }
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+  geometry.setAttribute("color", new THREE.Float32BufferAttribute(colors, 3));
+  return new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: true, toneMapped: false }));
+}
+
 export class Viewer {
   constructor(container) {
     this.container = container;
@@ -140,8 +169,7 @@ export class Viewer {
     // A finite patch of the half-space's surface, with a 1 m grid near the origin.
     const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252,
       polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })); // behind its grid lines
-    const grid = new THREE.GridHelper(40, 40, 0x6b7385, 0x4c566a);
-    grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; ours in x-y
+    const grid = cellGrid(40, 40, 0x6b7385, 0x4c566a);
     grid.position.z = 0.001;
     group.add(surface, grid);
     const local = new THREE.Matrix4().compose(point,
