@@ -1,27 +1,29 @@
 // rbview's first view and its framing controls, in Debian's headless chromium:
 // rbserver paused on config/worlds/robot_arm.yaml (a seven-joint arm about
 // 1 m tall and two 10 cm boxes). The page opens framed on the bodies (before,
-// the arm was some 80 px tall in a 700 px view); "Frame all" (key A) and
-// "Frame selected" (key F) bring them back after the view has wandered off.
+// the arm was some 60 px tall in a 700 px view), but for a stray 40 m above
+// them; "Frame all" (key A) and "Frame selected" (key F) bring them back after
+// the view has wandered off.
 // Screenshots: BUILD/tests/web/artifacts/framing-*.png.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import path from "node:path";
 import {
-  repo, build, startProcess, rbview, launchBrowser, openPage, screenshot, colouredBounds, countColours, hidePanels,
-  sleep, stopAll, logs,
+  repo, build, artifacts, startProcess, rbview, launchBrowser, openPage, screenshot, colouredBounds, countColours, hidePanels,
+  sleep, stopAll, logs, runPython,
 } from "./browser_support.mjs";
 
 const world = path.join(repo, "config", "worlds", "robot_arm.yaml");
 const VIEW = { width: 1000, height: 700 };
 
-let browser, page;
+let browser, page, url;
 
 before(async () => {
   startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
     ["--config", world, "--paused", "--log-level", "info"]);
   browser = await launchBrowser();
-  page = await openPage(browser, await rbview(), VIEW);
+  url = await rbview();
+  page = await openPage(browser, url, VIEW);
 });
 
 after(async () => {
@@ -141,4 +143,30 @@ test("Frame selected (button and key F) frames the selected body", async () => {
   const pixels = await bodiesOnScreen("framing-frame-selected");
   assert.ok(pixels.bottom - pixels.top > 0.3 * VIEW.height, `the selected box: ${JSON.stringify(pixels)}`);
   noConsoleErrors();
+});
+
+test("the first view leaves out a body far from the others; Frame all takes it too", async () => {
+  // Last: it changes the world. A box 40 m above the arm (SPAWN, paused).
+  const revision = await page.evaluate(() => rbview.state.world.revision);
+  const spawn = await runPython("spawn_world_part.py", [path.join(repo, "tests", "web", "worlds", "far_box.yaml")]);
+  const { code, stdout } = await spawn.done;
+  assert.equal(code, 0, `SPAWN refused: ${stdout}`);
+  await page.waitForFunction((r) => rbview.state.world.revision > r, revision, { timeout: 10000 });
+
+  const fresh = await openPage(browser, url, VIEW);
+  const names = await fresh.evaluate(() => rbview.state.world.bodies.map((b) => b.name));
+  assert.ok(names.includes("far_box"), names.join(", "));
+  const gathered = names.filter((n) => n !== "far_box" && n !== "ground");
+  let view = await fresh.evaluate((g) => ({ arm: rbview.screenRect(...g), far: rbview.screenRect("far_box") }), gathered);
+  assert.ok(inside(view.arm) && share(view.arm) > 0.5, `first view, the arm world: ${JSON.stringify(view.arm)}`);
+  assert.ok(!inside(view.far), `first view, far_box: ${JSON.stringify(view.far)}`);
+  await fresh.screenshot({ path: path.join(artifacts, "framing-stray-start.png") });
+
+  await fresh.click("#btn-frame-all");
+  view = await fresh.evaluate((g) => ({ arm: rbview.screenRect(...g), all: rbview.screenRect() }), gathered);
+  assert.ok(inside(view.all) && share(view.all) > 0.5, `Frame all: every body ${JSON.stringify(view.all)}`);
+  assert.ok(share(view.arm) < 0.1, `Frame all: the arm world ${JSON.stringify(view.arm)}, 40 m below far_box`);
+  await fresh.screenshot({ path: path.join(artifacts, "framing-stray-frame-all.png") });
+  assert.deepEqual(fresh.errors, []);
+  await fresh.close();
 });

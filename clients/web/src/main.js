@@ -260,10 +260,10 @@ let secondStarted = performance.now();
 function animate() {
   requestAnimationFrame(animate);
   const fresh = viewer.updatePoses();
-  // The first view frames the bodies (once, at the first drawn frame, even of a
-  // world with none yet: after that the camera is the user's).
+  // The first view frames the bodies, strays left out (once, at the first
+  // drawn frame, even of a world with none yet: after that the camera is the user's).
   if (fresh && !state.framedAtStart) {
-    viewer.frameAll();
+    viewer.frameAll(viewer.gatheredBodies());
     state.framedAtStart = true;
   }
   viewer.render();
@@ -313,10 +313,10 @@ window.rbview = {
     const p = viewer.frameDrawn ? viewer.bodyPosition(this.bodyIndex(name)) : null;
     return p ? p.toArray() : null;
   },
-  // The rectangle (CSS pixels) that the box around body `name`, or around
-  // every body but the planes, projects to: {left, top, right, bottom}.
-  screenRect(name) {
-    const box = viewer.bodiesBox(name === undefined ? viewer.bodies.keys() : [this.bodyIndex(name)]);
+  // The rectangle (CSS pixels) that the box around the bodies `names`, or
+  // around every body but the planes, projects to: {left, top, right, bottom}.
+  screenRect(...names) {
+    const box = viewer.bodiesBox(names.length ? names.map((n) => this.bodyIndex(n)) : viewer.bodies.keys());
     if (!box) return null;
     const rect = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
     for (let k = 0; k < 8; k++) {

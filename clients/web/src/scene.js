@@ -17,6 +17,9 @@ const FRAME_FILL = 0.75;
 // The view direction of the first frame, from the target to the camera: from
 // the front right and above, as the camera was placed before framing existed.
 const DEFAULT_VIEW = new THREE.Vector3(6, -9, 4.5);
+// The first view leaves out a body farther than this many times the bodies'
+// median distance from their median centre (see gatheredBodies).
+const STRAY_DISTANCE = 4;
 const NORMAL_LENGTH = 0.15; // m, drawn length of a contact normal
 const SELECTED = new THREE.Color(0xffd23f);
 
@@ -377,11 +380,32 @@ export class Viewer {
     this.controls.update();
   }
 
-  // Frames every body but the planes; false when there is none (or no pose yet).
-  frameAll() {
-    const box = this.bodiesBox(this.bodies.keys());
+  // Frames every body but the planes (or those of `indices`); false when there
+  // is none (or no pose yet).
+  frameAll(indices = this.bodies.keys()) {
+    const box = this.bodiesBox(indices);
     if (box) this.fitBox(box);
     return !!box;
+  }
+
+  // The bodies but the planes and the strays: those more than STRAY_DISTANCE
+  // times the median distance from the median of the bodies' centres (per
+  // axis). Framed, one stray (the default world's box dropped from 40 m, or
+  // its roller rolled away a minute ago) would shrink all the others to specks.
+  gatheredBodies() {
+    const indices = [...this.bodies.keys()].filter((i) => this.bodyBounds[i]);
+    if (indices.length < 3 || !this.frameMatchesWorld()) return indices;
+    const median = (values) => {
+      const sorted = Float64Array.from(values).sort();
+      const m = sorted.length >> 1;
+      return sorted.length % 2 ? sorted[m] : (sorted[m - 1] + sorted[m]) / 2;
+    };
+    const centres = indices.map((i) => this.bodyPosition(i));
+    const middle = new THREE.Vector3(median(centres.map((c) => c.x)), median(centres.map((c) => c.y)),
+      median(centres.map((c) => c.z)));
+    const distances = centres.map((c) => c.distanceTo(middle));
+    const reach = STRAY_DISTANCE * median(distances);
+    return indices.filter((_, k) => distances[k] <= reach);
   }
 
   // Frames body `index`; false for a plane, or before its pose is known.
