@@ -10,6 +10,7 @@ const char* const kTypesJar = RBSIM_E2E_TYPES_JAR;
 const char* const kJarTool = RBSIM_E2E_JAR_TOOL;
 const char* const kWorldsDir = RBSIM_E2E_WORLDS_DIR;
 const char* const kConfigWorldsDir = RBSIM_E2E_CONFIG_WORLDS_DIR;
+const char* const kDefaultWorld = RBSIM_E2E_DEFAULT_WORLD;
 const char* const kLcmTypesDir = RBSIM_E2E_LCMTYPES_DIR;
 const char* const kTestDataDir = RBSIM_E2E_TEST_DATA_DIR;
 

@@ -14,6 +14,7 @@ extern const char* const kTypesJar;  // "" without a JDK
 extern const char* const kJarTool;   // "" without a JDK
 extern const char* const kWorldsDir;        // tests/e2e/worlds
 extern const char* const kConfigWorldsDir;  // config/worlds
+extern const char* const kDefaultWorld;     // config/default.yaml
 extern const char* const kLcmTypesDir;
 extern const char* const kTestDataDir;      // tests/data
 

@@ -1,5 +1,6 @@
 // rbserver refuses bad input before it steps: a clear message naming what is
-// wrong, a non-zero exit, and not one state on the bus.
+// wrong, a non-zero exit, and not one state on the bus. It warns at start
+// about a world it cannot follow, and not about the default world.
 
 #include <gtest/gtest.h>
 
@@ -131,6 +132,19 @@ TEST_F(Startup, WarnsThatTheEulerMethodsLoseAFastTop) {
   EXPECT_CONTAINS(run("semi_implicit_euler"),
                   "WARNING body 'top' spins at |w| = 188 rad/s: semi-implicit Euler at dt = 0.001 s");
   EXPECT_EQ(run("rk4").find("WARNING body"), std::string::npos);
+}
+
+TEST_F(Startup, TheDefaultWorldStartsWithoutAWarning) {
+  // The world a newcomer runs first, as the README runs it (paced, no
+  // --duration: the spin check looks 10 s ahead). A warning about its own
+  // bodies would teach them to ignore warnings.
+  startServer(kDefaultWorld, {});
+  spinFor(500ms);  // past the start log, into stepping
+  const std::string output = server().output();
+  EXPECT_CONTAINS(output, "stepping 15 bodies");
+  EXPECT_EQ(output.find("WARNING"), std::string::npos) << output;
+  EXPECT_EQ(output.find("ERROR"), std::string::npos) << output;
+  EXPECT_EQ(stopServer(5s).value_or(-1), 0) << server().output();
 }
 
 }  // namespace

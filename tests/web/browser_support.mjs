@@ -144,6 +144,66 @@ export async function foreground(page, png, region) {
   }, { data: png.toString("base64"), region });
 }
 
+// The box around the pixels of a screenshot that are coloured like the bodies:
+// {count, left, top, right, bottom} (px). Dynamic bodies are drawn in
+// saturated hues (clients/web/src/scene.js, bodyColor); the background, the
+// ground plane, its grid and static bodies are greys, whose channels differ by
+// less than `minChroma` (of 255) however they are lit. Hide the panels first
+// (their text is coloured too): hidePanels().
+export async function colouredBounds(page, png, minChroma = 40) {
+  return page.evaluate(async ({ data, minChroma: min }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(0, 0, image.width, image.height).data;
+    const box = { count: 0, left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+    for (let y = 0; y < image.height; y++) {
+      for (let x = 0; x < image.width; x++) {
+        const o = 4 * (y * image.width + x);
+        const r = pixels[o], g = pixels[o + 1], b = pixels[o + 2];
+        if (Math.max(r, g, b) - Math.min(r, g, b) < min) continue;
+        box.count++;
+        box.left = Math.min(box.left, x);
+        box.right = Math.max(box.right, x);
+        box.top = Math.min(box.top, y);
+        box.bottom = Math.max(box.bottom, y);
+      }
+    }
+    return box;
+  }, { data: png.toString("base64"), minChroma });
+}
+
+// How many pixels of `region` ({x, y, width, height}, px) of a screenshot have
+// one of `colours` (0xRRGGBB), each channel within `tolerance`.
+export async function countColours(page, png, region, colours, tolerance = 4) {
+  return page.evaluate(async ({ data, region: r, colours: wanted, tolerance: t }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(r.x, r.y, r.width, r.height).data;
+    const rgb = wanted.map((c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255]);
+    let count = 0;
+    for (let o = 0; o < pixels.length; o += 4) {
+      if (rgb.some(([cr, cg, cb]) => Math.abs(pixels[o] - cr) <= t && Math.abs(pixels[o + 1] - cg) <= t
+        && Math.abs(pixels[o + 2] - cb) <= t)) count++;
+    }
+    return count;
+  }, { data: png.toString("base64"), region, colours, tolerance });
+}
+
+// Hides (or shows again) the HUD, the controls and the other panels.
+export function hidePanels(page, hidden = true) {
+  return page.evaluate((h) => {
+    for (const panel of document.querySelectorAll(".panel")) panel.style.visibility = h ? "hidden" : "";
+  }, hidden);
+}
+
 export function writeArtifact(name, text) {
   writeFileSync(path.join(artifacts, name), text);
 }

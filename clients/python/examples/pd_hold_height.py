@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Hold a body at a target height with a PD controller over LCM.
+"""Hold a body at a target height (--height) with a PD controller over LCM.
 
 For every state received, computes the vertical force (N, world frame)
 
@@ -18,7 +18,7 @@ On exit it clears its wrenches. Exit status 0 if the height was within
 ``--tolerance`` of the target for the last ``--settle`` seconds of simulated
 time, 1 otherwise, 3 if the server did not answer.
 
-    python3 clients/python/examples/pd_hold_height.py --body bouncy_ball --target 1.5 --duration 5
+    python3 clients/python/examples/pd_hold_height.py --body bouncy_ball --height 1.5 --duration 5
 
 (with the package installed, ``pip install ./clients/python``, or ``PYTHONPATH=clients/python``).
 """
@@ -33,7 +33,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--body", default="bouncy_ball",
                         help="body to hold (default bouncy_ball, of config/default.yaml)")
-    parser.add_argument("--target", type=float, default=1.5, help="target height z, m (default 1.5)")
+    # --height, as the C++ example (clients/cpp/examples/pd_hold_height.cpp) names it.
+    parser.add_argument("--height", type=float, default=1.5,
+                        help="m, target world z of the body's centre of mass (default 1.5)")
     parser.add_argument("--omega", type=float, default=6.0,
                         help="closed-loop natural frequency, rad/s (default 6)")
     parser.add_argument("--zeta", type=float, default=1.0, help="damping ratio (default 1)")
@@ -75,13 +77,13 @@ def main(argv=None):
             while state.sim_time - start < args.duration:
                 body = state[args.body]
                 z, vz = body.position[2], body.linear_velocity[2]
-                force_z = mass * (kp * (args.target - z) - kd * vz - gravity_z)
+                force_z = mass * (kp * (args.height - z) - kd * vz - gravity_z)
                 force_z = max(-args.max_force, min(args.max_force, force_z))
                 # Through the centre of mass (no point); no wait for the ack:
                 # a rejection is reported below.
                 sim.apply_wrench(args.body, (0.0, 0.0, force_z), mode=args.mode, wait=False)
                 sent += 1
-                worst_recent.append((state.sim_time, abs(args.target - z)))
+                worst_recent.append((state.sim_time, abs(args.height - z)))
                 state = sim.wait_state(args.timeout)
         except TimeoutError as exc:
             print("pd_hold_height: %s" % exc, file=sys.stderr)
@@ -103,7 +105,7 @@ def main(argv=None):
     final_z = state[args.body].position[2]
     if not args.quiet:
         print("final z %.5f m (target %.5f m), worst |error| over the last %.2f s: %.5f m, %d wrenches sent"
-              % (final_z, args.target, args.settle, worst, sent))
+              % (final_z, args.height, args.settle, worst, sent))
     return 0 if worst <= args.tolerance else 1
 
 

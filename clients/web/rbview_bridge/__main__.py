@@ -8,13 +8,7 @@ import os
 import signal
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
-
-
-def default_page_dir():
-    build = os.environ.get("RBSIM_BUILD_DIR") or os.path.join(REPO, "build")
-    return os.path.join(build, "clients", "web", "dist")
+from . import locate
 
 
 def parse_args(argv):
@@ -33,7 +27,9 @@ def parse_args(argv):
     parser.add_argument("--read-only", action="store_true", help="watch only: the page's controls are off")
     parser.add_argument("--log", metavar="FILE", default=None,
                         help="replay an LCM log (rbserver --record or lcm-logger) instead of the live bus")
-    parser.add_argument("--page", default=None, help="the built page (default BUILD/clients/web/dist)")
+    parser.add_argument("--page", default=None,
+                        help="the built page (default BUILD/clients/web/dist, BUILD being $RBSIM_BUILD_DIR, "
+                             "else the build tree rbview is started in, else build/ of the source tree)")
     parser.add_argument("--port-file", default=None, help="write the listening port to this file (for tests)")
     args = parser.parse_args(argv)
     try:
@@ -52,13 +48,26 @@ def parse_args(argv):
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     logging.basicConfig(level=logging.INFO, format="rbview: %(levelname)s: %(message)s")
-    from . import server  # after argument checks: imports the lcm-gen types
+    try:
+        build, how = locate.locate()
+    except locate.NotFound as error:
+        print("rbview: %s" % error, file=sys.stderr)
+        return 2
+    # The rbsim package (clients/python) takes the message types from there.
+    os.environ["RBSIM_BUILD_DIR"] = build
+    logging.getLogger("rbview").info("build %s (%s)", build, how)
+    try:
+        from . import server  # after argument checks: imports the lcm-gen types
+    except ImportError as error:
+        # A missing Debian package (python3-websockets, python3-numpy): say which.
+        print("rbview: %s (scripts/install_deps.sh installs what rbview needs)" % error, file=sys.stderr)
+        return 2
 
     if not ipaddress.ip_address(args.bind).is_loopback:
         logging.getLogger("rbview").warning(
             "listening on %s: anyone who can reach this port can watch%s (no authentication)",
             args.bind, "" if args.read_only else " and drive the simulation; consider --read-only")
-    page = args.page or default_page_dir()
+    page = args.page or os.path.join(build, locate.PAGE_SUBDIR)
     try:
         static = server.StaticFiles(page)
     except OSError as error:

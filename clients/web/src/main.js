@@ -127,6 +127,41 @@ $("toggle-follow").onchange = (e) => {
   if (viewer.follow && viewer.selected >= 0) viewer.focusOn(viewer.selected);
 };
 $("toggle-plots").onchange = (e) => $("plots").classList.toggle("hidden", !e.target.checked);
+
+// Framing only moves the camera, so it works read-only and in replay too. Its
+// notes ("frame ...: why not") go once it works; a server's answer stays.
+function clearFrameNote() {
+  if (message.textContent.startsWith("frame ")) say("");
+}
+function frameAll() {
+  if (!viewer.frameAll()) return say("frame all: no body to frame yet");
+  // Following would pull the view straight back to the selected body.
+  if (viewer.follow) {
+    viewer.follow = false;
+    $("toggle-follow").checked = false;
+  }
+  clearFrameNote();
+}
+function frameSelected() {
+  const body = viewer.selected >= 0 && state.world ? state.world.bodies[viewer.selected] : null;
+  if (!body) return say("frame selected: no body selected (click one)");
+  if (!viewer.frameBody(viewer.selected)) return say(`frame selected: ${body.name} is an infinite plane`);
+  clearFrameNote();
+}
+$("btn-frame-all").onclick = frameAll;
+$("btn-frame-selected").onclick = frameSelected;
+// A and F, as in Maya (frame all, frame selected); not while typing into a
+// field (the step count, the real-time factor) or choosing a replay speed.
+const TYPING_TARGETS = "input:not([type=checkbox]):not([type=radio]):not([type=button]):not([type=range]), select, textarea";
+window.addEventListener("keydown", (event) => {
+  if (event.ctrlKey || event.metaKey || event.altKey) return;
+  if (event.target instanceof Element && event.target.matches(TYPING_TARGETS)) return;
+  const key = event.key.toLowerCase();
+  if (key === "a") frameAll();
+  else if (key === "f") frameSelected();
+  else return;
+  event.preventDefault();
+});
 $("btn-play").onclick = () => {
   const playing = state.replay && state.replay.playing;
   act(playing ? "pause replay" : "play replay", { type: "replay", action: playing ? "pause" : "play" });
@@ -225,6 +260,12 @@ let secondStarted = performance.now();
 function animate() {
   requestAnimationFrame(animate);
   const fresh = viewer.updatePoses();
+  // The first view frames the bodies, strays left out (once, at the first
+  // drawn frame, even of a world with none yet: after that the camera is the user's).
+  if (fresh && !state.framedAtStart) {
+    viewer.frameAll(viewer.gatheredBodies());
+    state.framedAtStart = true;
+  }
   viewer.render();
   state.rendersThisSecond++;
   state.renders = (state.renders || 0) + 1;
@@ -272,6 +313,23 @@ window.rbview = {
     const p = viewer.frameDrawn ? viewer.bodyPosition(this.bodyIndex(name)) : null;
     return p ? p.toArray() : null;
   },
+  // The rectangle (CSS pixels) that the box around the bodies `names`, or
+  // around every body but the planes, projects to: {left, top, right, bottom}.
+  screenRect(...names) {
+    const box = viewer.bodiesBox(names.length ? names.map((n) => this.bodyIndex(n)) : viewer.bodies.keys());
+    if (!box) return null;
+    const rect = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+    for (let k = 0; k < 8; k++) {
+      const p = viewer.screenPoint(new THREE.Vector3(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y,
+        k & 4 ? box.max.z : box.min.z));
+      rect.left = Math.min(rect.left, p.x);
+      rect.right = Math.max(rect.right, p.x);
+      rect.top = Math.min(rect.top, p.y);
+      rect.bottom = Math.max(rect.bottom, p.y);
+    }
+    return rect;
+  },
+  camera: () => ({ target: viewer.controls.target.toArray(), position: viewer.camera.position.toArray() }),
   lookAt(target, from) {
     viewer.controls.target.set(...target);
     viewer.camera.position.set(...from);

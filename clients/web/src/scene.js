@@ -10,12 +10,51 @@ import { JointsView } from "./joints.js";
 const IMPOSTOR_SPHERES = 200;
 
 const MAX_CONTACTS = 4096;
+// Framing (frameAll, frameBody): the bodies' bounding box fills this much of
+// the view's height or width, whichever it reaches first, leaving a margin for
+// the panels in the corners.
+const FRAME_FILL = 0.75;
+// The view direction of the first frame, from the target to the camera: from
+// the front right and above, as the camera was placed before framing existed.
+const DEFAULT_VIEW = new THREE.Vector3(6, -9, 4.5);
+// The first view leaves out a body farther than this many times the bodies'
+// median distance from their median centre (see gatheredBodies).
+const STRAY_DISTANCE = 4;
 const NORMAL_LENGTH = 0.15; // m, drawn length of a contact normal
 const SELECTED = new THREE.Color(0xffd23f);
 
 function bodyColor(body, index) {
   if (body.is_static) return new THREE.Color(0x8a8f98);
   return new THREE.Color().setHSL(((index * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
+}
+
+// The grid on a plane, as THREE.GridHelper draws it (`size` m square, cells of
+// size/divisions, the two centre lines in `centreColor`) but lying in x-y and
+// made of one-cell segments. In chromium without a GPU (SwiftShader) the 40 m
+// lines of GridHelper vanished near the camera when it looked along the ground
+// (all of them showed from straight above): it drops a line that reaches
+// behind the camera, and the long lines did under any view from over the grid,
+// which is where the bodies are.
+function cellGrid(size, divisions, centreColor, lineColor) {
+  const step = size / divisions;
+  const half = size / 2;
+  const positions = [];
+  const colors = [];
+  const centre = new THREE.Color(centreColor);
+  const line = new THREE.Color(lineColor);
+  for (let i = 0; i <= divisions; i++) {
+    const across = -half + i * step;
+    const color = 2 * i === divisions ? centre : line;
+    for (let j = 0; j < divisions; j++) {
+      const from = -half + j * step;
+      positions.push(from, across, 0, from + step, across, 0, across, from, 0, across, from + step, 0);
+      for (let k = 0; k < 4; k++) colors.push(color.r, color.g, color.b);
+    }
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+  geometry.setAttribute("color", new THREE.Float32BufferAttribute(colors, 3));
+  return new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: true, toneMapped: false }));
 }
 
 export class Viewer {
@@ -28,9 +67,9 @@ export class Viewer {
     this.scene.background = new THREE.Color(0x1d2230);
     this.camera = new THREE.PerspectiveCamera(50, 1, 0.05, 2000);
     this.camera.up.set(0, 0, 1);
-    this.camera.position.set(6, -9, 5);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.set(0, 0, 0.5);
+    this.camera.position.copy(this.controls.target).add(DEFAULT_VIEW);
     this.controls.update();
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
     const sun = new THREE.DirectionalLight(0xffffff, 1.6);
@@ -39,6 +78,7 @@ export class Viewer {
 
     this.bodies = [];
     this.groups = []; // {mesh: InstancedMesh, pieces: [{body, local}]}
+    this.bodyBounds = []; // per body, the box around its pieces in its own frame; null for planes
     this.planes = []; // {body, object, local}
     this.worldObjects = new THREE.Group();
     this.scene.add(this.worldObjects);
@@ -91,16 +131,22 @@ export class Viewer {
     this.planes = [];
     this.bodies = world.bodies;
     this.revision = world.revision;
+    this.bodyBounds = [];
     const byKey = new Map();
     world.bodies.forEach((body, index) => {
       const plane = planeOf(body);
+      this.bodyBounds.push(null);
       if (plane) {
         this.addPlane(index, plane);
         return;
       }
       for (const piece of bodyPieces(body, world.bodies.length)) {
         if (!byKey.has(piece.key)) byKey.set(piece.key, { geometry: piece.geometry(), pieces: [] });
-        byKey.get(piece.key).pieces.push({ body: index, local: piece.local });
+        const { geometry, pieces } = byKey.get(piece.key);
+        pieces.push({ body: index, local: piece.local });
+        if (!geometry.boundingBox) geometry.computeBoundingBox();
+        const box = geometry.boundingBox.clone().applyMatrix4(piece.local);
+        this.bodyBounds[index] = this.bodyBounds[index] ? this.bodyBounds[index].union(box) : box;
       }
     });
     for (const [key, { geometry, pieces }] of byKey) {
@@ -126,8 +172,7 @@ export class Viewer {
     // A finite patch of the half-space's surface, with a 1 m grid near the origin.
     const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252,
       polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })); // behind its grid lines
-    const grid = new THREE.GridHelper(40, 40, 0x6b7385, 0x4c566a);
-    grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; ours in x-y
+    const grid = cellGrid(40, 40, 0x6b7385, 0x4c566a);
     grid.position.z = 0.001;
     group.add(surface, grid);
     const local = new THREE.Matrix4().compose(point,
@@ -282,6 +327,92 @@ export class Viewer {
     }
     this.controls.update();
     this.renderer.render(this.scene, this.camera);
+  }
+
+  // The world-frame box around the bodies `indices` at their drawn poses
+  // (planes, being infinite, left out), or null when there is none.
+  bodiesBox(indices) {
+    if (!this.frameMatchesWorld()) return null;
+    const box = new THREE.Box3();
+    const pose = new THREE.Matrix4();
+    for (const i of indices) {
+      const local = this.bodyBounds[i];
+      if (local) box.union(local.clone().applyMatrix4(this.poseMatrix(i, pose)));
+    }
+    return box.isEmpty() ? null : box;
+  }
+
+  // Points the camera at the centre of `box` from the direction it looks now,
+  // at the distance where the box's eight corners fill FRAME_FILL of the view.
+  // For a corner at (x, y, z) from the centre in the camera's axes (right, up,
+  // back) and the camera at distance D, it is inside when |x| <= (D - z) tanH
+  // and |y| <= (D - z) tanV (tanV = tan(fov/2), tanH = aspect tanV): so D is
+  // the largest z + |x|/tanH and z + |y|/tanV.
+  fitBox(box) {
+    const centre = box.getCenter(new THREE.Vector3());
+    const back = this.camera.position.clone().sub(this.controls.target);
+    if (back.lengthSq() < 1e-12) back.copy(DEFAULT_VIEW);
+    back.normalize();
+    this.camera.position.copy(centre).add(back);
+    this.camera.lookAt(centre);
+    this.camera.updateMatrixWorld();
+    const right = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 0);
+    const up = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 1);
+    const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov) / 2) * FRAME_FILL;
+    const tanH = tanV * this.camera.aspect;
+    let distance = 0;
+    let farthest = 0;
+    const corner = new THREE.Vector3();
+    for (let k = 0; k < 8; k++) {
+      corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).sub(centre);
+      const z = corner.dot(back);
+      // In front of the near plane too, for a body smaller than it.
+      distance = Math.max(distance, z + Math.abs(corner.dot(right)) / tanH, z + Math.abs(corner.dot(up)) / tanV,
+        z + 2 * this.camera.near);
+      farthest = Math.max(farthest, corner.length());
+    }
+    if (distance + farthest > this.camera.far) {
+      this.camera.far = 2 * (distance + farthest);
+      this.camera.updateProjectionMatrix();
+    }
+    this.controls.target.copy(centre);
+    this.camera.position.copy(centre).addScaledVector(back, distance);
+    this.controls.update();
+  }
+
+  // Frames every body but the planes (or those of `indices`); false when there
+  // is none (or no pose yet).
+  frameAll(indices = this.bodies.keys()) {
+    const box = this.bodiesBox(indices);
+    if (box) this.fitBox(box);
+    return !!box;
+  }
+
+  // The bodies but the planes and the strays: those more than STRAY_DISTANCE
+  // times the median distance from the median of the bodies' centres (per
+  // axis). Framed, one stray (the default world's box dropped from 40 m, or
+  // its roller rolled away a minute ago) would shrink all the others to specks.
+  gatheredBodies() {
+    const indices = [...this.bodies.keys()].filter((i) => this.bodyBounds[i]);
+    if (indices.length < 3 || !this.frameMatchesWorld()) return indices;
+    const median = (values) => {
+      const sorted = Float64Array.from(values).sort();
+      const m = sorted.length >> 1;
+      return sorted.length % 2 ? sorted[m] : (sorted[m - 1] + sorted[m]) / 2;
+    };
+    const centres = indices.map((i) => this.bodyPosition(i));
+    const middle = new THREE.Vector3(median(centres.map((c) => c.x)), median(centres.map((c) => c.y)),
+      median(centres.map((c) => c.z)));
+    const distances = centres.map((c) => c.distanceTo(middle));
+    const reach = STRAY_DISTANCE * median(distances);
+    return indices.filter((_, k) => distances[k] <= reach);
+  }
+
+  // Frames body `index`; false for a plane, or before its pose is known.
+  frameBody(index) {
+    const box = index >= 0 ? this.bodiesBox([index]) : null;
+    if (box) this.fitBox(box);
+    return !!box;
   }
 
   focusOn(index) {

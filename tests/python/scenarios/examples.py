@@ -19,7 +19,7 @@ def pd_hold_height(workdir):
         heights = []
         sim.on_state(lambda s: heights.append((s.sim_time, s["ball"].position[2])))
         proc = subprocess.run(
-            [PYTHON, os.path.join(EXAMPLES, "pd_hold_height.py"), "--body", "ball", "--target", "1.5",
+            [PYTHON, os.path.join(EXAMPLES, "pd_hold_height.py"), "--body", "ball", "--height", "1.5",
              "--duration", "3", "--settle", "1", "--tolerance", "0.01"],
             capture_output=True, text=True, timeout=30, env=subprocess_env())
         assert proc.returncode == 0, "pd_hold_height exited %d\n%s%s" % (
