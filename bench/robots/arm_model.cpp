@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "bench_paths.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
 
@@ -89,7 +90,7 @@ WorldDef armWorldDef() {
   RobotFiles files;
   files.sourceName = "arm7.urdf";
   const Expected<RobotModel> robot =
-      loadRobot(std::string(RBSIM_ROBOTS_DIR) + "/arm7.urdf", placement, files);
+      loadRobot(std::string(rbsim::bench::kRobotsDir) + "/arm7.urdf", placement, files);
   if (!robot.ok()) fail(robot.error().message);
   WorldDef def;
   def.settings.dt = 1e-3;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "arm_bench.h"
+#include "bench_paths.h"
 #include "config/config_loader.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
@@ -75,16 +76,16 @@ int main(int argc, char** argv) {
     }
   }
   if (reps <= 0) return 2;
-  const std::string robots = RBSIM_ROBOTS_DIR;
+  const std::string robots = rbsim::bench::kRobotsDir;
   const std::vector<Robot> list = {
       {"arm7",
        robots + "/arm7.urdf",
-       std::string(RBSIM_WORLDS_DIR) + "/robot_arm.yaml",
+       std::string(rbsim::bench::kWorldsDir) + "/robot_arm.yaml",
        true,
        {{"joint2", 0.6}, {"joint4", 1.2}, {"joint6", 0.8}}},
       {"humanoid30",
        robots + "/humanoid30.urdf",
-       std::string(RBSIM_BENCH_ROBOTS_DIR) + "/humanoid30.yaml",
+       std::string(rbsim::bench::kBenchRobotsDir) + "/humanoid30.yaml",
        false,
        {}},
   };
