@@ -55,6 +55,15 @@ void rotationRows(const JointSidePose& a, const JointSidePose& b, const Quaterni
   }
 }
 
+// The row of the anchors' distance |p_B − p_A| (a rod's equality, a rope's
+// bounds, a spring's line). A rod whose anchors meet has no direction; any
+// will do (the error then is −length and the step pushes them apart along it).
+JointRow rodRow(const Vec3& armA, const Vec3& armB, const Vec3& separation) {
+  const double distance = separation.norm();
+  const Vec3 n = distance > 0.0 ? Vec3(separation / distance) : Vec3::UnitZ();
+  return {-n, -armA.cross(n), n, armB.cross(n)};
+}
+
 }  // namespace
 
 const char* jointTypeName(JointType type) {
@@ -223,6 +232,9 @@ void JointConstraint::errors(const JointSidePose& a, const JointSidePose& b, con
       return;
     }
     case JointType::Distance:
+      // A rope or a spring has no equality row (rowCount() is 0): its
+      // length is held by limitRow() or pulled by the drive alone.
+      if (rowCount() == 0) return;
       out[0] = separation.norm() - length;
       return;
   }
@@ -265,15 +277,9 @@ void JointConstraint::rows(const JointSidePose& a, const JointSidePose& b, const
       }
       return;
     }
-    case JointType::Distance: {
-      const Vec3 separation = pB - pA;
-      const double distance = separation.norm();
-      // A rod whose anchors meet has no direction; any will do (the error
-      // then is −length and the step pushes them apart along it).
-      const Vec3 n = distance > 0.0 ? Vec3(separation / distance) : Vec3::UnitZ();
-      out[0] = {-n, -armA.cross(n), n, armB.cross(n)};
+    case JointType::Distance:
+      if (rowCount() == 1) out[0] = rodRow(armA, armB, pB - pA);  // none for a rope or a spring
       return;
-    }
   }
 }
 
@@ -329,7 +335,8 @@ double JointConstraint::limitUpper() const {
 void JointConstraint::limitRow(const JointSidePose& a, const JointSidePose& b, JointRow& out) const {
   if (axisRow(a, b, out)) return;
   if (def.type == JointType::Distance) {
-    rows(a, b, Basis{}, &out);  // distance's one row, whether or not it is an equality
+    const Vec3 armA = a.rotation * anchorA, armB = b.rotation * anchorB;
+    out = rodRow(armA, armB, (b.position + armB) - (a.position + armA));  // as rows() does
     return;
   }
   // The swing: its axis u × v, or any normal to u where the two coincide
