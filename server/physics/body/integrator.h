@@ -7,9 +7,9 @@
 // keeps its world-frame L exactly (no gyroscopic term to integrate).
 
 #include "physics/body/external_load.h"
-#include "physics/body/integrator_kind.h"
-#include "physics/body/rigid_state.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/integrator_kind.h"
+#include "rbsim/physics/rigid_state.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

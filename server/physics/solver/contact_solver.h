@@ -55,9 +55,9 @@
 #include <vector>
 
 #include "physics/collision/body_contact.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 #include "physics/parallel/task_pool.h"
-#include "physics/solver/contact_solver_settings.h"
+#include "rbsim/physics/contact_settings.h"
 #include "physics/solver/material.h"
 #include "physics/solver/sweep_batches.h"
 #include "physics/solver/velocity_row.h"

@@ -39,7 +39,7 @@
 #include "physics/collision/collider.h"
 #include "physics/joint/joint_constraint.h"
 #include "rbsim/physics/byte_stream.h"
-#include "physics/common/exact_text.h"
+#include "rbsim/physics/exact_text.h"
 
 namespace rbsim {
 
