@@ -1,5 +1,5 @@
 #pragma once
-// ODE integrators over the state (x, q, P, L) of body/rigid_state.h.
+// ODE integrators over the state (x, q, P, L) of rbsim/physics/rigid_state.h.
 //
 // Each is a pure function (state, constants, loads, dt) -> state, so tests
 // can call it without a World. The quaternion is renormalised once at the end

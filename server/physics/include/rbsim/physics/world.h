@@ -37,7 +37,10 @@ struct Wrench {
   enum class Frame {
     World,             // force, couple and point in the world frame (the point where it is now)
     WorldAtBodyPoint,  // force and couple in the world frame, the point in the body frame
-    Body,              // force, couple and point in the body frame: the force turns with the body
+    // Force, couple and point in the body frame (origin at the centre of
+    // mass, axes along the principal axes: BodyView::rotation): the force
+    // turns with the body. The server's shape-frame wrenches are converted.
+    Body,
   };
   Vec3 force = Vec3::Zero();   // N
   Vec3 torque = Vec3::Zero();  // N·m
