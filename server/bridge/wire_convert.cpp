@@ -378,7 +378,7 @@ namespace {
 
 Expected<WrenchFrame> wrenchFrameFrom(int8_t value, const char* field) {
   if (value == rbsim::wrench_t::FRAME_WORLD) return WrenchFrame::World;
-  if (value == rbsim::wrench_t::FRAME_BODY) return WrenchFrame::Body;
+  if (value == rbsim::wrench_t::FRAME_BODY) return WrenchFrame::ShapeFrame;
   return Error{std::string("unknown ") + field + " " + std::to_string(value)};
 }
 
@@ -512,7 +512,7 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
   // frame, the frame body points are given in, once the body is known below.
   const bool atCenterOfMass = message.point_frame == rbsim::wrench_t::POINT_FRAME_CENTER_OF_MASS;
   if (atCenterOfMass) {
-    request.pointFrame = WrenchFrame::Body;
+    request.pointFrame = WrenchFrame::ShapeFrame;
   } else {
     const auto pointFrame = wrenchFrameFrom(message.point_frame, "point_frame");
     if (!pointFrame) return pointFrame.error();

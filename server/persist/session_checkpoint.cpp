@@ -41,8 +41,8 @@ WrenchRequest readRequest(ByteReader& in) {
   const uint8_t mode = in.u8("wrench mode");
   r.durationSteps = in.i64("wrench duration");
   r.firstStep = in.i64("wrench first step");
-  if (frame > static_cast<uint8_t>(WrenchFrame::Body) ||
-      pointFrame > static_cast<uint8_t>(WrenchFrame::Body) ||
+  if (frame > static_cast<uint8_t>(WrenchFrame::ShapeFrame) ||
+      pointFrame > static_cast<uint8_t>(WrenchFrame::ShapeFrame) ||
       mode > static_cast<uint8_t>(WrenchMode::ClearAllClients) || r.durationSteps < 1 ||
       !r.force.allFinite() || !r.torque.allFinite() || !r.point.allFinite())
     in.fail("a wrench of client '" + r.client + "' has an invalid frame, mode, duration or value");

@@ -1,5 +1,5 @@
 #pragma once
-// A whole session as a checkpoint payload: the world (world_snapshot.h),
+// A whole session as a checkpoint payload: the world (World::encodeSnapshot),
 // the wrenches pending and acting with all their parameters (an acting
 // wrench whose point was given in the world holds the body point it was
 // fixed to when it first acted), the joint commands scheduled for later

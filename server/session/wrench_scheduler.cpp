@@ -80,7 +80,7 @@ void WrenchScheduler::applyForStep(World& world, int64_t step) {
     const BodyDescription& description = body.description();
     if (active.pointFrame == WrenchFrame::World) {
       active.point = description.bodyToShapePoint(body.worldToBody(active.point));
-      active.pointFrame = WrenchFrame::Body;
+      active.pointFrame = WrenchFrame::ShapeFrame;
     }
     Wrench wrench;
     wrench.point = description.shapeToBodyPoint(active.point);

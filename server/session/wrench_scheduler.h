@@ -24,9 +24,11 @@
 
 namespace rbsim {
 
-// Body frame here is the frame the body was given in (its shape frame, as
-// for a URDF link), not the principal-axes frame of the physics.
-enum class WrenchFrame { World, Body };
+// The frame of a wrench's vectors or point: the world, or the frame the body
+// was given in (its shape frame, as for a URDF link; the wire's FRAME_BODY).
+// Not the physics' body frame (Wrench::Frame::Body, centre of mass and
+// principal axes): applyForStep takes shape-frame values into it.
+enum class WrenchFrame { World, ShapeFrame };
 enum class WrenchMode { OneStep, Duration, Persistent, Clear, ClearAllClients };
 
 inline bool isClear(WrenchMode mode) {

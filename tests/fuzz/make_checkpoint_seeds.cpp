@@ -76,10 +76,10 @@ int main(int argc, char** argv) {
   busy.wrenches().add(push("pill", WrenchMode::OneStep, 40));
   WrenchRequest atBodyPoint = push("crate", WrenchMode::Persistent, 1);
   atBodyPoint.client = "seed-2";
-  atBodyPoint.pointFrame = WrenchFrame::Body;
+  atBodyPoint.pointFrame = WrenchFrame::ShapeFrame;
   busy.wrenches().add(atBodyPoint);
   WrenchRequest bodyForce = push("m", WrenchMode::Duration, 30);
-  bodyForce.frame = WrenchFrame::Body;  // its world point is still pending
+  bodyForce.frame = WrenchFrame::ShapeFrame;  // its world point is still pending
   busy.wrenches().add(bodyForce);
   for (int i = 0; i < 20; ++i) busy.step();
   busy.pause();

@@ -1,10 +1,13 @@
-"""Fails when an include inside the physics library points up its layers.
+"""Fails when an include inside the physics library points up its layers,
+or when a public header includes an internal one.
 
 The library's directories form one order, lowest first; a file may include
 headers of its own directory and of directories below it, never above, and
 nothing outside the library (meshes come in as data; files are read
-elsewhere). Every violation is printed as file:line with the include, and
-the exit code is 1.
+elsewhere). The public headers (include/rbsim/physics/) are the API its
+users compile against: they include public headers only, so that nothing
+internal reaches a user through them. Every violation is printed as
+file:line with the include, and the exit code is 1.
 
 Usage: check_physics_layers.py PHYSICS_DIR   (the server/physics directory)
 """
@@ -21,13 +24,27 @@ LAYERS = ["common", "parallel", "math", "geometry", "mass", "body", "collision",
 # layers of what they declare.
 PUBLIC_HEADERS = {
     "ids.h": "common",
+    "expected.h": "common",
+    "exact_text.h": "common",
+    "thread_settings.h": "parallel",
+    "math_types.h": "math",
+    "quaternion.h": "math",
+    "transform.h": "math",
     "byte_stream.h": "math",
+    "triangle_mesh.h": "geometry",
     "shapes.h": "geometry",
+    "mass_properties.h": "mass",
+    "rigid_state.h": "body",
+    "freeze_reason.h": "body",
+    "integrator_kind.h": "body",
+    "material.h": "body",
     "types.h": "body",
     "body_definition.h": "body",
     "body_view.h": "body",
+    "contact_settings.h": "collision",
     "contacts.h": "solver",
     "joint_definition.h": "joint",
+    "numerical_guard.h": "world",
     "world_settings.h": "world",
     "world.h": "world",
     "rotation_drift.h": "world",
@@ -42,7 +59,8 @@ def violations(physics_dir):
     files = sorted(p for p in physics_dir.rglob("*") if p.suffix in (".h", ".cpp"))
     for path in files:
         relative = path.relative_to(physics_dir)
-        if relative.parts[:3] == PUBLIC_DIR:
+        public = relative.parts[:3] == PUBLIC_DIR
+        if public:
             layer = PUBLIC_HEADERS.get(relative.name)
             if layer is None:
                 found.append(f"{relative}: a public header in no layer (add it to PUBLIC_HEADERS)")
@@ -59,6 +77,9 @@ def violations(physics_dir):
                 continue
             target = match.group(1).split("/")
             where = f"{relative}:{number}: {line.strip()}"
+            if public and target[:2] != ["rbsim", "physics"]:
+                found.append(f"{where}: a public header includes public headers (rbsim/physics/) only")
+                continue
             if target[:2] == ["rbsim", "physics"] and len(target) == 3:
                 if target[2] not in PUBLIC_HEADERS:
                     found.append(f"{where}: rbsim/physics/{target[2]} is no public header")

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "physics/math/quaternion.h"
+#include "rbsim/physics/quaternion.h"
 
 namespace rbsim::scenes {
 

@@ -1,8 +1,8 @@
 #pragma once
 // For tests only: mass properties of a closed mesh estimated by sampling.
 
-#include "physics/geometry/triangle_mesh.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/triangle_mesh.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 

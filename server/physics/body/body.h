@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
-#include "physics/body/freeze_reason.h"
-#include "physics/body/rigid_state.h"
+#include "rbsim/physics/freeze_reason.h"
+#include "rbsim/physics/rigid_state.h"
 #include "rbsim/physics/body_view.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

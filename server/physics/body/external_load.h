@@ -13,7 +13,7 @@
 // Neither depends on the position, only on R; RK4 re-evaluates both at each
 // of its stages, where the body has turned.
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

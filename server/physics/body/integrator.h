@@ -1,5 +1,5 @@
 #pragma once
-// ODE integrators over the state (x, q, P, L) of body/rigid_state.h.
+// ODE integrators over the state (x, q, P, L) of rbsim/physics/rigid_state.h.
 //
 // Each is a pure function (state, constants, loads, dt) -> state, so tests
 // can call it without a World. The quaternion is renormalised once at the end
@@ -7,9 +7,9 @@
 // keeps its world-frame L exactly (no gyroscopic term to integrate).
 
 #include "physics/body/external_load.h"
-#include "physics/body/integrator_kind.h"
-#include "physics/body/rigid_state.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/integrator_kind.h"
+#include "rbsim/physics/rigid_state.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -1,4 +1,4 @@
-#include "physics/body/integrator_kind.h"
+#include "rbsim/physics/integrator_kind.h"
 
 namespace rbsim {
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <limits>
 
-#include "physics/math/transform.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/transform.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -6,7 +6,7 @@
 #include <array>
 
 #include "physics/collision/convex_hull.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -23,7 +23,7 @@
 #include "physics/body/body.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/dynamic_aabb_tree.h"
-#include "physics/math/transform.h"
+#include "rbsim/physics/transform.h"
 
 namespace rbsim {
 

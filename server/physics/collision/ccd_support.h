@@ -7,7 +7,7 @@
 // obj1, and the conversion is tested in test_signed_distance.cpp).
 
 #include "physics/collision/collider.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

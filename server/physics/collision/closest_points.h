@@ -5,7 +5,7 @@
 
 #include <span>
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

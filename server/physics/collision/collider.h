@@ -9,9 +9,9 @@
 
 #include "physics/collision/aabb.h"
 #include "physics/collision/convex_geometry.h"
-#include "physics/common/expected.h"
+#include "rbsim/physics/expected.h"
 #include "rbsim/physics/shapes.h"
-#include "physics/math/transform.h"
+#include "rbsim/physics/transform.h"
 
 namespace rbsim {
 

@@ -8,14 +8,9 @@
 
 #include "physics/collision/collider.h"
 #include "physics/collision/contact_manifold.h"
+#include "rbsim/physics/contact_settings.h"
 
 namespace rbsim {
-
-struct ContactSettings {
-  // Points closer than this (m) count as contacts even before they touch,
-  // so that resting contact does not flicker on and off.
-  double margin = 0.005;
-};
 
 // Returns false (and leaves out.pointCount = 0) when the pieces are farther
 // apart than the margin. The normal points from a to b. Swapping a and b

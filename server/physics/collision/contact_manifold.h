@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 
@@ -29,14 +29,5 @@ struct ContactManifold {
     if (pointCount < 4) points[static_cast<std::size_t>(pointCount++)] = point;
   }
 };
-
-// Contact classification by the relative normal velocity at a point
-// (v_rel = n · (vB(p) − vA(p)), negative when closing).
-enum class ContactKind { Colliding, Resting, Separating };
-inline ContactKind classifyContact(double relativeNormalVelocity, double epsilon) {
-  if (relativeNormalVelocity < -epsilon) return ContactKind::Colliding;
-  if (relativeNormalVelocity > epsilon) return ContactKind::Separating;
-  return ContactKind::Resting;
-}
 
 }  // namespace rbsim

@@ -13,7 +13,7 @@
 #include "physics/collision/contact_generation.h"
 #include "physics/collision/convex_hull.h"
 #include "rbsim/physics/shapes.h"
-#include "physics/math/transform.h"
+#include "rbsim/physics/transform.h"
 
 namespace rbsim {
 

@@ -9,8 +9,8 @@
 #include "physics/collision/aabb.h"
 #include "physics/collision/convex_hull.h"
 #include "rbsim/physics/shapes.h"
-#include "physics/math/transform.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/transform.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

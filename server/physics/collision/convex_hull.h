@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "physics/common/expected.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

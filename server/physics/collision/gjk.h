@@ -9,7 +9,7 @@
 // equations, and so stays reliable for nearly degenerate simplices.
 
 #include "physics/collision/collider.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

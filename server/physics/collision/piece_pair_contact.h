@@ -7,7 +7,7 @@
 #include "physics/collision/collider.h"
 #include "physics/collision/contact_generation.h"
 #include "physics/collision/contact_manifold.h"
-#include "physics/math/transform.h"
+#include "rbsim/physics/transform.h"
 
 namespace rbsim {
 

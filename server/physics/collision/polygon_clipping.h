@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "physics/collision/contact_manifold.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

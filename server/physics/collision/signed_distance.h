@@ -8,7 +8,7 @@
 //    ccd_support.cpp, the only file that includes <ccd/ccd.h>), negative.
 
 #include "physics/collision/collider.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

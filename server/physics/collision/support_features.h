@@ -11,7 +11,7 @@
 
 #include "physics/collision/collider.h"
 #include "rbsim/physics/shapes.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -33,12 +33,12 @@
 
 #include "physics/body/external_load.h"
 #include "physics/body/body.h"
-#include "physics/body/integrator_kind.h"
-#include "physics/body/rigid_state.h"
+#include "rbsim/physics/integrator_kind.h"
+#include "rbsim/physics/rigid_state.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/signed_distance.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/transform.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/transform.h"
 
 namespace rbsim {
 

@@ -1,4 +1,4 @@
-#include "physics/geometry/triangle_mesh.h"
+#include "rbsim/physics/triangle_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,9 +20,9 @@
 #include <array>
 #include <string>
 
-#include "physics/common/expected.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/joint_definition.h"
 
 namespace rbsim {

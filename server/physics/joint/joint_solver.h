@@ -29,8 +29,8 @@
 
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/row_system.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -1,7 +1,7 @@
 // Mass properties of a union of solids (a compound body), from its parts'.
 #include <cassert>
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 

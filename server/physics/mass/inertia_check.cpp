@@ -1,8 +1,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/common/exact_text.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/exact_text.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <limits>
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 namespace {

@@ -1,6 +1,6 @@
 #include <numbers>
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 namespace {

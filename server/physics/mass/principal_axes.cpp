@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 

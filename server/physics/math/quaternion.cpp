@@ -1,4 +1,4 @@
-#include "physics/math/quaternion.h"
+#include "rbsim/physics/quaternion.h"
 
 #include <algorithm>
 #include <cmath>

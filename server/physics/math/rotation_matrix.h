@@ -1,7 +1,7 @@
 #pragma once
 // Rotation-matrix utilities.
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -22,6 +22,8 @@
 #include <thread>
 #include <vector>
 
+#include "rbsim/physics/thread_settings.h"
+
 namespace rbsim {
 
 class TaskPool {
@@ -100,9 +102,7 @@ void forEachChunk(TaskPool& pool, std::size_t count, std::size_t chunkSize, Body
   });
 }
 
-// The number of threads `threads` asks for: itself when positive, else the
-// cores this process may run on (at least 1).
-int resolveThreadCount(int threads);
+// resolveThreadCount: rbsim/physics/thread_settings.h.
 
 // The pool of an object that may be copied (a world is, for checkpoints):
 // made when first asked for, remade when the thread count changes, and

@@ -55,9 +55,9 @@
 #include <vector>
 
 #include "physics/collision/body_contact.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 #include "physics/parallel/task_pool.h"
-#include "physics/solver/contact_solver_settings.h"
+#include "rbsim/physics/contact_settings.h"
 #include "physics/solver/material.h"
 #include "physics/solver/sweep_batches.h"
 #include "physics/solver/velocity_row.h"
@@ -138,7 +138,7 @@ class ContactSolver {
   };
   // Which body of a contact the shock sweep holds still (the lower one).
   // Not to be confused with the numerical guard's frozen bodies, which are
-  // out of the simulation altogether (body/freeze_reason.h).
+  // out of the simulation altogether (rbsim/physics/freeze_reason.h).
   enum class ShockHold { None, A, B };
   // Which rows of the shock sweep feel body A and body B.
   static bool movesA(ShockHold hold) { return hold != ShockHold::A; }

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/body/material.h"
+#include "rbsim/physics/material.h"
 
 namespace rbsim {
 

@@ -11,7 +11,7 @@
 // impulse formula in row form); a pure rotation row (torsion, tilt)
 // has linear = 0 and armA = armB = the axis.
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -1,9 +1,13 @@
 #pragma once
-// Collision detection of a world's current state: the world's bodies and
-// settings handed to the collision layer, which does not know World.
+// Collision detection of a world's bodies as they are now: the bodies and
+// the world's settings handed to the collision layer, which knows neither
+// World nor WorldData.
 
+#include <span>
+
+#include "physics/body/body.h"
 #include "physics/collision/collision_detector.h"
-#include "rbsim/physics/world.h"
+#include "physics/parallel/task_pool.h"
 #include "rbsim/physics/world_settings.h"
 
 namespace rbsim {
@@ -14,20 +18,20 @@ inline DetectionStep detectionStep(const WorldSettings& settings) {
   return {settings.dt, settings.contact.model == ContactModel::Impulse};
 }
 
-// On the calling thread.
-inline void detectContacts(CollisionDetector& detector, const World& world) {
+// On the calling thread, without bounds on the bodies' speeds.
+inline void detectContacts(CollisionDetector& detector, std::span<const Body> bodies, const WorldSettings& settings) {
   TaskPool caller(1);
-  detector.detect(world.internalBodies(), detectionStep(world.settings()), caller);
+  detector.detect(bodies, detectionStep(settings), caller);
 }
 
 // With the world's bounds on its bodies' speeds (negative: unknown), on
 // the pool's threads.
-inline void detectContacts(CollisionDetector& detector, const World& world, double maxSquaredSpeed,
-                           double maxSquaredSpin, TaskPool& pool) {
-  DetectionStep step = detectionStep(world.settings());
+inline void detectContacts(CollisionDetector& detector, std::span<const Body> bodies, const WorldSettings& settings,
+                           double maxSquaredSpeed, double maxSquaredSpin, TaskPool& pool) {
+  DetectionStep step = detectionStep(settings);
   step.maxSquaredSpeed = maxSquaredSpeed;
   step.maxSquaredSpin = maxSquaredSpin;
-  detector.detect(world.internalBodies(), step, pool);
+  detector.detect(bodies, step, pool);
 }
 
 }  // namespace rbsim

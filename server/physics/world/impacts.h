@@ -21,10 +21,10 @@
 
 #include "physics/body/external_load.h"
 #include "physics/body/body.h"
-#include "physics/body/rigid_state.h"
+#include "rbsim/physics/rigid_state.h"
 #include "physics/collision/body_contact.h"
 #include "physics/collision/contact_generation.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/world_settings.h"
 
 namespace rbsim {

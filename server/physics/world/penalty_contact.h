@@ -12,7 +12,7 @@
 // bodies it turns by |ω| dt in a step, which changes d by O((|ω| dt)² d),
 // below the error of keeping the detected features over the step.
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/world_settings.h"
 
 namespace rbsim {

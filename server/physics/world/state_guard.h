@@ -1,15 +1,6 @@
 #pragma once
-// The numerical guard. After every step the world checks each awake dynamic
-// body once: a state that holds a NaN or an infinity, or moves faster than
-// the world's StateLimits, is never integrated again. Such a body is frozen:
-// put back at its pose from before the bad step (the last pose that passed
-// this check), with zero momenta, and excluded from integration and from
-// collision detection, so the rest of the world steps on exactly as if the
-// body were not there (as long as nothing touched it in the bad step).
-//
-// A frozen body stays frozen: only RESET (a fresh copy of the initial world)
-// or removing it brings the slot back. Thawing it in place would put back
-// into the world whatever made it blow up.
+// The numerical guard's check (rbsim/physics/numerical_guard.h says what
+// it does to a body that fails it).
 //
 // Cost: bodies that fly free are cleared inside the integration loop on the
 // momenta the integrator just returned (speedBounds: two squared norms);
@@ -18,41 +9,13 @@
 // under 1 ns of ~113 ns a body-step with semi-implicit Euler and ~4 ns of
 // ~212 with RK4.
 
-#include <cstdint>
-#include <string>
-#include <vector>
+#include <cmath>
 
-#include "physics/body/freeze_reason.h"
-#include "physics/body/rigid_state.h"
-#include "physics/math/types.h"
-#include "rbsim/physics/ids.h"
+#include "rbsim/physics/rigid_state.h"
+#include "rbsim/physics/math_types.h"
+#include "rbsim/physics/numerical_guard.h"
 
 namespace rbsim {
-
-// The bounds a healthy body stays within (config: the `limits:` section).
-// Generous on purpose: they catch runaway states, not fast bodies. At the
-// default dt of 1 ms, 1e4 m/s is 10 m a step and 1e4 rad/s 1.6 turns a step,
-// beyond anything the integrators or the contact solver resolve.
-struct StateLimits {
-  double maxLinearSpeed = 1e4;   // m/s, of the centre of mass
-  double maxAngularSpeed = 1e4;  // rad/s
-};
-
-// What the check found for one body.
-struct StateVerdict {
-  FreezeReason reason = FreezeReason::None;
-  double measured = 0.0;  // the offending speed (m/s or rad/s); 0 for non-finite states
-  double limit = 0.0;     // the limit it broke
-};
-
-// A body frozen during a step, for the caller to report.
-struct FreezeEvent {
-  BodyId id;
-  std::string name;
-  int64_t step = 0;  // the step that went bad (numbered as on the wire)
-  StateVerdict verdict;
-  std::vector<std::string> droppedJoints;  // the joints it had, removed with the freeze
-};
 
 // The guard's test on the stepping path: true when the state is healthy.
 // NaN or ±inf in P or L always reaches v = P/M or ω = I⁻¹L (an infinity times
@@ -113,8 +76,5 @@ inline StateVerdict judgeState(const RigidState& state, const Vec3& linearVeloci
     return {FreezeReason::AngularSpeed, std::sqrt(angular), limits.maxAngularSpeed};
   return {};
 }
-
-// One line for a log: which body, at which step, why, and what happens to it.
-std::string describeFreeze(const FreezeEvent& event);
 
 }  // namespace rbsim

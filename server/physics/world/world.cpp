@@ -1,5 +1,7 @@
+// World, the handle: its public functions, which check their arguments
+// and forward to the stages (world/step_stages.h), and the bookkeeping of
+// bodies (creation, removal, ids, changes between steps).
 #include "rbsim/physics/world.h"
-#include "physics/world/for_each_body.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,8 +17,11 @@
 #include "physics/collision/collision_detector.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
+#include "rbsim/physics/byte_stream.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/world/impacts.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
 
 namespace rbsim {
 
@@ -115,16 +120,33 @@ MassProperties scaled(const MassProperties& unit, double density) {
 
 }  // namespace
 
-World::World(const WorldSettings& settings)
-    : m_settings(settings),
-      m_detector(std::make_unique<CollisionDetector>(settings.contact.detection)),
-      m_tag(newWorldTag()),
-      m_solver(std::make_unique<ContactSolver>()),
-      m_jointSolver(std::make_unique<JointSolver>()) {}
+WorldData::WorldData(const WorldSettings& worldSettings)
+    : settings(worldSettings),
+      detector(std::make_unique<CollisionDetector>(worldSettings.contact.detection)),
+      tag(newWorldTag()),
+      solver(std::make_unique<ContactSolver>()),
+      jointSolver(std::make_unique<JointSolver>()) {}
 
-World::World(const World& other) = default;
+WorldData::WorldData(const WorldData& other) = default;
+WorldData& WorldData::operator=(const WorldData& other) = default;
+WorldData::~WorldData() = default;
+
+World::World(const WorldSettings& settings) : m_data(std::make_unique<WorldData>(settings)) {}
+
+// As the members' own copies did when they were World's: a copy is a new
+// world with everything copied (the task pool aside); an assignment copies
+// into the data the world has (keeping its pool).
+World::World(const World& other)
+    : m_data(other.m_data ? std::make_unique<WorldData>(*other.m_data) : nullptr) {}
 World::World(World&& other) noexcept = default;
-World& World::operator=(const World& other) = default;
+World& World::operator=(const World& other) {
+  if (this == &other) return *this;
+  if (m_data && other.m_data)
+    *m_data = *other.m_data;
+  else
+    m_data = other.m_data ? std::make_unique<WorldData>(*other.m_data) : nullptr;
+  return *this;
+}
 World& World::operator=(World&& other) noexcept = default;
 World::~World() = default;
 
@@ -177,8 +199,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
       return Error{where + "the centre of mass must be finite"};
     if (const auto problem = inertiaTensorProblem(*def.inertia)) return Error{where + *problem};
   }
-  const double linearDamping = def.linearDamping.value_or(m_settings.linearDamping);
-  const double angularDamping = def.angularDamping.value_or(m_settings.angularDamping);
+  const double linearDamping = def.linearDamping.value_or(m_data->settings.linearDamping);
+  const double angularDamping = def.angularDamping.value_or(m_data->settings.angularDamping);
   if (!(std::isfinite(linearDamping) && linearDamping >= 0.0) ||
       !(std::isfinite(angularDamping) && angularDamping >= 0.0))
     return Error{where + "damping must be finite and not negative"};
@@ -190,7 +212,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   description->name = def.name;
   description->shape = def.shape;
   description->isStatic = def.isStatic;
-  description->material = resolveMaterial(def.material, m_settings.contact.defaultMaterial);
+  description->material = resolveMaterial(def.material, m_data->settings.contact.defaultMaterial);
   description->continuousCollision = def.continuousCollision;
   description->collides = def.collides;
   if (description->material.restitution > 1.0 || description->material.restitution < 0.0 ||
@@ -265,56 +287,56 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   if (!def.isStatic) body.setVelocities(def.linearVelocity, def.angularVelocity);
 
   int32_t slot;
-  if (!m_freeSlots.empty()) {
-    const auto lowest = std::min_element(m_freeSlots.begin(), m_freeSlots.end());
+  if (!m_data->freeSlots.empty()) {
+    const auto lowest = std::min_element(m_data->freeSlots.begin(), m_data->freeSlots.end());
     slot = *lowest;
-    m_freeSlots.erase(lowest);
+    m_data->freeSlots.erase(lowest);
   } else {
-    slot = static_cast<int32_t>(m_slots.size());
-    m_slots.push_back({});
+    slot = static_cast<int32_t>(m_data->slots.size());
+    m_data->slots.push_back({});
   }
-  m_slots[static_cast<size_t>(slot)].denseIndex = static_cast<int32_t>(m_bodies.size());
-  const BodyId id{slot + 1, m_slots[static_cast<size_t>(slot)].generation, m_tag};
-  body.setSerial(++m_lastSerial);
-  m_idByName.emplace(def.name, id);
-  if (body.description().collider) ++m_collidingBodies;
-  if (def.continuousCollision && !def.isStatic) ++m_continuousBodies;
-  m_bodies.push_back(std::move(body));
-  m_loads.emplace_back();
-  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;  // its velocities are the caller's
-  m_denseIds.push_back(id);
+  m_data->slots[static_cast<size_t>(slot)].denseIndex = static_cast<int32_t>(m_data->bodies.size());
+  const BodyId id{slot + 1, m_data->slots[static_cast<size_t>(slot)].generation, m_data->tag};
+  body.setSerial(++m_data->lastSerial);
+  m_data->idByName.emplace(def.name, id);
+  if (body.description().collider) ++m_data->collidingBodies;
+  if (def.continuousCollision && !def.isStatic) ++m_data->continuousBodies;
+  m_data->bodies.push_back(std::move(body));
+  m_data->loads.emplace_back();
+  m_data->maxSquaredSpeed = m_data->maxSquaredSpin = -1.0;  // its velocities are the caller's
+  m_data->denseIds.push_back(id);
   return id;
 }
 
 Expected<bool> World::removeBody(BodyId id) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot remove: " + why};
-  removeJointsOf(id);
-  Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot remove: " + why};
+  removeJointsOf(*m_data, id);
+  IdSlot& slot = m_data->slots[static_cast<size_t>(id.index - 1)];
   const auto dense = static_cast<size_t>(slot.denseIndex);
-  m_idByName.erase(m_bodies[dense].name());
-  if (m_bodies[dense].description().collider) --m_collidingBodies;
-  if (m_bodies[dense].description().continuousCollision && !m_bodies[dense].isStatic())
-    --m_continuousBodies;
-  if (m_bodies[dense].isFrozen()) --m_frozenBodies;
-  m_bodies.erase(m_bodies.begin() + static_cast<std::ptrdiff_t>(dense));
-  m_loads.erase(m_loads.begin() + static_cast<std::ptrdiff_t>(dense));
-  m_denseIds.erase(m_denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
-  for (size_t i = dense; i < m_denseIds.size(); ++i)
-    m_slots[static_cast<size_t>(m_denseIds[i].index - 1)].denseIndex = static_cast<int32_t>(i);
+  m_data->idByName.erase(m_data->bodies[dense].name());
+  if (m_data->bodies[dense].description().collider) --m_data->collidingBodies;
+  if (m_data->bodies[dense].description().continuousCollision && !m_data->bodies[dense].isStatic())
+    --m_data->continuousBodies;
+  if (m_data->bodies[dense].isFrozen()) --m_data->frozenBodies;
+  m_data->bodies.erase(m_data->bodies.begin() + static_cast<std::ptrdiff_t>(dense));
+  m_data->loads.erase(m_data->loads.begin() + static_cast<std::ptrdiff_t>(dense));
+  m_data->denseIds.erase(m_data->denseIds.begin() + static_cast<std::ptrdiff_t>(dense));
+  for (size_t i = dense; i < m_data->denseIds.size(); ++i)
+    m_data->slots[static_cast<size_t>(m_data->denseIds[i].index - 1)].denseIndex = static_cast<int32_t>(i);
   slot.denseIndex = -1;
   ++slot.generation;
-  m_freeSlots.push_back(id.index - 1);
+  m_data->freeSlots.push_back(id.index - 1);
   return true;
 }
 
-BodyId World::findBody(std::string_view name) const {
-  const auto found = m_idByName.find(std::string(name));
-  return found == m_idByName.end() ? BodyId{} : found->second;
+BodyId findBodyByName(const WorldData& world, std::string_view name) {
+  const auto found = world.idByName.find(std::string(name));
+  return found == world.idByName.end() ? BodyId{} : found->second;
 }
 
-bool World::isValid(BodyId id) const { return invalidIdReason(id).empty(); }
+BodyId World::findBody(std::string_view name) const { return findBodyByName(*m_data, name); }
 
-std::string World::invalidIdReason(BodyId id) const {
+std::string invalidIdReason(const WorldData& world, BodyId id) {
   // The message is made only for an id that fails: a valid one (every body
   // lookup of every step) costs no string.
   const auto named = [&] {
@@ -322,42 +344,36 @@ std::string World::invalidIdReason(BodyId id) const {
            ", world " + std::to_string(id.world) + ")";
   };
   if (id.isNull()) return "a null body id";
-  if (id.world != m_tag) return named() + " is of another world";
-  if (id.index < 1 || static_cast<size_t>(id.index) > m_slots.size()) return named() + " names no slot of this world";
-  const Slot& slot = m_slots[static_cast<size_t>(id.index - 1)];
+  if (id.world != world.tag) return named() + " is of another world";
+  if (id.index < 1 || static_cast<size_t>(id.index) > world.slots.size()) return named() + " names no slot of this world";
+  const IdSlot& slot = world.slots[static_cast<size_t>(id.index - 1)];
   if (slot.denseIndex < 0 || slot.generation != id.generation) return named() + " is stale: its body was removed";
   return {};
 }
 
+bool World::isValid(BodyId id) const { return invalidIdReason(*m_data, id).empty(); }
+
 BodyView World::body(BodyId id) const {
-  if (const std::string why = invalidIdReason(id); !why.empty()) throw std::invalid_argument(why);
-  return bodyAt(m_slots[static_cast<size_t>(id.index - 1)].denseIndex);
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) throw std::invalid_argument(why);
+  return bodyAt(m_data->slots[static_cast<size_t>(id.index - 1)].denseIndex);
 }
 
 BodyView World::bodyAt(int denseIndex) const {
   const auto i = static_cast<size_t>(denseIndex);
-  return BodyView(m_bodies[i], m_loads[i].active);
+  return BodyView(m_data->bodies[i], m_data->loads[i].active);
 }
 
-FlyingBody World::flying(std::size_t denseIndex) const {
-  const ExternalLoad& load = m_loads[denseIndex];
-  return {m_bodies[denseIndex], load.active ? &load : nullptr};
+FlyingBody flying(const WorldData& world, std::size_t denseIndex) {
+  const ExternalLoad& load = world.loads[denseIndex];
+  return {world.bodies[denseIndex], load.active ? &load : nullptr};
 }
-
-std::span<const Body> World::internalBodies() const { return m_bodies; }
-
-std::size_t World::denseIndexOf(BodyId id) const {
-  return static_cast<size_t>(m_slots[static_cast<size_t>(id.index - 1)].denseIndex);
-}
-
-Body& World::bodyRef(BodyId id) { return m_bodies[denseIndexOf(id)]; }
 
 Expected<bool> World::applyWrench(BodyId id, const Wrench& wrench) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot push: " + why};
-  const Body& target = bodyRef(id);
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot push: " + why};
+  const Body& target = bodyRef(*m_data, id);
   if (target.isStatic()) return true;  // nothing moves it
-  ExternalLoad& load = m_loads[denseIndexOf(id)];
-  m_loadsSeen = true;
+  ExternalLoad& load = m_data->loads[denseIndexOf(*m_data, id)];
+  m_data->loadsSeen = true;
   switch (wrench.frame) {
     case Wrench::Frame::World:
       load.addWorldWrench(wrench.force, wrench.torque, target.worldToBody(wrench.point));
@@ -373,27 +389,27 @@ Expected<bool> World::applyWrench(BodyId id, const Wrench& wrench) {
 }
 
 Expected<bool> World::setBodyState(BodyId id, const RigidState& state) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot set the state: " + why};
-  Body& target = bodyRef(id);
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot set the state: " + why};
+  Body& target = bodyRef(*m_data, id);
   if (!state.position.allFinite() || !state.orientation.isFinite() || state.orientation.norm() < 1e-9 ||
       !state.linearMomentum.allFinite() || !state.angularMomentum.allFinite())
     return Error{"body '" + target.name() + "': a state must be finite, its quaternion non-zero"};
   target.setState(state);
   target.wake();
-  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;
+  m_data->maxSquaredSpeed = m_data->maxSquaredSpin = -1.0;
   return true;
 }
 
 Expected<bool> World::setBodyVelocities(BodyId id, const Vec3& linearVelocity, const Vec3& angularVelocity) {
-  if (const std::string why = invalidIdReason(id); !why.empty())
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty())
     return Error{"cannot set the velocities: " + why};
-  Body& target = bodyRef(id);
+  Body& target = bodyRef(*m_data, id);
   if (!linearVelocity.allFinite() || !angularVelocity.allFinite())
     return Error{"body '" + target.name() + "': velocities must be finite"};
   if (target.isStatic() || target.isFrozen()) return true;  // held still either way
   target.setVelocities(linearVelocity, angularVelocity);
   target.wake();
-  m_maxSquaredSpeed = m_maxSquaredSpin = -1.0;
+  m_data->maxSquaredSpeed = m_data->maxSquaredSpin = -1.0;
   return true;
 }
 
@@ -401,173 +417,50 @@ Expected<bool> World::setThreads(int threads) {
   if (threads < 0 || threads > kMaxThreads)
     return Error{"threads must be 0 (one per core) to " + std::to_string(kMaxThreads) + ", not " +
                  std::to_string(threads)};
-  m_settings.threads = threads;
+  m_data->settings.threads = threads;
   return true;
 }
 
 Expected<bool> World::setBodyDamping(BodyId id, double linear, double angular) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot set damping: " + why};
-  Body& target = bodyRef(id);
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot set damping: " + why};
+  Body& target = bodyRef(*m_data, id);
   if (!(std::isfinite(linear) && linear >= 0.0) || !(std::isfinite(angular) && angular >= 0.0))
     return Error{"body '" + target.name() + "': damping must be finite and not negative"};
   target.setDamping(linear, angular);
   return true;
 }
 
-void World::step() {
-  m_judged.assign(m_bodies.size(), 0);
-  const bool anyContact = m_settings.contact.enabled && m_collidingBodies > 0;
-  // The impulse model's step is also where islands at rest fall asleep, so
-  // a world whose bodies all collide with nothing (BodyDef::collides) takes
-  // it too: its detector finds no contact, and every body flies free as in
-  // the step without contact below.
-  const bool impulseStep =
-      m_settings.contact.enabled && m_settings.contact.model == ContactModel::Impulse && !m_bodies.empty();
-  std::vector<RigidState> starts;
-  if (anyContact && m_continuousBodies > 0) {
-    starts.reserve(m_bodies.size());
-    for (const Body& body : m_bodies) starts.push_back(body.state());
-  }
-  if (impulseStep) {
-    m_stepSquaredSpeed = m_stepSquaredSpin = 0.0;
-    stepImpulse();
-    // Every awake body was integrated by one of the step's paths, which
-    // noted its speeds; sleeping, static and frozen bodies stand still.
-    m_maxSquaredSpeed = m_stepSquaredSpeed;
-    m_maxSquaredSpin = m_stepSquaredSpin;
-  } else if (anyContact) {
-    stepPenalty();
-  } else {
-    const std::vector<char> jointed = findJointedBodies();
-    integrateFree(m_settings.dt, jointed);
-    stepJointedBodies(jointed, {}, {}, m_settings.dt);
-    m_contacts.clear();
-  }
-  if (!starts.empty()) applyContinuousCollision(starts);
-  clearLoads();
-  ++m_stepCount;
-  guardStates();
-}
-
-ForceInputs World::forcesOn(std::size_t denseIndex) const {
-  ForceInputs inputs;
-  inputs.gravity = m_settings.gravity;
-  if (const ExternalLoad& load = m_loads[denseIndex]; load.active) inputs.load = &load;
-  return inputs;
-}
-
-void World::clearLoads() {
-  // Every pushed body was integrated (a push wakes a sleeping one; static
-  // bodies take none; frozen ones drop theirs).
-  if (!m_loadsSeen) return;
-  for (ExternalLoad& load : m_loads)
-    if (load.active) load.clear();
-  m_loadsSeen = false;
-}
-
-void World::guardStates() {
-  if (!m_freezeEvents.empty()) m_freezeEvents.clear();
-  const StateLimits& limits = m_settings.limits;
-  const double maxLinear2 = limits.maxLinearSpeed * limits.maxLinearSpeed;
-  const double maxAngular2 = limits.maxAngularSpeed * limits.maxAngularSpeed;
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-    // Most bodies were judged by integrateFree while they were in cache; a
-    // byte per body is all this pass reads of them.
-    if (m_judged[i]) continue;
-    Body& body = m_bodies[i];
-    if (body.isStatic()) continue;
-    if (body.isFrozen()) {
-      // Back where it froze, whatever a contact path did to it in the step.
-      body.holdAtLastGoodPose();
-      m_loads[i].clear();
-      continue;
-    }
-    if (body.isSleeping()) continue;  // it has not moved since it last passed
-    if (isHealthy(body.state(), body.linearVelocity(), body.angularVelocity(), maxLinear2, maxAngular2)) {
-      body.keepPoseAsGood();
-      continue;
-    }
-    const StateVerdict verdict =
-        judgeState(body.state(), body.linearVelocity(), body.angularVelocity(), limits);
-    if (verdict.reason == FreezeReason::None) continue;  // a pose sum that overflowed: none does
-    body.setFreezeReason(verdict.reason);
-    ++m_frozenBodies;
-    body.holdAtLastGoodPose();
-    m_loads[i].clear();
-    m_freezeEvents.push_back({m_denseIds[i], body.name(), m_stepCount, verdict, {}});
-  }
-  // A frozen body cannot hold a joint: its joints go (the server logs them).
-  for (FreezeEvent& event : m_freezeEvents) event.droppedJoints = removeJointsOf(event.id);
-}
-
 Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot freeze: " + why};
-  Body& frozen = bodyRef(id);
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot freeze: " + why};
+  Body& frozen = bodyRef(*m_data, id);
   if (reason == FreezeReason::None) return Error{"body '" + frozen.name() + "': a freeze needs a reason"};
   if (frozen.isStatic()) return Error{"body '" + frozen.name() + "' is static: nothing to freeze"};
   if (frozen.isFrozen()) return Error{"body '" + frozen.name() + "' is frozen already"};
   frozen.setFreezeReason(reason);
-  ++m_frozenBodies;
+  ++m_data->frozenBodies;
   frozen.holdAtLastGoodPose();
-  m_loads[denseIndexOf(id)].clear();
-  (void)removeJointsOf(id);
+  m_data->loads[denseIndexOf(*m_data, id)].clear();
+  (void)removeJointsOf(*m_data, id);
   return true;
-}
-
-void World::integrateFree(double h, const std::vector<char>& skip) {
-  const IntegratorKind integrator = m_settings.integrator;
-  const double maxLinear2 = m_settings.limits.maxLinearSpeed * m_settings.limits.maxLinearSpeed;
-  const double maxAngular2 = m_settings.limits.maxAngularSpeed * m_settings.limits.maxAngularSpeed;
-  // Continuous collision may still move flagged bodies after this: those are
-  // judged in guardStates, after it.
-  const bool laterMoves = m_continuousBodies > 0;
-  forEachBody([&](std::size_t i, SpeedBound& bound) {
-    Body& body = m_bodies[i];
-    if (body.isStatic() || body.isSleeping()) {
-      m_judged[i] = 1;  // nothing to check: it does not move this step
-      return;
-    }
-    if (body.isFrozen()) return;
-    if (!skip.empty() && skip[i]) {
-      // In contact: the solver moves it later in this step, and guardStates
-      // judges it then, against the pose it has now.
-      body.keepPoseAsGood();
-      return;
-    }
-    const ForceInputs inputs = forcesOn(i);
-    const RigidState next =
-        integrateStep(integrator, body.state(), body.rotation(), body.dynamics(), inputs, h);
-    // The guard's check, on the new state while it is at hand. A body it
-    // cannot clear (or that continuous collision may still move) is judged
-    // again in guardStates, and frozen there at the pose it has now.
-    // For the guard and for the next step's collision detection.
-    const SpeedBounds speeds = speedBounds(next, body.dynamics().inverseMass, body.dynamics().inverseInertiaBody);
-    bound.note(speeds.squaredSpeed, speeds.squaredSpin);
-    const bool judgedHere = speeds.squaredSpeed <= maxLinear2 && speeds.squaredSpin <= maxAngular2 &&
-                            !(laterMoves && body.description().continuousCollision);
-    if (!judgedHere) body.keepPoseAsGood();
-    m_judged[i] = judgedHere ? 1 : 0;
-    body.moveTo(next);
-  });
 }
 
 Vec3 World::totalLinearMomentum() const {
   Vec3 total = Vec3::Zero();
-  for (const Body& body : m_bodies)
+  for (const Body& body : m_data->bodies)
     if (!body.isStatic()) total += body.linearMomentum();
   return total;
 }
 
 Vec3 World::totalAngularMomentum() const {
   Vec3 total = Vec3::Zero();
-  for (const Body& body : m_bodies)
+  for (const Body& body : m_data->bodies)
     if (!body.isStatic()) total += body.angularMomentum() + body.position().cross(body.linearMomentum());
   return total;
 }
 
 double World::totalKineticEnergy() const {
   double total = 0.0;
-  for (const Body& body : m_bodies)
+  for (const Body& body : m_data->bodies)
     if (!body.isStatic()) total += body.kineticEnergy();
   return total;
 }
@@ -581,8 +474,8 @@ uint64_t World::stateHash() const {
       hash *= 1099511628211ull;
     }
   };
-  mix(&m_stepCount, sizeof m_stepCount);
-  for (const Body& body : m_bodies) {
+  mix(&m_data->stepCount, sizeof m_data->stepCount);
+  for (const Body& body : m_data->bodies) {
     const RigidState& s = body.state();
     const double values[13] = {s.position.x(),       s.position.y(),       s.position.z(),
                                s.orientation.w,      s.orientation.x,      s.orientation.y,
@@ -592,6 +485,95 @@ uint64_t World::stateHash() const {
     mix(values, sizeof values);
   }
   return hash;
+}
+
+BodyId World::idOf(int denseIndex) const { return m_data->denseIds[static_cast<std::size_t>(denseIndex)]; }
+int World::bodyCount() const { return static_cast<int>(m_data->denseIds.size()); }
+
+void World::step() { stepWorld(*m_data); }
+
+int World::contactPointCount() const {
+  int count = 0;
+  for (const SolvedManifold& m : m_data->contacts) count += m.pointCount;
+  return count;
+}
+
+int World::sleepingBodyCount() const {
+  return static_cast<int>(std::count_if(m_data->bodies.begin(), m_data->bodies.end(),
+                                        [](const Body& b) { return b.isSleeping(); }));
+}
+
+Expected<bool> World::wakeUp(BodyId id) {
+  if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot wake: " + why};
+  bodyRef(*m_data, id).wake();
+  return true;
+}
+
+const std::vector<FreezeEvent>& World::freezeEvents() const { return m_data->freezeEvents; }
+int World::frozenBodyCount() const { return m_data->frozenBodies; }
+void World::setStateLimits(const StateLimits& limits) { m_data->settings.limits = limits; }
+const std::vector<SolvedManifold>& World::contacts() const { return m_data->contacts; }
+int32_t World::lastSerial() const { return m_data->lastSerial; }
+void World::continueSerialsAfter(int32_t serial) { m_data->lastSerial = std::max(m_data->lastSerial, serial); }
+const WorldSettings& World::settings() const { return m_data->settings; }
+void World::setGravity(const Vec3& gravity) { m_data->settings.gravity = gravity; }
+void World::setIntegrator(IntegratorKind kind) { m_data->settings.integrator = kind; }
+int64_t World::stepCount() const { return m_data->stepCount; }
+double World::time() const { return static_cast<double>(m_data->stepCount) * m_data->settings.dt; }
+
+// Joints (world/joints.cpp).
+Expected<JointId> World::createJoint(const JointDef& def) { return rbsim::createJoint(*m_data, def); }
+Expected<bool> World::setJointMotor(JointId id, const JointMotor& motor) {
+  return rbsim::setJointMotor(*m_data, id, motor);
+}
+Expected<bool> World::setJointDrive(JointId id, const JointDrive& drive) {
+  return rbsim::setJointDrive(*m_data, id, drive);
+}
+Expected<bool> World::setJointEffort(JointId id, double effort) { return rbsim::setJointEffort(*m_data, id, effort); }
+Expected<bool> World::removeJoint(JointId id) { return rbsim::removeJoint(*m_data, id); }
+JointId World::findJoint(std::string_view name) const { return findJointByName(*m_data, name); }
+bool World::isValid(JointId id) const { return invalidJointReason(*m_data, id).empty(); }
+int World::jointCount() const { return static_cast<int>(m_data->joints.size()); }
+JointId World::jointIdAt(int denseIndex) const { return m_data->jointIds[static_cast<std::size_t>(denseIndex)]; }
+
+JointState World::jointState(JointId id) const {
+  if (const std::string why = invalidJointReason(*m_data, id); !why.empty()) throw std::invalid_argument(why);
+  return rbsim::jointStateAt(*m_data, m_data->jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex);
+}
+
+JointState World::jointStateAt(int denseIndex) const { return rbsim::jointStateAt(*m_data, denseIndex); }
+
+const JointDef& World::jointDefinitionAt(int denseIndex) const {
+  return m_data->joints[static_cast<std::size_t>(denseIndex)].def;
+}
+
+const JointDef& World::jointDefinition(JointId id) const {
+  if (const std::string why = invalidJointReason(*m_data, id); !why.empty()) throw std::invalid_argument(why);
+  return jointDefinitionAt(m_data->jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex);
+}
+
+// Snapshots (world/snapshot.cpp).
+Expected<bool> World::writeSnapshot(ByteWriter& out) const { return rbsim::writeSnapshot(*m_data, out); }
+
+Expected<std::vector<uint8_t>> World::encodeSnapshot() const {
+  ByteWriter out;
+  if (auto written = writeSnapshot(out); !written) return written.error();
+  return out.take();
+}
+
+Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& settings) {
+  if (auto header = readSnapshotHeader(in, settings); !header) return header.error();
+  World world(settings);
+  if (auto read = readSnapshotContents(*world.m_data, in); !read) return read.error();
+  return world;
+}
+
+Expected<World> World::decodeSnapshot(std::span<const uint8_t> bytes, const WorldSettings& settings) {
+  ByteReader in(bytes);
+  auto world = readSnapshot(in, settings);
+  if (world && in.remaining() != 0)
+    return Error{"world snapshot: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
+  return world;
 }
 
 }  // namespace rbsim

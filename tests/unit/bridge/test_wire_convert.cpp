@@ -106,7 +106,7 @@ TEST(WireConvert, PointFrameIsReadApartFromTheForceFrame) {
   const auto request = wrenchRequestFrom(w, world, 11, WrenchLimits{});
   ASSERT_TRUE(request.ok()) << request.error().message;
   EXPECT_EQ(request->frame, WrenchFrame::World);
-  EXPECT_EQ(request->pointFrame, WrenchFrame::Body);
+  EXPECT_EQ(request->pointFrame, WrenchFrame::ShapeFrame);
   EXPECT_EQ(request->point, Vec3(0.1, 0, 0));
   // The lever-arm limit measures from the centre of mass in either frame.
   WrenchLimits limits;
@@ -118,7 +118,7 @@ TEST(WireConvert, PointFrameIsReadApartFromTheForceFrame) {
   w.frame = rbsim::wrench_t::FRAME_BODY;
   const auto bodyForce = wrenchRequestFrom(w, world, 11, limits);
   ASSERT_TRUE(bodyForce.ok());
-  EXPECT_EQ(bodyForce->frame, WrenchFrame::Body);
+  EXPECT_EQ(bodyForce->frame, WrenchFrame::ShapeFrame);
   EXPECT_EQ(bodyForce->pointFrame, WrenchFrame::World);
 }
 

@@ -5,3 +5,4 @@ rbsim_add_gtest(test_collision_broad_phase
   unit/collision/test_time_of_impact.cpp
   unit/collision/test_collision_detector.cpp
 )
+target_link_libraries(test_collision_broad_phase PRIVATE rbsim_physics_internal)

@@ -8,3 +8,4 @@ rbsim_add_gtest(test_collision_contacts
   unit/collision/test_contacts_cylinders.cpp
   unit/collision/test_contacts_classification.cpp
 )
+target_link_libraries(test_collision_contacts PRIVATE rbsim_physics_internal)

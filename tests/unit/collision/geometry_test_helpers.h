@@ -13,7 +13,7 @@
 
 #include "physics/collision/collider.h"
 #include "physics/collision/convex_hull.h"
-#include "physics/math/quaternion.h"
+#include "rbsim/physics/quaternion.h"
 #include "scenes/scene_random.h"
 
 namespace rbsim::testing {

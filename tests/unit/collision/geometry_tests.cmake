@@ -7,3 +7,4 @@ rbsim_add_gtest(test_collision_geometry
   unit/collision/test_gjk.cpp
   unit/collision/test_signed_distance.cpp
 )
+target_link_libraries(test_collision_geometry PRIVATE rbsim_physics_internal)

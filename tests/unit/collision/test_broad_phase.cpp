@@ -8,6 +8,7 @@
 #include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"
+#include "support/body_copies.h"
 
 namespace rbsim {
 namespace {
@@ -224,7 +225,8 @@ TEST(BroadPhase, FindsThePairsOfAWorld) {
   auto world = World::fromDef(scenes::makePileScene(300, scenes::PileVariant::Settled));
   ASSERT_TRUE(world.ok()) << world.error().message;
   BroadPhase broadPhase(0.05, kContactMargin);
-  broadPhase.update(world->internalBodies());
+  testing::BodyCopies copies(*world);
+  broadPhase.update(copies.bodies());
   // Three layers of 100 columns: the ground with the bottom cube of each
   // column, and each cube with the one on it; columns are 5 cm apart.
   std::vector<BodyPair> expected;
@@ -237,7 +239,8 @@ TEST(BroadPhase, FindsThePairsOfAWorld) {
 
   // Remove a cube in the middle: its pairs go, the others are renumbered.
   ASSERT_TRUE(world->removeBody(world->findBody("box150")));
-  broadPhase.update(world->internalBodies());
+  copies.update(*world);
+  broadPhase.update(copies.bodies());
   for (const BodyPair& pair : broadPhase.pairs()) {
     EXPECT_NE(world->bodies()[static_cast<std::size_t>(pair.a)].name(), "box150");
     EXPECT_NE(world->bodies()[static_cast<std::size_t>(pair.b)].name(), "box150");

@@ -7,9 +7,17 @@
 #include "physics/world/contact_detection.h"
 #include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
+#include "support/body_copies.h"
 
 namespace rbsim {
 namespace {
+
+// Detection of the world's bodies as they are now, on copies of them (a
+// World hands out no internal Body).
+void detectContacts(CollisionDetector& detector, const World& world) {
+  const testing::BodyCopies copies(world);
+  detectContacts(detector, copies.bodies(), world.settings());
+}
 
 BodyDef groundDef() {
   BodyDef ground;

@@ -3,6 +3,7 @@
 // under swapping its solids, over every pair of geometry types.
 #include <vector>
 
+#include "rbsim/physics/contacts.h"
 #include "unit/collision/test_contacts_common.h"
 
 namespace rbsim::testing {

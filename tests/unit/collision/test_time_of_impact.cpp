@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "support/internal_body.h"
+#include "support/body_copies.h"
 #include "physics/collision/time_of_impact.h"
 #include "rbsim/physics/world.h"
 
@@ -112,7 +112,7 @@ TEST(TimeOfImpact, BisectionUnderGravityMatchesTheIntegratorsClosedForm) {
 
     const TimeOfImpact toi = bisectCollisionTime(
         groundCollider(), fixedAt(Transform::identity()), convexCollider(SphereShape{radius}),
-        integratedMotion(testing::internalBody(world, *id), settings.integrator, settings.gravity, settings.dt),
+        integratedMotion(testing::bodyCopy(world, *id), settings.integrator, settings.gravity, settings.dt),
         bisection());
     ASSERT_EQ(toi.status, ImpactStatus::Hit);
     // quadratic t² + v0 t + (h − r) = 0, the first positive root.
@@ -266,11 +266,11 @@ TEST(TimeOfImpact, ContinuousTimeOfImpactOfTwoBodies) {
   const auto wallId = world.createBody(wall);
   const auto ballId = world.createBody(ball);
   ASSERT_TRUE(wallId && ballId);
-  const Body& ballBody = testing::internalBody(world, *ballId);
+  const Body& ballBody = testing::bodyCopy(world, *ballId);
   RigidState end = ballBody.state();
   end.position.x() += 0.5;
   const TimeOfImpact toi =
-      continuousTimeOfImpact(testing::internalBody(world, *wallId), world.body(*wallId).state(), ballBody, end);
+      continuousTimeOfImpact(testing::bodyCopy(world, *wallId), world.body(*wallId).state(), ballBody, end);
   ASSERT_EQ(toi.status, ImpactStatus::Hit);
   EXPECT_NEAR(toi.fraction, 0.375, 2 * kTolerance / 0.5);
   EXPECT_TRUE(toi.normal.isApprox(-Vec3::UnitX(), 1e-9));

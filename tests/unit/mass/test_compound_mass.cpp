@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "meshio/mesh_io.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 #include "rbsim/physics/world.h"
 #include "support/test_data_dir.h"
 

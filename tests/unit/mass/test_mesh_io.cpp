@@ -14,8 +14,8 @@
 #include <string>
 
 #include "meshio/mesh_io.h"
-#include "physics/geometry/triangle_mesh.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/triangle_mesh.h"
+#include "rbsim/physics/mass_properties.h"
 #include "support/test_data_dir.h"
 
 namespace rbsim {

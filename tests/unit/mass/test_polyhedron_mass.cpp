@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "physics/geometry/triangle_mesh.h"
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/triangle_mesh.h"
+#include "rbsim/physics/mass_properties.h"
 #include "support/monte_carlo_mass.h"
 
 namespace rbsim {

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-#include "physics/mass/mass_properties.h"
+#include "rbsim/physics/mass_properties.h"
 
 namespace rbsim {
 namespace {

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <random>
 
-#include "physics/math/quaternion.h"
+#include "rbsim/physics/quaternion.h"
 #include "physics/math/rotation_matrix.h"
 
 namespace rbsim {

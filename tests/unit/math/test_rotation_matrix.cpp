@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "physics/math/quaternion.h"
+#include "rbsim/physics/quaternion.h"
 #include "physics/math/rotation_matrix.h"
 
 namespace rbsim {

@@ -42,7 +42,7 @@ Session pushedSession() {
   atCorner.firstStep = 5;  // the ball has moved by then
   session.wrenches().add(atCorner);
   WrenchRequest bodyForce = atCorner;
-  bodyForce.frame = WrenchFrame::Body;
+  bodyForce.frame = WrenchFrame::ShapeFrame;
   bodyForce.mode = WrenchMode::OneStep;
   bodyForce.firstStep = 12;
   session.wrenches().add(bodyForce);
@@ -115,11 +115,11 @@ TEST(SessionCheckpoint, WrenchesAndPauseStateRoundTrip) {
   EXPECT_EQ(state->wrenches.pendingCount(), 2);
   // The acting wrench keeps the body point its world point was fixed to,
   // bit for bit; the pending one still holds its world point.
-  EXPECT_EQ(state->wrenches.active()[1].pointFrame, WrenchFrame::Body);
+  EXPECT_EQ(state->wrenches.active()[1].pointFrame, WrenchFrame::ShapeFrame);
   EXPECT_EQ(state->wrenches.active()[1].point, original.wrenches().active()[1].point);
   EXPECT_NE(state->wrenches.active()[1].point, Vec3(0.1, 0.0, 0.05));
   EXPECT_EQ(state->wrenches.pending()[1].pointFrame, WrenchFrame::World);
-  EXPECT_EQ(state->wrenches.pending()[1].frame, WrenchFrame::Body);
+  EXPECT_EQ(state->wrenches.pending()[1].frame, WrenchFrame::ShapeFrame);
 
   Session restored(original.initialWorld(), false);
   restored.resumeFrom(std::move(state->world), std::move(state->wrenches), state->worldRevision, state->paused,

@@ -179,7 +179,7 @@ TEST(WrenchScheduler, AWorldPointIsFixedInTheBodyWhenTheWrenchFirstActs) {
   EXPECT_EQ(world.body(world.findBody("slider")).angularMomentum(), Vec3::Zero());
   run(world, scheduler, 1);  // step 51: the point is fixed in the body
   ASSERT_EQ(scheduler.activeCount(), 1);
-  EXPECT_EQ(scheduler.active()[0].pointFrame, WrenchFrame::Body);
+  EXPECT_EQ(scheduler.active()[0].pointFrame, WrenchFrame::ShapeFrame);
   EXPECT_LT((scheduler.active()[0].point - Vec3(0.0, 0.0, 0.2)).norm(), 1e-12);
   run(world, scheduler, 99);
   const BodyView body = world.body(world.findBody("slider"));
@@ -217,8 +217,8 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
   // A body-frame force through the centre of mass (shape point (0.25, 0, 0)).
   WrenchScheduler scheduler;
   WrenchRequest through = push("c", "dumbbell", 0.0, WrenchMode::OneStep, 1);
-  through.frame = WrenchFrame::Body;
-  through.pointFrame = WrenchFrame::Body;
+  through.frame = WrenchFrame::ShapeFrame;
+  through.pointFrame = WrenchFrame::ShapeFrame;
   through.force = Vec3(0.0, 1.0, 0.0);
   through.point = Vec3(0.25, 0.0, 0.0);
   scheduler.add(through);
@@ -234,7 +234,7 @@ TEST(WrenchScheduler, BodyFramePointsAndVectorsAreInTheShapeFrame) {
   EXPECT_LT((lever - shapeToWorld.rotate(Vec3(-0.25, 0, 0))).norm(), 1e-12);  // not turned
   const Vec3 l0 = body.angularMomentum();
   WrenchRequest atOrigin = push("c", "dumbbell", 0.0, WrenchMode::OneStep, 2);
-  atOrigin.pointFrame = WrenchFrame::Body;
+  atOrigin.pointFrame = WrenchFrame::ShapeFrame;
   atOrigin.force = Vec3(0.0, 0.0, 3.0);
   atOrigin.point = Vec3::Zero();
   scheduler.add(atOrigin);

@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
-#include "physics/body/material.h"
-#include "physics/mass/mass_properties.h"  // inertiaTensorProblem: checks a tensor given as data
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/material.h"
+#include "rbsim/physics/mass_properties.h"  // inertiaTensorProblem: checks a tensor given as data
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/shapes.h"
 
 namespace rbsim {

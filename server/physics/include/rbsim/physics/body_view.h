@@ -13,12 +13,12 @@
 #include <memory>
 #include <string>
 
-#include "physics/body/freeze_reason.h"
-#include "physics/body/material.h"
-#include "physics/body/rigid_state.h"
-#include "physics/mass/mass_properties.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/freeze_reason.h"
+#include "rbsim/physics/material.h"
+#include "rbsim/physics/rigid_state.h"
+#include "rbsim/physics/mass_properties.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/shapes.h"
 
 namespace rbsim {

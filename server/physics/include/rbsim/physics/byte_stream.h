@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "physics/common/expected.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 
@@ -23,6 +23,15 @@ struct SolvedContactPoint {
   bool sticking = false;
   uint32_t featureId = 0;
 };
+
+// Contact classification by the relative normal velocity at a point
+// (v_rel = n · (vB(p) − vA(p)), negative when closing).
+enum class ContactKind { Colliding, Resting, Separating };
+inline ContactKind classifyContact(double relativeNormalVelocity, double epsilon) {
+  if (relativeNormalVelocity < -epsilon) return ContactKind::Colliding;
+  if (relativeNormalVelocity > epsilon) return ContactKind::Separating;
+  return ContactKind::Resting;
+}
 
 struct SolvedManifold {
   int32_t serialA = 0;

@@ -15,8 +15,8 @@
 #include <limits>
 #include <string>
 
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 #include "rbsim/physics/ids.h"
 
 namespace rbsim {

@@ -7,10 +7,10 @@
 #include <variant>
 #include <vector>
 
-#include "physics/common/expected.h"
-#include "physics/geometry/triangle_mesh.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/triangle_mesh.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

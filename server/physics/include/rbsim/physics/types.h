@@ -5,10 +5,10 @@
 // froze a body, values-or-errors, and exact text for doubles. SI units
 // throughout; frames are right-handed.
 
-#include "physics/body/freeze_reason.h"
-#include "physics/body/integrator_kind.h"
-#include "physics/body/rigid_state.h"
-#include "physics/common/exact_text.h"
-#include "physics/common/expected.h"
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/exact_text.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/freeze_reason.h"
+#include "rbsim/physics/integrator_kind.h"
+#include "rbsim/physics/math_types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/rigid_state.h"

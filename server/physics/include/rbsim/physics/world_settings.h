@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "rbsim/physics/body_definition.h"
+#include "rbsim/physics/contact_settings.h"
+#include "rbsim/physics/integrator_kind.h"
 #include "rbsim/physics/joint_definition.h"
-#include "physics/body/integrator_kind.h"
-#include "physics/collision/contact_generation.h"
-#include "physics/math/types.h"
-#include "physics/solver/contact_solver_settings.h"
-#include "physics/solver/material.h"
-#include "physics/world/state_guard.h"
+#include "rbsim/physics/material.h"
+#include "rbsim/physics/math_types.h"
+#include "rbsim/physics/numerical_guard.h"
+#include "rbsim/physics/thread_settings.h"
 
 namespace rbsim {
 
@@ -68,11 +68,9 @@ struct WorldSettings {
   StateLimits limits;                      // the numerical guard's speed limits
   // Threads that share the step's work: 0 takes the cores this process may
   // run on, 1 steps on the caller alone. The result does not depend on it:
-  // every count gives the same bits (parallel/task_pool.h).
-  int threads = 0;
+  // every count gives the same bits (thread_settings.h).
+  int threads = 0;  // 0 to kMaxThreads
 };
-
-inline constexpr int kMaxThreads = 256;
 
 // A whole world as loaded from a config file, before it is built.
 struct WorldDef {

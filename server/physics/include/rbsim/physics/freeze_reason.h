@@ -1,6 +1,6 @@
 #pragma once
 // Why the numerical guard took a body out of the simulation (see
-// world/state_guard.h). None: the body is simulated normally.
+// numerical_guard.h). None: the body is simulated normally.
 
 #include <cstdint>
 #include <string_view>

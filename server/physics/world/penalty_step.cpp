@@ -15,7 +15,8 @@
 #include "physics/solver/contact_solver.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/world/penalty_contact.h"
-#include "rbsim/physics/world.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
 
 namespace rbsim {
 
@@ -346,7 +347,7 @@ BodyMotion motionAtStart(const Body& body) {
 
 }  // namespace
 
-void World::stepPenalty() {
+void stepPenalty(WorldData& world) {
   // Spring–damper forces from the penetration (a penalty method, the
   // alternative to impulses that Baraff's rigid-body notes describe):
   // along the normal F = k d + c ḋ (PenaltyLaw: clamped at zero or not),
@@ -356,12 +357,12 @@ void World::stepPenalty() {
   // forces are evaluated wherever the integrator evaluates forces: at the
   // step start for the Euler methods, at every stage for RK4. They are the
   // world's own, never added to the bodies' external loads.
-  const double dt = m_settings.dt;
-  const ContactConfig& config = m_settings.contact;
-  findContacts();
-  const std::vector<BodyContact>& detected = m_detector->contacts();
-  const std::size_t n = m_bodies.size();
-  for (Body& body : m_bodies) body.setSleeping(false);  // the penalty model does not sleep bodies
+  const double dt = world.settings.dt;
+  const ContactConfig& config = world.settings.contact;
+  findContacts(world);
+  const std::vector<BodyContact>& detected = world.detector->contacts();
+  const std::size_t n = world.bodies.size();
+  for (Body& body : world.bodies) body.setSleeping(false);  // the penalty model does not sleep bodies
 
   // The system: every dynamic body that a contact touches.
   std::vector<int> systemIndex(n, -1);
@@ -371,12 +372,12 @@ void World::stepPenalty() {
   for (const BodyContact& c : detected) {
     for (const int i : {c.bodyA, c.bodyB}) {
       const std::size_t k = static_cast<std::size_t>(i);
-      if (m_bodies[k].isStatic() || inSystem[k]) continue;
+      if (world.bodies[k].isStatic() || inSystem[k]) continue;
       inSystem[k] = 1;
       systemIndex[k] = static_cast<int>(system.size());
       denseOf.push_back(i);
-      const Body& body = m_bodies[k];
-      const ForceInputs inputs = forcesOn(k);
+      const Body& body = world.bodies[k];
+      const ForceInputs inputs = forcesOn(world, k);
       system.push_back({body.state(), body.rotation(), body.dynamics(), inputs});
     }
   }
@@ -386,8 +387,8 @@ void World::stepPenalty() {
   std::vector<SolvedManifold> records;
   records.reserve(detected.size());
   for (const BodyContact& c : detected) {
-    const Body& a = m_bodies[static_cast<std::size_t>(c.bodyA)];
-    const Body& b = m_bodies[static_cast<std::size_t>(c.bodyB)];
+    const Body& a = world.bodies[static_cast<std::size_t>(c.bodyA)];
+    const Body& b = world.bodies[static_cast<std::size_t>(c.bodyB)];
     const BodyMotion motionA = motionAtStart(a), motionB = motionAtStart(b);
     fixedMotion[static_cast<std::size_t>(c.bodyA)] = motionA;
     fixedMotion[static_cast<std::size_t>(c.bodyB)] = motionB;
@@ -418,13 +419,13 @@ void World::stepPenalty() {
     records.push_back(record);
   }
 
-  integrateFree(dt, inSystem);
+  integrateFree(world, dt, inSystem);
   if (!system.empty()) {
     PenaltySystem penalty(std::move(system), std::move(systemIndex), std::move(fixedMotion), points,
                           config.penaltyLaw);
-    const std::vector<RigidState> next = penalty.step(m_settings.integrator, dt);
+    const std::vector<RigidState> next = penalty.step(world.settings.integrator, dt);
     for (std::size_t j = 0; j < next.size(); ++j) {
-      Body& body = m_bodies[static_cast<std::size_t>(denseOf[j])];
+      Body& body = world.bodies[static_cast<std::size_t>(denseOf[j])];
       body.moveTo(next[j]);
     }
     std::size_t index = 0;
@@ -435,7 +436,7 @@ void World::stepPenalty() {
       }
     }
   }
-  m_contacts = std::move(records);
+  world.contacts = std::move(records);
 }
 
 }  // namespace rbsim

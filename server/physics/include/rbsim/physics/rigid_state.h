@@ -2,8 +2,8 @@
 // The state vector of one rigid body: 13 numbers (x, q, P, L), as in
 // Baraff, "Rigid Body Simulation", SIGGRAPH course notes.
 
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

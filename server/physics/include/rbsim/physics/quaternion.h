@@ -10,7 +10,7 @@
 #include <array>
 #include <cmath>
 
-#include "physics/math/types.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

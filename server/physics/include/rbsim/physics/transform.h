@@ -1,8 +1,8 @@
 #pragma once
 // A rigid transform p -> rotation p + translation (a proper rotation, no scale).
 
-#include "physics/math/quaternion.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/quaternion.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

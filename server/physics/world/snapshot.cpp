@@ -25,6 +25,8 @@
 // format changes; old versions are rejected with a message, not misread.
 
 #include "rbsim/physics/world.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
 
 #include <array>
 #include <bit>
@@ -37,7 +39,7 @@
 #include "physics/collision/collider.h"
 #include "physics/joint/joint_constraint.h"
 #include "rbsim/physics/byte_stream.h"
-#include "physics/common/exact_text.h"
+#include "rbsim/physics/exact_text.h"
 
 namespace rbsim {
 
@@ -416,28 +418,95 @@ std::vector<SolvedManifold> readWarmStart(ByteReader& in, int bodyCount) {
   return manifolds;
 }
 
+// The joints of a snapshot, after its bodies.
+Expected<bool> readJointsSnapshot(WorldData& world, ByteReader& in) {
+  const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
+  const uint32_t slotCount = in.count("joint slot count", 8);
+  for (uint32_t i = 0; i < slotCount && !in.failed(); ++i) {
+    IdSlot slot;
+    slot.generation = in.u32("joint slot generation");
+    slot.denseIndex = in.i32("joint slot dense index");
+    world.jointSlots.push_back(slot);
+  }
+  const uint32_t freeCount = in.count("free joint slot count", 4);
+  for (uint32_t i = 0; i < freeCount && !in.failed(); ++i) {
+    const int32_t slot = in.i32("free joint slot");
+    if (slot < 0 || static_cast<uint32_t>(slot) >= slotCount || world.jointSlots[static_cast<std::size_t>(slot)].denseIndex != -1)
+      in.fail("free joint slot " + std::to_string(slot) + " is not a free slot of the table");
+    world.freeJointSlots.push_back(slot);
+  }
+  if (in.failed()) return failure();
+  const uint32_t jointCount = in.count("joint count", 300);
+  for (uint32_t j = 0; j < jointCount && !in.failed(); ++j) {
+    const int32_t slotIndex = in.i32("joint slot");
+    JointConstraint joint = readJoint(in, world.tag);
+    if (in.failed()) break;
+    const std::string where = "joint " + std::to_string(j) + " ('" + joint.def.name + "')";
+    if (slotIndex < 1 || static_cast<uint32_t>(slotIndex) > slotCount ||
+        world.jointSlots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(j))
+      return Error{"world snapshot: " + where + " is not where the joint slot table puts it"};
+    if (joint.def.name.empty() || !findJointByName(world, joint.def.name).isNull())
+      return Error{"world snapshot: " + where + ": empty or duplicate name"};
+    // The bodies: present, distinct, one of them moving.
+    bool moves = false;
+    JointSidePose poses[2];
+    const BodyId sides[2] = {joint.def.bodyA, joint.def.bodyB};
+    for (int side = 0; side < 2; ++side) {
+      if (sides[side].isNull()) continue;
+      if (const std::string why = invalidIdReason(world, sides[side]); !why.empty())
+        return Error{"world snapshot: " + where + ": body_" + (side == 0 ? "a" : "b") + ": " + why};
+      const Body& body = world.bodies[denseIndexOf(world, sides[side])];
+      moves = moves || !body.isStatic();
+      poses[side] = {body.position(), body.orientation(), body.rotation()};
+    }
+    if ((!sides[0].isNull() && sides[0] == sides[1]) || !moves)
+      return Error{"world snapshot: " + where + ": joins a body to itself or nothing that moves"};
+    // The definition's numbers, by the rules a new joint obeys; the
+    // body-frame data must be finite and its axes unit.
+    if (auto made = makeJointConstraint(joint.def, poses[0], poses[1]); !made)
+      return Error{"world snapshot: " + made.error().message};
+    const auto unit = [](const Vec3& v) { return v.allFinite() && std::abs(v.norm() - 1.0) < 1e-9; };
+    if (!joint.anchorA.allFinite() || !joint.anchorB.allFinite() || !unit(joint.axisA) || !unit(joint.axisB) ||
+        !unit(joint.normalA1) || !unit(joint.normalA2) || !joint.restRelative.isFinite() ||
+        std::abs(joint.restRelative.norm() - 1.0) > 1e-9 || !std::isfinite(joint.length) || joint.length < 0.0 ||
+        !joint.lastForce.allFinite() || !joint.lastTorque.allFinite() || !std::isfinite(joint.lastAxisEffort) ||
+        joint.lastAtLimit < -1 || joint.lastAtLimit > 1)
+      return Error{"world snapshot: " + where + " has non-finite or non-unit frame data"};
+    world.jointIds.push_back(JointId{slotIndex, world.jointSlots[static_cast<std::size_t>(slotIndex - 1)].generation, world.tag});
+    world.joints.push_back(std::move(joint));
+  }
+  if (in.failed()) return failure();
+  std::size_t slotsInUse = 0;
+  for (const IdSlot& slot : world.jointSlots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
+  if (slotsInUse != world.joints.size() || slotsInUse + world.freeJointSlots.size() != world.jointSlots.size())
+    return Error{"world snapshot: the joint slot table does not match the " + std::to_string(world.joints.size()) +
+                 " joints"};
+  if (!world.joints.empty() && world.settings.contact.model == ContactModel::Penalty)
+    return Error{"world snapshot: joints need the impulse contact model"};
+  return true;
+}
+
 }  // namespace
 
-Expected<bool> World::writeSnapshot(ByteWriter& out) const {
-  const World& world = *this;
-  out.u32(kSnapshotMagic);
-  out.u32(kSnapshotVersion);
-  writeSettings(world.m_settings, out);
-  out.i64(world.m_stepCount);
-  out.i32(world.m_lastSerial);
-  out.u32(static_cast<uint32_t>(world.m_slots.size()));
-  for (const World::Slot& slot : world.m_slots) {
+Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out) {
+  out.u32(World::kSnapshotMagic);
+  out.u32(World::kSnapshotVersion);
+  writeSettings(world.settings, out);
+  out.i64(world.stepCount);
+  out.i32(world.lastSerial);
+  out.u32(static_cast<uint32_t>(world.slots.size()));
+  for (const IdSlot& slot : world.slots) {
     out.u32(slot.generation);
     out.i32(slot.denseIndex);
   }
-  out.u32(static_cast<uint32_t>(world.m_freeSlots.size()));
-  for (const int32_t slot : world.m_freeSlots) out.i32(slot);
+  out.u32(static_cast<uint32_t>(world.freeSlots.size()));
+  for (const int32_t slot : world.freeSlots) out.i32(slot);
 
-  out.u32(static_cast<uint32_t>(world.m_bodies.size()));
-  for (std::size_t i = 0; i < world.m_bodies.size(); ++i) {
-    const Body& body = world.m_bodies[i];
+  out.u32(static_cast<uint32_t>(world.bodies.size()));
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    const Body& body = world.bodies[i];
     const BodyDescription& d = body.description();
-    out.i32(world.m_denseIds[i].index);
+    out.i32(world.denseIds[i].index);
     out.i32(body.serial());
     out.string(d.name);
     out.boolean(d.isStatic);
@@ -465,64 +534,61 @@ Expected<bool> World::writeSnapshot(ByteWriter& out) const {
     out.quaternion(body.state().orientation);
     out.vec3(body.state().linearMomentum);
     out.vec3(body.state().angularMomentum);
-    writeLoad(world.m_loads[i], out);
+    writeLoad(world.loads[i], out);
     out.boolean(body.isSleeping());
     out.f64(body.restTime());
     // A frozen body's state is the pose it is held at (state_guard.h).
     out.u8(static_cast<uint8_t>(body.freezeReason()));
   }
-  out.u32(static_cast<uint32_t>(world.m_jointSlots.size()));
-  for (const World::Slot& slot : world.m_jointSlots) {
+  out.u32(static_cast<uint32_t>(world.jointSlots.size()));
+  for (const IdSlot& slot : world.jointSlots) {
     out.u32(slot.generation);
     out.i32(slot.denseIndex);
   }
-  out.u32(static_cast<uint32_t>(world.m_freeJointSlots.size()));
-  for (const int32_t slot : world.m_freeJointSlots) out.i32(slot);
-  out.u32(static_cast<uint32_t>(world.m_joints.size()));
-  for (std::size_t j = 0; j < world.m_joints.size(); ++j) {
-    out.i32(world.m_jointIds[j].index);
-    writeJoint(world.m_joints[j], out);
+  out.u32(static_cast<uint32_t>(world.freeJointSlots.size()));
+  for (const int32_t slot : world.freeJointSlots) out.i32(slot);
+  out.u32(static_cast<uint32_t>(world.joints.size()));
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    out.i32(world.jointIds[j].index);
+    writeJoint(world.joints[j], out);
   }
-  writeWarmStart(world.contacts(), out);
+  writeWarmStart(world.contacts, out);
   return true;
 }
 
-Expected<std::vector<uint8_t>> World::encodeSnapshot() const {
-  ByteWriter out;
-  if (auto written = writeSnapshot(out); !written) return written.error();
-  return out.take();
-}
-
-Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& settings) {
+Expected<bool> readSnapshotHeader(ByteReader& in, const WorldSettings& settings) {
   const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
   const uint32_t magic = in.u32("snapshot magic");
   const uint32_t version = in.u32("snapshot version");
   if (in.failed()) return failure();
-  if (magic != kSnapshotMagic) return Error{"world snapshot: not a world snapshot (bad magic number)"};
-  if (version != kSnapshotVersion)
+  if (magic != World::kSnapshotMagic) return Error{"world snapshot: not a world snapshot (bad magic number)"};
+  if (version != World::kSnapshotVersion)
     return Error{"world snapshot: format version " + std::to_string(version) +
-                 " is not supported (this build reads version " + std::to_string(kSnapshotVersion) + ")"};
+                 " is not supported (this build reads version " + std::to_string(World::kSnapshotVersion) + ")"};
   checkSettings(in, settings);
   if (in.failed()) return failure();
+  return true;
+}
 
-  World world(settings);
-  world.m_stepCount = in.i64("step count");
-  world.m_lastSerial = in.i32("last serial");
-  if (world.m_stepCount < 0 || world.m_lastSerial < 0) in.fail("negative step count or serial");
+Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
+  const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
+  world.stepCount = in.i64("step count");
+  world.lastSerial = in.i32("last serial");
+  if (world.stepCount < 0 || world.lastSerial < 0) in.fail("negative step count or serial");
   const uint32_t slotCount = in.count("slot count", 8);
   for (uint32_t i = 0; i < slotCount && !in.failed(); ++i) {
-    World::Slot slot;
+    IdSlot slot;
     slot.generation = in.u32("slot generation");
     slot.denseIndex = in.i32("slot dense index");
-    world.m_slots.push_back(slot);
+    world.slots.push_back(slot);
   }
   const uint32_t freeCount = in.count("free slot count", 4);
   for (uint32_t i = 0; i < freeCount && !in.failed(); ++i) {
     const int32_t slot = in.i32("free slot");
     if (slot < 0 || static_cast<uint32_t>(slot) >= slotCount ||
-        world.m_slots[static_cast<std::size_t>(slot)].denseIndex != -1)
+        world.slots[static_cast<std::size_t>(slot)].denseIndex != -1)
       in.fail("free slot " + std::to_string(slot) + " is not a free slot of the table");
-    world.m_freeSlots.push_back(slot);
+    world.freeSlots.push_back(slot);
   }
   if (in.failed()) return failure();
 
@@ -536,14 +602,14 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     const std::string where = "body " + std::to_string(i) + " ('" + description->name + "')";
     if (in.failed()) break;
     if (slotIndex < 1 || static_cast<uint32_t>(slotIndex) > slotCount ||
-        world.m_slots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(i))
+        world.slots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(i))
       return Error{"world snapshot: " + where + " is not where the slot table puts it"};
-    if (serial <= previousSerial || serial > world.m_lastSerial)
+    if (serial <= previousSerial || serial > world.lastSerial)
       return Error{"world snapshot: " + where + " has serial " + std::to_string(serial) +
                    " out of order (previous " + std::to_string(previousSerial) + ", last " +
-                   std::to_string(world.m_lastSerial) + ")"};
+                   std::to_string(world.lastSerial) + ")"};
     previousSerial = serial;
-    if (description->name.empty() || !world.findBody(description->name).isNull())
+    if (description->name.empty() || !findBodyByName(world, description->name).isNull())
       return Error{"world snapshot: " + where + ": empty or duplicate name"};
     description->isStatic = in.boolean("static flag");
     description->continuousCollision = in.boolean("continuous collision flag");
@@ -626,102 +692,27 @@ Expected<World> World::readSnapshot(ByteReader& in, const WorldSettings& setting
     // exactly there).
     body.keepPoseAsGood();
     body.setFreezeReason(static_cast<FreezeReason>(freezeReason));
-    if (body.isFrozen()) ++world.m_frozenBodies;
-    const BodyId id{slotIndex, world.m_slots[static_cast<std::size_t>(slotIndex - 1)].generation, world.m_tag};
-    world.m_idByName.emplace(description->name, id);
-    if (description->collider) ++world.m_collidingBodies;
-    if (description->continuousCollision && !description->isStatic) ++world.m_continuousBodies;
-    world.m_bodies.push_back(std::move(body));
-    world.m_loads.push_back(load);
-    world.m_loadsSeen = world.m_loadsSeen || load.active;
-    world.m_denseIds.push_back(id);
+    if (body.isFrozen()) ++world.frozenBodies;
+    const BodyId id{slotIndex, world.slots[static_cast<std::size_t>(slotIndex - 1)].generation, world.tag};
+    world.idByName.emplace(description->name, id);
+    if (description->collider) ++world.collidingBodies;
+    if (description->continuousCollision && !description->isStatic) ++world.continuousBodies;
+    world.bodies.push_back(std::move(body));
+    world.loads.push_back(load);
+    world.loadsSeen = world.loadsSeen || load.active;
+    world.denseIds.push_back(id);
   }
   if (in.failed()) return failure();
   std::size_t slotsInUse = 0;
-  for (const World::Slot& slot : world.m_slots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
-  if (slotsInUse != world.m_bodies.size() || slotsInUse + world.m_freeSlots.size() != world.m_slots.size())
+  for (const IdSlot& slot : world.slots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
+  if (slotsInUse != world.bodies.size() || slotsInUse + world.freeSlots.size() != world.slots.size())
     return Error{"world snapshot: the slot table does not match the " +
-                 std::to_string(world.m_bodies.size()) + " bodies"};
+                 std::to_string(world.bodies.size()) + " bodies"};
 
-  if (auto joints = world.readJointsSnapshot(in); !joints) return joints.error();
-  world.m_contacts = readWarmStart(in, world.bodyCount());
+  if (auto joints = readJointsSnapshot(world, in); !joints) return joints.error();
+  world.contacts = readWarmStart(in, static_cast<int>(world.bodies.size()));
   if (in.failed()) return failure();
-  return world;
-}
-
-Expected<bool> World::readJointsSnapshot(ByteReader& in) {
-  const auto failure = [&]() { return Error{"world snapshot: " + in.error()}; };
-  const uint32_t slotCount = in.count("joint slot count", 8);
-  for (uint32_t i = 0; i < slotCount && !in.failed(); ++i) {
-    Slot slot;
-    slot.generation = in.u32("joint slot generation");
-    slot.denseIndex = in.i32("joint slot dense index");
-    m_jointSlots.push_back(slot);
-  }
-  const uint32_t freeCount = in.count("free joint slot count", 4);
-  for (uint32_t i = 0; i < freeCount && !in.failed(); ++i) {
-    const int32_t slot = in.i32("free joint slot");
-    if (slot < 0 || static_cast<uint32_t>(slot) >= slotCount || m_jointSlots[static_cast<std::size_t>(slot)].denseIndex != -1)
-      in.fail("free joint slot " + std::to_string(slot) + " is not a free slot of the table");
-    m_freeJointSlots.push_back(slot);
-  }
-  if (in.failed()) return failure();
-  const uint32_t jointCount = in.count("joint count", 300);
-  for (uint32_t j = 0; j < jointCount && !in.failed(); ++j) {
-    const int32_t slotIndex = in.i32("joint slot");
-    JointConstraint joint = readJoint(in, m_tag);
-    if (in.failed()) break;
-    const std::string where = "joint " + std::to_string(j) + " ('" + joint.def.name + "')";
-    if (slotIndex < 1 || static_cast<uint32_t>(slotIndex) > slotCount ||
-        m_jointSlots[static_cast<std::size_t>(slotIndex - 1)].denseIndex != static_cast<int32_t>(j))
-      return Error{"world snapshot: " + where + " is not where the joint slot table puts it"};
-    if (joint.def.name.empty() || !findJoint(joint.def.name).isNull())
-      return Error{"world snapshot: " + where + ": empty or duplicate name"};
-    // The bodies: present, distinct, one of them moving.
-    bool moves = false;
-    JointSidePose poses[2];
-    const BodyId sides[2] = {joint.def.bodyA, joint.def.bodyB};
-    for (int side = 0; side < 2; ++side) {
-      if (sides[side].isNull()) continue;
-      if (const std::string why = invalidIdReason(sides[side]); !why.empty())
-        return Error{"world snapshot: " + where + ": body_" + (side == 0 ? "a" : "b") + ": " + why};
-      const Body& body = m_bodies[denseIndexOf(sides[side])];
-      moves = moves || !body.isStatic();
-      poses[side] = {body.position(), body.orientation(), body.rotation()};
-    }
-    if ((!sides[0].isNull() && sides[0] == sides[1]) || !moves)
-      return Error{"world snapshot: " + where + ": joins a body to itself or nothing that moves"};
-    // The definition's numbers, by the rules a new joint obeys; the
-    // body-frame data must be finite and its axes unit.
-    if (auto made = makeJointConstraint(joint.def, poses[0], poses[1]); !made)
-      return Error{"world snapshot: " + made.error().message};
-    const auto unit = [](const Vec3& v) { return v.allFinite() && std::abs(v.norm() - 1.0) < 1e-9; };
-    if (!joint.anchorA.allFinite() || !joint.anchorB.allFinite() || !unit(joint.axisA) || !unit(joint.axisB) ||
-        !unit(joint.normalA1) || !unit(joint.normalA2) || !joint.restRelative.isFinite() ||
-        std::abs(joint.restRelative.norm() - 1.0) > 1e-9 || !std::isfinite(joint.length) || joint.length < 0.0 ||
-        !joint.lastForce.allFinite() || !joint.lastTorque.allFinite() || !std::isfinite(joint.lastAxisEffort) ||
-        joint.lastAtLimit < -1 || joint.lastAtLimit > 1)
-      return Error{"world snapshot: " + where + " has non-finite or non-unit frame data"};
-    m_jointIds.push_back(JointId{slotIndex, m_jointSlots[static_cast<std::size_t>(slotIndex - 1)].generation, m_tag});
-    m_joints.push_back(std::move(joint));
-  }
-  if (in.failed()) return failure();
-  std::size_t slotsInUse = 0;
-  for (const Slot& slot : m_jointSlots) slotsInUse += slot.denseIndex >= 0 ? 1 : 0;
-  if (slotsInUse != m_joints.size() || slotsInUse + m_freeJointSlots.size() != m_jointSlots.size())
-    return Error{"world snapshot: the joint slot table does not match the " + std::to_string(m_joints.size()) +
-                 " joints"};
-  if (!m_joints.empty() && m_settings.contact.model == ContactModel::Penalty)
-    return Error{"world snapshot: joints need the impulse contact model"};
   return true;
-}
-
-Expected<World> World::decodeSnapshot(std::span<const uint8_t> bytes, const WorldSettings& settings) {
-  ByteReader in(bytes);
-  auto world = readSnapshot(in, settings);
-  if (world && in.remaining() != 0)
-    return Error{"world snapshot: " + std::to_string(in.remaining()) + " unexpected bytes after the end"};
-  return world;
 }
 
 }  // namespace rbsim

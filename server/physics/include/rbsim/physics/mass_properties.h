@@ -5,10 +5,10 @@
 #include <span>
 #include <string>
 
-#include "physics/common/expected.h"
-#include "physics/geometry/triangle_mesh.h"
-#include "physics/math/transform.h"
-#include "physics/math/types.h"
+#include "rbsim/physics/expected.h"
+#include "rbsim/physics/triangle_mesh.h"
+#include "rbsim/physics/transform.h"
+#include "rbsim/physics/math_types.h"
 
 namespace rbsim {
 

@@ -14,8 +14,8 @@
 #include "physics/solver/contact_solver.h"
 #include "physics/solver/velocity_projection.h"
 #include "physics/world/impacts.h"
-#include "rbsim/physics/world.h"
-#include "physics/world/for_each_body.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
 
 namespace rbsim {
 
@@ -29,64 +29,16 @@ bool isZero(const Vec3& v) {
   return v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0;
 }
 
-}  // namespace
-
-int World::contactPointCount() const {
-  int count = 0;
-  for (const SolvedManifold& m : m_contacts) count += m.pointCount;
-  return count;
-}
-
-void World::findContacts() {
-  detectContacts(*m_detector, *this, m_maxSquaredSpeed, m_maxSquaredSpin, taskPool());
-}
-
-void World::stepImpulse() {
-  const double dt = m_settings.dt;
-  findContacts();
-  std::vector<BodyContact> unjoined;  // when joints filter some pairs out
-  const std::vector<BodyContact>& detected = contactsBetweenUnjoinedBodies(m_detector->contacts(), unjoined);
-  const std::vector<int> islandOf = findIslands(detected);
-  wakeIslands(islandOf);
-  const std::vector<char> jointed = findJointedBodies();  // empty: no joint to enforce
-  if (detected.empty()) {
-    integrateFree(dt, jointed);  // nothing touches: every unjointed body flies free
-    stepJointedBodies(jointed, {}, {}, dt);
-    m_contacts.clear();
-  } else {
-    ContactStep step = selectContacts(detected);
-    // A jointed island that touches something is solved with the contacts:
-    // all its bodies go to the solver, and its joints' velocity rows are
-    // projected between the contact sweeps.
-    std::unique_ptr<VelocityProjection> jointRows;
-    if (!jointed.empty()) jointRows = addJointedIslandsInContact(step, jointed, islandOf);
-    if (jointed.empty()) {
-      integrateFree(dt, step.inContact);  // bodies touching nothing
-    } else {
-      std::vector<char> skip = step.inContact;
-      for (std::size_t i = 0; i < skip.size(); ++i) skip[i] = skip[i] || jointed[i];
-      integrateFree(dt, skip);
-    }
-    loadSolverBodies(step, dt, jointed);
-    findImpacts(step);
-    std::vector<SolvedManifold> solved;
-    solveContacts(*step.contacts, m_settings.contact.solver, dt, solved, jointRows.get());
-    integrateSolvedBodies(step, solved, dt, jointed);
-    stepJointedBodies(jointed, step.solving, islandOf, dt);
-    keepSleepingContacts(detected, solved);
-    m_contacts = std::move(solved);
-  }
-  if (m_settings.contact.sleeping) updateSleep(islandOf);
-}
-
-World::ContactStep World::selectContacts(const std::vector<BodyContact>& detected) const {
+// The contacts the solver takes this step (those with an awake body) and
+// the bodies it moves.
+ContactStep selectContacts(const WorldData& world, const std::vector<BodyContact>& detected) {
   // Contacts with an awake body go to the solver; the others keep last
   // step's result (for reporting, and for warm starting when they wake).
   const auto awake = [&](int i) {
-    const Body& b = m_bodies[static_cast<std::size_t>(i)];
+    const Body& b = world.bodies[static_cast<std::size_t>(i)];
     return !b.isStatic() && !b.isSleeping();
   };
-  const std::size_t n = m_bodies.size();
+  const std::size_t n = world.bodies.size();
   ContactStep step;
   step.inContact.assign(n, 0);
   const bool allActive = std::all_of(detected.begin(), detected.end(), [&](const BodyContact& c) {
@@ -106,22 +58,25 @@ World::ContactStep World::selectContacts(const std::vector<BodyContact>& detecte
   return step;
 }
 
-void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char>& jointed) {
+// The solver's bodies: velocities after the forces of h (semi-implicit
+// Euler's first half); marks the fast ones. Keeps `jointed` (empty: none)
+// in the step for findImpacts.
+void loadSolverBodies(WorldData& world, ContactStep& step, double h, const std::vector<char>& jointed) {
   // Per body also whether any of its points may move faster than half the
   // restitution threshold (findImpacts: a pair of slower bodies cannot
   // collide). |v| + |ω| r <= sqrt(2 (|v|² + |ω|² r²)), r the collider's radius.
-  const double threshold = m_settings.contact.solver.restitutionThreshold;
+  const double threshold = world.settings.contact.solver.restitutionThreshold;
   const double slow2 = 0.125 * threshold * threshold;  // (threshold / 2)² / 2
-  const std::size_t n = m_bodies.size();
-  m_solverBodies.assign(n, SolverBody{});
+  const std::size_t n = world.bodies.size();
+  world.solverBodies.assign(n, SolverBody{});
   step.fast.assign(n, 0);
   step.jointed = jointed;
-  forEachBody([&](std::size_t i, SpeedBound&) {
-    const Body& body = m_bodies[i];
-    SolverBody& sb = m_solverBodies[i];
+  forEachBody(world, [&](std::size_t i, SpeedBound&) {
+    const Body& body = world.bodies[i];
+    SolverBody& sb = world.solverBodies[i];
     sb.position = body.state().position;
     if (!step.solving[i]) return;
-    const ForceInputs inputs = forcesOn(i);
+    const ForceInputs inputs = forcesOn(world, i);
     const Momenta momenta = integrateMomenta(body.state(), body.rotation(), body.dynamics(), inputs, h);
     sb.inverseMass = body.dynamics().inverseMass;
     sb.inverseInertia = body.inverseInertiaWorld();
@@ -142,17 +97,51 @@ void World::loadSolverBodies(ContactStep& step, double h, const std::vector<char
   step.anyFast = std::find(step.fast.begin(), step.fast.end(), 1) != step.fast.end();
 }
 
-void World::findImpacts(ContactStep& step) {
+// A colliding contact of a jointed body, if its pair bounces: the points
+// whose gap closes within the step are made touching, so that the solver
+// gives them −e v_rel now rather than stopping them at the gap (which is a
+// plastic collision). True when it changed the manifold.
+bool speculativeBounce(const WorldData& world, BodyContact& contact) {
+  const double restitution =
+      combineMaterials(world.bodies[static_cast<std::size_t>(contact.bodyA)].description().material,
+                       world.bodies[static_cast<std::size_t>(contact.bodyB)].description().material)
+          .restitution;
+  if (!(restitution > 0.0)) return false;  // plastic: the gap closes, and no further
+  const double dt = world.settings.dt;
+  const double threshold = world.settings.contact.solver.restitutionThreshold;
+  const SolverBody& a = world.solverBodies[static_cast<std::size_t>(contact.bodyA)];
+  const SolverBody& b = world.solverBodies[static_cast<std::size_t>(contact.bodyB)];
+  bool changed = false;
+  for (int p = 0; p < contact.manifold.pointCount; ++p) {
+    ContactPoint& point = contact.manifold.points[static_cast<std::size_t>(p)];
+    if (point.depth >= 0.0) continue;  // already touching
+    const Vec3 x = 0.5 * (point.pointA + point.pointB);
+    const Vec3 vRel = b.linearVelocity + b.angularVelocity.cross(x - b.position) -
+                      a.linearVelocity - a.angularVelocity.cross(x - a.position);
+    const double vn = vRel.dot(contact.manifold.normal);
+    if (vn < -threshold && -point.depth + vn * dt < 0.0) {
+      point.depth = 0.0;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+// Colliding contacts (world/impacts.h): each is moved to its time of
+// impact, with the manifold there, and its bodies' solver data with it.
+// A jointed body's flight is not free, so it has no time of impact: its
+// colliding contacts bounce where they are (see speculativeBounce).
+void findImpacts(WorldData& world, ContactStep& step) {
   if (!step.anyFast) return;  // a pile at rest: nothing can collide
-  const double dt = m_settings.dt;
-  const ContactConfig& config = m_settings.contact;
+  const double dt = world.settings.dt;
+  const ContactConfig& config = world.settings.contact;
   const double threshold = config.solver.restitutionThreshold;
   ImpactSearch search;
   search.method =
       config.backtracking ? ImpactSearchMethod::Bisection : ImpactSearchMethod::RegulaFalsi;
   search.tolerance = config.solver.touchingDistance;
-  search.integrator = m_settings.integrator;
-  search.gravity = m_settings.gravity;
+  search.integrator = world.settings.integrator;
+  search.gravity = world.settings.gravity;
   search.detection = config.detection;
 
   const std::vector<BodyContact>& contacts = *step.contacts;
@@ -162,8 +151,8 @@ void World::findImpacts(ContactStep& step) {
       continue;
     // Cheap test first: a point approaching faster than the threshold (with
     // the velocities after the step's forces) whose gap closes within the step.
-    const SolverBody& a = m_solverBodies[static_cast<std::size_t>(c.bodyA)];
-    const SolverBody& b = m_solverBodies[static_cast<std::size_t>(c.bodyB)];
+    const SolverBody& a = world.solverBodies[static_cast<std::size_t>(c.bodyA)];
+    const SolverBody& b = world.solverBodies[static_cast<std::size_t>(c.bodyB)];
     bool colliding = false;
     double predictedTime = dt;  // s: when the first such gap closes at its current rate
     for (int p = 0; p < c.manifold.pointCount; ++p) {
@@ -183,7 +172,7 @@ void World::findImpacts(ContactStep& step) {
     };
     if (isJointed(c.bodyA) || isJointed(c.bodyB)) {
       BodyContact bounced = c;
-      if (!speculativeBounce(bounced)) continue;
+      if (!speculativeBounce(world, bounced)) continue;
       if (step.contacts != &step.own) {
         step.own = contacts;
         step.contacts = &step.own;
@@ -192,17 +181,17 @@ void World::findImpacts(ContactStep& step) {
       continue;
     }
     const std::optional<Impact> impact =
-        findImpact(flying(static_cast<std::size_t>(c.bodyA)), flying(static_cast<std::size_t>(c.bodyB)), c,
+        findImpact(flying(world, static_cast<std::size_t>(c.bodyA)), flying(world, static_cast<std::size_t>(c.bodyB)), c,
                    search, dt, predictedTime);
     if (!impact) continue;  // the flight curves away: a speculative contact after all
     if (step.contacts != &step.own) {
       step.own = contacts;
       step.contacts = &step.own;
     }
-    if (step.impactTime.empty()) step.impactTime.assign(m_bodies.size(), -1.0);
+    if (step.impactTime.empty()) step.impactTime.assign(world.bodies.size(), -1.0);
     step.own[k].manifold = impact->manifold;
     for (const int body : {c.bodyA, c.bodyB}) {
-      if (m_bodies[static_cast<std::size_t>(body)].isStatic()) continue;
+      if (world.bodies[static_cast<std::size_t>(body)].isStatic()) continue;
       double& time = step.impactTime[static_cast<std::size_t>(body)];
       time = time < 0.0 ? impact->time : std::min(time, impact->time);
     }
@@ -211,13 +200,13 @@ void World::findImpacts(ContactStep& step) {
 
   // A colliding body meets the solver as it is at its (first) time of
   // impact: position, inertia and velocities there.
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     const double time = step.impactTime[i];
     if (time < 0.0) continue;
-    const Body& body = m_bodies[i];
-    const RigidState flight = freeFlight(flying(i), m_settings.integrator, m_settings.gravity, time);
+    const Body& body = world.bodies[i];
+    const RigidState flight = freeFlight(flying(world, i), world.settings.integrator, world.settings.gravity, time);
     const Mat3 rotation = flight.orientation.toRotationMatrix();
-    SolverBody& sb = m_solverBodies[i];
+    SolverBody& sb = world.solverBodies[i];
     sb.position = flight.position;
     sb.inverseInertia = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
     sb.linearVelocity = flight.linearMomentum * sb.inverseMass;
@@ -227,52 +216,12 @@ void World::findImpacts(ContactStep& step) {
   }
 }
 
-bool World::speculativeBounce(BodyContact& contact) const {
-  const double restitution =
-      combineMaterials(m_bodies[static_cast<std::size_t>(contact.bodyA)].description().material,
-                       m_bodies[static_cast<std::size_t>(contact.bodyB)].description().material)
-          .restitution;
-  if (!(restitution > 0.0)) return false;  // plastic: the gap closes, and no further
-  const double dt = m_settings.dt;
-  const double threshold = m_settings.contact.solver.restitutionThreshold;
-  const SolverBody& a = m_solverBodies[static_cast<std::size_t>(contact.bodyA)];
-  const SolverBody& b = m_solverBodies[static_cast<std::size_t>(contact.bodyB)];
-  bool changed = false;
-  for (int p = 0; p < contact.manifold.pointCount; ++p) {
-    ContactPoint& point = contact.manifold.points[static_cast<std::size_t>(p)];
-    if (point.depth >= 0.0) continue;  // already touching
-    const Vec3 x = 0.5 * (point.pointA + point.pointB);
-    const Vec3 vRel = b.linearVelocity + b.angularVelocity.cross(x - b.position) -
-                      a.linearVelocity - a.angularVelocity.cross(x - a.position);
-    const double vn = vRel.dot(contact.manifold.normal);
-    if (vn < -threshold && -point.depth + vn * dt < 0.0) {
-      point.depth = 0.0;
-      changed = true;
-    }
-  }
-  return changed;
-}
-
-void World::solveContacts(const std::vector<BodyContact>& active,
-                          const ContactSolverSettings& settings, double h,
-                          std::vector<SolvedManifold>& solved, const VelocityProjection* equalities) {
-  std::vector<int32_t> serials(m_bodies.size());
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) serials[i] = m_bodies[i].serial();
-  std::vector<PairMaterial> materials;
-  materials.reserve(active.size());
-  for (const BodyContact& c : active)
-    materials.push_back(
-        combineMaterials(m_bodies[static_cast<std::size_t>(c.bodyA)].description().material,
-                         m_bodies[static_cast<std::size_t>(c.bodyB)].description().material));
-  m_solver->solve(active, materials, m_solverBodies, serials, m_contacts, settings, h, solved,
-                  taskPool(), contactLevels(active), equalities);
-}
-
-std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) const {
+// Per body: how many contacts away from a static body (shock propagation).
+std::vector<int> contactLevels(const WorldData& world, const std::vector<BodyContact>& active) {
   // Levels: distance in contacts from a static body (for shock propagation),
   // by a breadth-first search over the contact graph. Bodies that no chain of
   // contacts joins to a static body share one level above all others.
-  const std::size_t n = m_bodies.size();
+  const std::size_t n = world.bodies.size();
   constexpr int kUnreached = 1 << 20;
   std::vector<int> levels(n, kUnreached);
   std::vector<int> start(n + 1, 0);  // adjacency in compressed rows
@@ -290,7 +239,7 @@ std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) co
   std::vector<int> queue;
   queue.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!m_bodies[i].isStatic()) continue;
+    if (!world.bodies[i].isStatic()) continue;
     levels[i] = 0;
     queue.push_back(static_cast<int>(i));
   }
@@ -308,12 +257,31 @@ std::vector<int> World::contactLevels(const std::vector<BodyContact>& active) co
   return levels;
 }
 
-void World::integrateSolvedBodies(const ContactStep& step, const std::vector<SolvedManifold>& solved,
-                                  double h, const std::vector<char>& jointed) {
-  const IntegratorKind integrator = m_settings.integrator;
+void solveContacts(WorldData& world, const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
+                   double h, std::vector<SolvedManifold>& solved, const VelocityProjection* equalities) {
+  std::vector<int32_t> serials(world.bodies.size());
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) serials[i] = world.bodies[i].serial();
+  std::vector<PairMaterial> materials;
+  materials.reserve(active.size());
+  for (const BodyContact& c : active)
+    materials.push_back(
+        combineMaterials(world.bodies[static_cast<std::size_t>(c.bodyA)].description().material,
+                         world.bodies[static_cast<std::size_t>(c.bodyB)].description().material));
+  world.solver->solve(active, materials, world.solverBodies, serials, world.contacts, settings, h, solved,
+                  taskPool(world), contactLevels(world, active), equalities);
+}
+
+// Momenta from the solved velocities and positions over h: semi-implicit
+// Euler's second half, with the split-impulse pseudo-velocities; free
+// flight over the rest of the step after a collision; the world's
+// integrator for a body that no impulse reached. Jointed bodies are left
+// to stepJointedBodies.
+void integrateSolvedBodies(WorldData& world, const ContactStep& step, const std::vector<SolvedManifold>& solved,
+                           double h, const std::vector<char>& jointed) {
+  const IntegratorKind integrator = world.settings.integrator;
   // Bodies that some contact pushed: a contact ending the solve with no
   // impulse at all pushed nothing (its warm start was taken back).
-  std::vector<char> pushed(m_bodies.size(), 0);
+  std::vector<char> pushed(world.bodies.size(), 0);
   for (const SolvedManifold& m : solved) {
     bool any = !isZero(m.frictionImpulse) || m.twistImpulse != 0.0;
     for (int p = 0; p < m.pointCount && !any; ++p) any = m.points[p].normalImpulse != 0.0;
@@ -321,18 +289,18 @@ void World::integrateSolvedBodies(const ContactStep& step, const std::vector<Sol
     pushed[static_cast<std::size_t>(m.bodyA)] = 1;
     pushed[static_cast<std::size_t>(m.bodyB)] = 1;
   }
-  forEachBody([&](std::size_t i, SpeedBound& bound) {
+  forEachBody(world, [&](std::size_t i, SpeedBound& bound) {
     if (!step.solving[i] || (!jointed.empty() && jointed[i])) return;  // jointed: stepJointedBodies
-    Body& body = m_bodies[i];
-    const SolverBody& sb = m_solverBodies[i];
-    const ForceInputs inputs = forcesOn(i);
+    Body& body = world.bodies[i];
+    const SolverBody& sb = world.solverBodies[i];
+    const ForceInputs inputs = forcesOn(world, i);
     const bool pseudo = !isZero(sb.pseudoLinear) || !isZero(sb.pseudoAngular);
     const double impactTime = step.impactTime.empty() ? -1.0 : step.impactTime[i];
     if (impactTime >= 0.0) {
       // Free flight to the time of impact, the impulses there (momenta from
       // the solved velocities with the inertia of that moment), free flight
       // over the rest of the step.
-      RigidState state = freeFlight(flying(i), integrator, m_settings.gravity, impactTime);
+      RigidState state = freeFlight(flying(world, i), integrator, world.settings.gravity, impactTime);
       const Mat3 rotation = state.orientation.toRotationMatrix();
       state.linearMomentum = body.dynamics().mass * sb.linearVelocity;
       state.angularMomentum =
@@ -358,22 +326,23 @@ void World::integrateSolvedBodies(const ContactStep& step, const std::vector<Sol
   });
 }
 
-void World::keepSleepingContacts(const std::vector<BodyContact>& detected,
-                                 std::vector<SolvedManifold>& solved) const {
+// Keeps, in key order, the last results of contacts between sleeping bodies.
+void keepSleepingContacts(const WorldData& world, const std::vector<BodyContact>& detected,
+                          std::vector<SolvedManifold>& solved) {
   const auto asleep = [&](int i) {
-    const Body& b = m_bodies[static_cast<std::size_t>(i)];
+    const Body& b = world.bodies[static_cast<std::size_t>(i)];
     return b.isStatic() || b.isSleeping();
   };
   std::vector<SolvedManifold> kept;
   for (const BodyContact& c : detected) {
     if (!asleep(c.bodyA) || !asleep(c.bodyB)) continue;
     const auto key =
-        std::make_tuple(m_bodies[static_cast<std::size_t>(c.bodyA)].serial(),
-                        m_bodies[static_cast<std::size_t>(c.bodyB)].serial(), c.pieceA, c.pieceB);
+        std::make_tuple(world.bodies[static_cast<std::size_t>(c.bodyA)].serial(),
+                        world.bodies[static_cast<std::size_t>(c.bodyB)].serial(), c.pieceA, c.pieceB);
     const auto found =
-        std::lower_bound(m_contacts.begin(), m_contacts.end(), key,
+        std::lower_bound(world.contacts.begin(), world.contacts.end(), key,
                          [](const SolvedManifold& m, const auto& k) { return manifoldKey(m) < k; });
-    if (found != m_contacts.end() && manifoldKey(*found) == key) {
+    if (found != world.contacts.end() && manifoldKey(*found) == key) {
       SolvedManifold copy = *found;
       copy.bodyA = c.bodyA;
       copy.bodyB = c.bodyB;
@@ -385,6 +354,51 @@ void World::keepSleepingContacts(const std::vector<BodyContact>& detected,
   std::sort(solved.begin(), solved.end(), [](const SolvedManifold& x, const SolvedManifold& y) {
     return manifoldKey(x) < manifoldKey(y);
   });
+}
+
+}  // namespace
+
+void findContacts(WorldData& world) {
+  detectContacts(*world.detector, world.bodies, world.settings, world.maxSquaredSpeed, world.maxSquaredSpin,
+                 taskPool(world));
+}
+
+void stepImpulse(WorldData& world) {
+  const double dt = world.settings.dt;
+  findContacts(world);
+  std::vector<BodyContact> unjoined;  // when joints filter some pairs out
+  const std::vector<BodyContact>& detected = contactsBetweenUnjoinedBodies(world, world.detector->contacts(), unjoined);
+  const std::vector<int> islandOf = findIslands(world, detected);
+  wakeIslands(world, islandOf);
+  const std::vector<char> jointed = findJointedBodies(world);  // empty: no joint to enforce
+  if (detected.empty()) {
+    integrateFree(world, dt, jointed);  // nothing touches: every unjointed body flies free
+    stepJointedBodies(world, jointed, {}, {}, dt);
+    world.contacts.clear();
+  } else {
+    ContactStep step = selectContacts(world, detected);
+    // A jointed island that touches something is solved with the contacts:
+    // all its bodies go to the solver, and its joints' velocity rows are
+    // projected between the contact sweeps.
+    std::unique_ptr<VelocityProjection> jointRows;
+    if (!jointed.empty()) jointRows = addJointedIslandsInContact(world, step, jointed, islandOf);
+    if (jointed.empty()) {
+      integrateFree(world, dt, step.inContact);  // bodies touching nothing
+    } else {
+      std::vector<char> skip = step.inContact;
+      for (std::size_t i = 0; i < skip.size(); ++i) skip[i] = skip[i] || jointed[i];
+      integrateFree(world, dt, skip);
+    }
+    loadSolverBodies(world, step, dt, jointed);
+    findImpacts(world, step);
+    std::vector<SolvedManifold> solved;
+    solveContacts(world, *step.contacts, world.settings.contact.solver, dt, solved, jointRows.get());
+    integrateSolvedBodies(world, step, solved, dt, jointed);
+    stepJointedBodies(world, jointed, step.solving, islandOf, dt);
+    keepSleepingContacts(world, detected, solved);
+    world.contacts = std::move(solved);
+  }
+  if (world.settings.contact.sleeping) updateSleep(world, islandOf);
 }
 
 }  // namespace rbsim

@@ -8,7 +8,8 @@
 #include "physics/body/external_load.h"
 #include "physics/collision/body_contact.h"
 #include "physics/joint/joint_constraint.h"
-#include "rbsim/physics/world.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
 
 namespace rbsim {
 
@@ -40,80 +41,69 @@ class DisjointSets {
 
 }  // namespace
 
-int World::sleepingBodyCount() const {
-  return static_cast<int>(
-      std::count_if(m_bodies.begin(), m_bodies.end(), [](const Body& b) { return b.isSleeping(); }));
-}
-
-Expected<bool> World::wakeUp(BodyId id) {
-  if (const std::string why = invalidIdReason(id); !why.empty()) return Error{"cannot wake: " + why};
-  bodyRef(id).wake();
-  return true;
-}
-
-std::vector<int> World::findIslands(const std::vector<BodyContact>& contacts) const {
-  const std::size_t n = m_bodies.size();
+std::vector<int> findIslands(const WorldData& world, const std::vector<BodyContact>& contacts) {
+  const std::size_t n = world.bodies.size();
   std::vector<int> islandOf(n);
-  if (contacts.empty() && m_joints.empty()) {  // every body its own island
+  if (contacts.empty() && world.joints.empty()) {  // every body its own island
     std::iota(islandOf.begin(), islandOf.end(), 0);
     return islandOf;
   }
   // A static body joins nothing: two piles on one floor are two islands.
   DisjointSets islands(n);
   for (const BodyContact& c : contacts) {
-    if (!m_bodies[static_cast<std::size_t>(c.bodyA)].isStatic() &&
-        !m_bodies[static_cast<std::size_t>(c.bodyB)].isStatic())
+    if (!world.bodies[static_cast<std::size_t>(c.bodyA)].isStatic() &&
+        !world.bodies[static_cast<std::size_t>(c.bodyB)].isStatic())
       islands.unite(c.bodyA, c.bodyB);
   }
-  for (const JointConstraint& joint : m_joints) {
+  for (const JointConstraint& joint : world.joints) {
     const BodyId a = joint.def.bodyA, b = joint.def.bodyB;
     if (a.isNull() || b.isNull()) continue;
-    const std::size_t ia = denseIndexOf(a), ib = denseIndexOf(b);
-    if (!m_bodies[ia].isStatic() && !m_bodies[ib].isStatic())
+    const std::size_t ia = denseIndexOf(world, a), ib = denseIndexOf(world, b);
+    if (!world.bodies[ia].isStatic() && !world.bodies[ib].isStatic())
       islands.unite(static_cast<int>(ia), static_cast<int>(ib));
   }
   for (std::size_t i = 0; i < n; ++i) islandOf[i] = islands.find(static_cast<int>(i));
   return islandOf;
 }
 
-void World::wakeIslands(const std::vector<int>& islandOf) {
-  if (!m_maybeAsleep) return;
-  const bool sleeping = m_settings.contact.sleeping;
-  const std::size_t n = m_bodies.size();
+void wakeIslands(WorldData& world, const std::vector<int>& islandOf) {
+  if (!world.maybeAsleep) return;
+  const bool sleeping = world.settings.contact.sleeping;
+  const std::size_t n = world.bodies.size();
   std::vector<char> islandAwake;
   for (std::size_t i = 0; i < n; ++i) {
     // Only a sleeping body has anything to wake; most steps find none.
-    if (!m_bodies[i].isSleeping()) continue;
+    if (!world.bodies[i].isSleeping()) continue;
     if (islandAwake.empty()) {
       // An island is awake when it holds an awake or a pushed body (a push
       // wakes it before the step in which the push first acts). Static
       // bodies are islands of their own and never asleep: harmless here.
       islandAwake.assign(n, 0);
       for (std::size_t k = 0; k < n; ++k) {
-        const Body& body = m_bodies[k];
-        if (!body.isSleeping() || m_loads[k].active || !sleeping)
+        const Body& body = world.bodies[k];
+        if (!body.isSleeping() || world.loads[k].active || !sleeping)
           islandAwake[static_cast<std::size_t>(islandOf[k])] = 1;
       }
     }
-    Body& body = m_bodies[i];
+    Body& body = world.bodies[i];
     if (islandAwake[static_cast<std::size_t>(islandOf[i])]) body.wake();
   }
 }
 
-void World::updateSleep(const std::vector<int>& islandOf) {
-  const double dt = m_settings.dt;
-  const ContactConfig& config = m_settings.contact;
-  const std::size_t n = m_bodies.size();
+void updateSleep(WorldData& world, const std::vector<int>& islandOf) {
+  const double dt = world.settings.dt;
+  const ContactConfig& config = world.settings.contact;
+  const std::size_t n = world.bodies.size();
   // An island's rest time is its least restful body's. A body pushed during
   // this step is not at rest, however slowly it moves yet: it must not fall
   // asleep under the force, and falling asleep must not throw away the
   // momentum the push gave it.
   std::vector<double> islandRest(n, std::numeric_limits<double>::infinity());
-  const std::vector<char> actuated = m_joints.empty() ? std::vector<char>{} : findActuatedBodies();
+  const std::vector<char> actuated = world.joints.empty() ? std::vector<char>{} : findActuatedBodies(world);
   for (std::size_t i = 0; i < n; ++i) {
-    Body& body = m_bodies[i];
+    Body& body = world.bodies[i];
     if (body.isStatic() || body.isSleeping()) continue;
-    const bool still = !m_loads[i].active && (actuated.empty() || !actuated[i]) &&
+    const bool still = !world.loads[i].active && (actuated.empty() || !actuated[i]) &&
                        body.linearVelocity().squaredNorm() <
                            config.sleepLinearVelocity * config.sleepLinearVelocity &&
                        body.angularVelocity().squaredNorm() <
@@ -124,7 +114,7 @@ void World::updateSleep(const std::vector<int>& islandOf) {
   }
   bool anyAsleep = false;
   for (std::size_t i = 0; i < n; ++i) {
-    Body& body = m_bodies[i];
+    Body& body = world.bodies[i];
     anyAsleep = anyAsleep || body.isSleeping();
     if (body.isStatic() || body.isSleeping()) continue;
     if (islandRest[static_cast<std::size_t>(islandOf[i])] >= config.sleepTime) {
@@ -133,7 +123,7 @@ void World::updateSleep(const std::vector<int>& islandOf) {
       body.setMomenta(Vec3::Zero(), Vec3::Zero());
     }
   }
-  m_maybeAsleep = anyAsleep;
+  world.maybeAsleep = anyAsleep;
 }
 
 }  // namespace rbsim

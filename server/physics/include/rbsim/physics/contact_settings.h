@@ -1,7 +1,17 @@
 #pragma once
-// Settings of the impulse-based contact solver (see contact_solver.h).
+// Settings of contact detection and of the impulse-based contact solver:
+// the numbers of a world file's `contact:` section (WorldSettings::contact).
 
 namespace rbsim {
+
+// Contact detection (collision/contact_generation.h).
+struct ContactSettings {
+  // Points closer than this (m) count as contacts even before they touch,
+  // so that resting contact does not flicker on and off.
+  double margin = 0.005;
+};
+
+// The impulse-based contact solver (solver/contact_solver.h).
 
 struct ContactSolverSettings {
   int velocityIterations = 10;

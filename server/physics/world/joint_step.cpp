@@ -1,0 +1,318 @@
+// The joint step of the jointed bodies (joint/joint_solver.h): RATTLE for
+// islands that touch nothing, the contact path's semi-implicit step around
+// the same projection for islands in contact; and which bodies and contacts
+// the joints take out of the other paths.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "physics/body/body.h"
+#include "physics/body/external_load.h"
+#include "physics/body/integrator.h"
+#include "physics/collision/body_contact.h"
+#include "physics/joint/joint_constraint.h"
+#include "physics/joint/joint_solver.h"
+#include "physics/joint/joint_velocity_projection.h"
+#include "physics/math/rotation_matrix.h"
+#include "physics/solver/contact_solver.h"
+#include "physics/world/step_stages.h"
+#include "physics/world/world_data.h"
+
+namespace rbsim {
+
+namespace {
+
+// The direct effort as the actuator gives it: capped at its effort limit.
+double appliedEffort(const JointDef& def) {
+  return std::clamp(def.effort, -def.actuatorLimits.effort, def.actuatorLimits.effort);
+}
+
+// The enforced joints with a moving side as the joint solver takes them:
+// sides by `local` index (-1: a fixed pose), with the joint's index.
+void collectJointLinks(const WorldData& world, const std::vector<int>& local, std::vector<JointLink>& links,
+                       std::vector<std::size_t>& linkJoint) {
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    const JointConstraint& joint = world.joints[j];
+    if (!jointIsEnforced(world, joint)) continue;
+    JointLink link;
+    link.joint = &joint;
+    bool anyMoving = false;
+    for (const bool sideB : {false, true}) {
+      const BodyId id = sideB ? joint.def.bodyB : joint.def.bodyA;
+      int& index = sideB ? link.bodyB : link.bodyA;
+      JointSidePose& fixed = sideB ? link.fixedB : link.fixedA;
+      if (id.isNull()) continue;
+      const std::size_t i = denseIndexOf(world, id);
+      index = local[i];
+      if (index < 0) fixed = jointSidePose(world.bodies[i]);  // static
+      anyMoving = anyMoving || index >= 0;
+    }
+    if (!anyMoving) continue;
+    links.push_back(link);
+    linkJoint.push_back(j);
+  }
+}
+
+}  // namespace
+
+const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const WorldData& world,
+                                                              const std::vector<BodyContact>& detected,
+                                                              std::vector<BodyContact>& storage) {
+  if (world.joints.empty() || detected.empty()) return detected;
+  std::vector<std::pair<int, int>> joined;  // dense (lower, higher)
+  for (const JointConstraint& joint : world.joints) {
+    if (joint.def.collideConnected || joint.def.bodyA.isNull() || joint.def.bodyB.isNull()) continue;
+    const int a = static_cast<int>(denseIndexOf(world, joint.def.bodyA));
+    const int b = static_cast<int>(denseIndexOf(world, joint.def.bodyB));
+    joined.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  if (joined.empty()) return detected;
+  std::sort(joined.begin(), joined.end());
+  const auto isJoined = [&](const BodyContact& c) {
+    return std::binary_search(joined.begin(), joined.end(),
+                              std::make_pair(std::min(c.bodyA, c.bodyB), std::max(c.bodyA, c.bodyB)));
+  };
+  if (std::none_of(detected.begin(), detected.end(), isJoined)) return detected;
+  storage.clear();
+  for (const BodyContact& c : detected)
+    if (!isJoined(c)) storage.push_back(c);
+  return storage;
+}
+
+std::vector<char> findActuatedBodies(const WorldData& world) {
+  // A drive moves its joint until it settles; a body's own sleep thresholds
+  // (cm/s) are too coarse for a servo creeping to its target, so a drive's
+  // joint counts as moving down to this rate.
+  constexpr double kDriveSettledRate = 1e-4;  // rad/s or m/s
+  std::vector<char> busy;
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    const JointDef& def = world.joints[j].def;
+    const bool motorMoves = def.motor.enabled && def.motor.targetRate != 0.0;
+    if (!motorMoves && !def.drive.enabled) continue;
+    if (!jointIsEnforced(world, world.joints[j])) continue;
+    if (!motorMoves && std::abs(jointStateAt(world, static_cast<int>(j)).rate) <= kDriveSettledRate) continue;
+    if (busy.empty()) busy.assign(world.bodies.size(), 0);
+    for (const BodyId body : {def.bodyA, def.bodyB})
+      if (!body.isNull()) busy[denseIndexOf(world, body)] = 1;
+  }
+  return busy;
+}
+
+std::vector<char> findJointedBodies(const WorldData& world) {
+  std::vector<char> jointed;
+  for (const JointConstraint& joint : world.joints) {
+    if (!jointIsEnforced(world, joint)) continue;
+    for (const BodyId id : {joint.def.bodyA, joint.def.bodyB}) {
+      if (id.isNull()) continue;
+      const std::size_t i = denseIndexOf(world, id);
+      const Body& body = world.bodies[i];
+      if (body.isStatic() || body.isSleeping()) continue;
+      if (jointed.empty()) jointed.assign(world.bodies.size(), 0);
+      jointed[i] = 1;
+    }
+  }
+  return jointed;
+}
+
+
+std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
+                                                               const std::vector<char>& jointed,
+                                                               const std::vector<int>& islandOf) {
+  const std::size_t n = world.bodies.size();
+  std::vector<char> touching(n, 0);  // per island root
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i] || !step.solving[i]) continue;
+    touching[static_cast<std::size_t>(islandOf[i])] = 1;
+    any = true;
+  }
+  if (!any) return nullptr;
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> solverIndex;
+  std::vector<JointBody> bodies;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i] || !touching[static_cast<std::size_t>(islandOf[i])]) continue;
+    step.solving[i] = 1;
+    const Body& body = world.bodies[i];
+    local[i] = static_cast<int>(bodies.size());
+    solverIndex.push_back(i);
+    JointBody jb;
+    jb.startPosition = body.position();
+    jb.startOrientation = body.orientation();
+    jb.startInverseInertia = body.inverseInertiaWorld();
+    jb.inverseMass = body.inverseMass();
+    bodies.push_back(jb);
+  }
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  collectJointLinks(world, local, links, linkJoint);
+  // Joints of islands that touch nothing have no side here: leave them out.
+  std::vector<JointLink> inContact;
+  for (const JointLink& link : links)
+    if (link.bodyA >= 0 || link.bodyB >= 0) inContact.push_back(link);
+  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
+}
+
+void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const std::vector<char>& solving,
+                       const std::vector<int>& islandOf, double h) {
+  if (jointed.empty()) return;
+  const std::size_t n = world.bodies.size();
+  // Islands with a jointed body in contact take the semi-implicit step.
+  std::vector<char> contactIsland;
+  if (!solving.empty()) {
+    contactIsland.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (jointed[i] && solving[i]) contactIsland[static_cast<std::size_t>(islandOf[i])] = 1;
+  }
+  // The jointed bodies: where they start, their momenta after the first
+  // half kick (and the contact impulses, for those the contact solver
+  // moved), the contact impulses alone, the split-impulse pseudo-velocities.
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> dense;
+  std::vector<Momenta> kicked, contactImpulse;
+  std::vector<Vec3> pseudoLinear, pseudoAngular;
+  std::vector<char> staggered;  // per jointed body: RATTLE's half kicks (else the whole kick first)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!jointed[i]) continue;
+    const Body& body = world.bodies[i];
+    local[i] = static_cast<int>(dense.size());
+    dense.push_back(i);
+    const bool halves = contactIsland.empty() || !contactIsland[static_cast<std::size_t>(islandOf[i])];
+    staggered.push_back(halves ? 1 : 0);
+    const Momenta free =
+        integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(world, i), halves ? 0.5 * h : h);
+    Momenta withContacts = free;
+    Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+    if (!solving.empty() && solving[i]) {
+      const SolverBody& sb = world.solverBodies[i];
+      withContacts = {body.mass() * sb.linearVelocity, body.inertiaWorld() * sb.angularVelocity};
+      linear = sb.pseudoLinear;
+      angular = sb.pseudoAngular;
+    }
+    kicked.push_back(withContacts);
+    contactImpulse.push_back({withContacts.linear - free.linear, withContacts.angular - free.angular});
+    pseudoLinear.push_back(linear);
+    pseudoAngular.push_back(angular);
+  }
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  collectJointLinks(world, local, links, linkJoint);
+
+  // The step in `parts` equal sub-steps, each a whole RATTLE step (half
+  // kick, drift and projection, half kick, velocity projection); the
+  // contact impulses and the pseudo-velocities' displacement go into the
+  // first. Returns whether every projection converged.
+  JointSolver& solver = *world.jointSolver;
+  std::vector<RigidState> ends(dense.size());
+  std::vector<Vec3> reactionLinear(links.size()), reactionAngular(links.size());
+  // The direct efforts, as impulses along each joint's axis row over
+  // `duration` at the current poses of `bodies` (start or end).
+  const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
+    for (const JointLink& link : links) {
+      const double effort = appliedEffort(link.joint->def);
+      if (effort == 0.0 || !link.joint->hasAxis()) continue;
+      const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
+      if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
+      JointRow row;
+      link.joint->axisRow(sidePose(link, bodies, false, atStart), sidePose(link, bodies, true, atStart), row);
+      const double lambda = effort * duration;
+      if (link.bodyA >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
+        body.linearMomentum += lambda * row.linearA;
+        body.angularMomentum += lambda * row.angularA;
+      }
+      if (link.bodyB >= 0) {
+        JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
+        body.linearMomentum += lambda * row.linearB;
+        body.angularMomentum += lambda * row.angularB;
+      }
+    }
+  };
+  std::vector<double> axisImpulse(links.size(), 0.0);
+  std::vector<int> atLimit(links.size(), 0);
+  const auto attempt = [&](int parts) {
+    const double s = h / parts;
+    std::fill(axisImpulse.begin(), axisImpulse.end(), 0.0);
+    bool converged = true;
+    std::fill(reactionLinear.begin(), reactionLinear.end(), Vec3::Zero());
+    std::fill(reactionAngular.begin(), reactionAngular.end(), Vec3::Zero());
+    for (std::size_t k = 0; k < dense.size(); ++k) ends[k] = world.bodies[dense[k]].state();
+    for (int part = 0; part < parts; ++part) {
+      std::vector<JointBody> bodies(dense.size());
+      for (std::size_t k = 0; k < dense.size(); ++k) {
+        const Body& body = world.bodies[dense[k]];
+        const RigidState& start = ends[k];
+        const Mat3 rotation = start.orientation.toRotationMatrix();
+        JointBody& jb = bodies[k];
+        jb.startPosition = start.position;
+        jb.startOrientation = start.orientation;
+        jb.startInverseInertia = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+        jb.inverseMass = body.inverseMass();
+        Momenta momenta = kicked[k];
+        if (parts > 1) {
+          momenta = integrateMomenta(start, rotation, body.dynamics(), forcesOn(world, dense[k]), staggered[k] ? 0.5 * s : s);
+          if (part == 0) {
+            momenta.linear += contactImpulse[k].linear;
+            momenta.angular += contactImpulse[k].angular;
+          }
+        }
+        jb.linearMomentum = momenta.linear;
+        jb.angularMomentum = momenta.angular;
+        if (part == 0) {
+          jb.pseudoLinear = static_cast<double>(parts) * pseudoLinear[k];
+          jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
+        }
+      }
+      applyEfforts(bodies, true, 0.5 * s, true);  // RATTLE's first half kick
+      applyEfforts(bodies, true, s, false);       // the whole kick of an island in contact
+      std::vector<JointLinkResult> results;
+      converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
+      // The second half kick at the end poses, then the velocities tangent
+      // to the joints there.
+      std::vector<Mat3> endInverseInertia(bodies.size());
+      for (std::size_t k = 0; k < bodies.size(); ++k) {
+        const Body& body = world.bodies[dense[k]];
+        JointBody& jb = bodies[k];
+        const RigidState state{jb.position, jb.orientation, jb.linearMomentum, jb.angularMomentum};
+        const Mat3 rotation = state.orientation.toRotationMatrix();
+        if (staggered[k]) {
+          const Momenta end = integrateMomenta(state, rotation, body.dynamics(), forcesOn(world, dense[k]), 0.5 * s);
+          jb.linearMomentum = end.linear;
+          jb.angularMomentum = end.angular;
+        }
+        endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+      }
+      applyEfforts(bodies, false, 0.5 * s, true);  // the second half kick
+      solver.projectVelocities(links, bodies, endInverseInertia, s, results);
+      for (std::size_t k = 0; k < bodies.size(); ++k)
+        ends[k] = {bodies[k].position, bodies[k].orientation, bodies[k].linearMomentum, bodies[k].angularMomentum};
+      for (std::size_t l = 0; l < links.size(); ++l) {
+        reactionLinear[l] += results[l].linearImpulse;
+        reactionAngular[l] += results[l].angularImpulse;
+        axisImpulse[l] += results[l].axisImpulse;
+        atLimit[l] = results[l].atLimit;
+      }
+    }
+    return converged;
+  };
+  // Sub-steps only where one step is too long for the projection to find
+  // the joints' closure (fast turns of light links: the start's rows no
+  // longer reach it): halve until it converges, up to 16 parts.
+  constexpr int kMaxParts = 16;
+  for (int parts = 1; !attempt(parts) && parts < kMaxParts;) parts *= 2;
+
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    Body& body = world.bodies[dense[k]];
+    body.moveTo(ends[k]);
+    noteSpeeds(world, body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
+  }
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    JointConstraint& joint = world.joints[linkJoint[l]];
+    joint.lastForce = reactionLinear[l] / h;
+    joint.lastTorque = reactionAngular[l] / h;
+    joint.lastAxisEffort = axisImpulse[l] / h + appliedEffort(joint.def);
+    joint.lastAtLimit = atLimit[l];
+  }
+}
+
+}  // namespace rbsim

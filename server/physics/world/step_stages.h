@@ -1,0 +1,130 @@
+#pragma once
+// The step's stages, free functions on a WorldData (world/world_data.h),
+// one file per stage:
+//   world_step.cpp            the step driver, free integration, the guard
+//   islands.cpp               islands, waking and sleeping
+//   impulse_step.cpp          the impulse model's step (contacts, impacts, solve)
+//   joint_step.cpp            the joint step of jointed bodies
+//   joints.cpp                joints made, changed, removed and reported
+//   penalty_step.cpp          the penalty model's step
+//   continuous_collision.cpp  no tunnelling for flagged fast bodies
+//   snapshot.cpp              the world as bytes and back
+// World (world.cpp) forwards its public functions to them.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "physics/world/world_data.h"
+
+namespace rbsim {
+
+class ByteReader;
+class ByteWriter;
+class VelocityProjection;
+struct BodyContact;
+
+// --- world_step.cpp
+// Advances the world by settings.dt (World::step says what happens).
+void stepWorld(WorldData& world);
+// Integrates the awake dynamic bodies not marked in `skip` (all when it is
+// empty) over h with the world's integrator, loads applied; judges each for
+// the guard as it goes (world.judged).
+void integrateFree(WorldData& world, double h, const std::vector<char>& skip);
+
+// --- islands.cpp
+// Per dense index: the root of the island (bodies joined by contacts or
+// joints between dynamic bodies) it belongs to.
+std::vector<int> findIslands(const WorldData& world, const std::vector<BodyContact>& contacts);
+// A sleeping body wakes when its island holds an awake or a pushed body.
+void wakeIslands(WorldData& world, const std::vector<int>& islandOf);
+// Puts to sleep the islands whose bodies all stayed below the sleep
+// velocities, unpushed, for the sleep time.
+void updateSleep(WorldData& world, const std::vector<int>& islandOf);
+
+// --- impulse_step.cpp
+// Collision detection of the bodies as they are now, on the step's threads.
+void findContacts(WorldData& world);
+// The impulse model's step, in the order it runs: islands → wake →
+// integrate velocities → impacts → solve → integrate positions → sleep.
+void stepImpulse(WorldData& world);
+// The contacts the solver takes this step and the bodies it moves.
+struct ContactStep {
+  const std::vector<BodyContact>* contacts = nullptr;  // the detector's, or `own`
+  std::vector<BodyContact> own;  // when some contacts sleep, or impacts moved a manifold
+  std::vector<char> inContact;   // per dense index: in one of `contacts`
+  std::vector<char> solving;     // in contact and awake: the solver moves it
+  std::vector<char> fast;        // solving, and fast enough to collide (loadSolverBodies)
+  std::vector<char> jointed;     // per dense index: moved by its joints (empty: no joints)
+  bool anyFast = false;
+  // Per dense index: the time of impact (s into the step) of the body's
+  // first collision this step, or < 0 for none; empty when nothing collides.
+  std::vector<double> impactTime;
+};
+
+// --- joint_step.cpp
+// Per dense index: 1 for an awake dynamic body with an enforced joint
+// (empty when there is none): the joint step moves it instead of the free
+// integration and the contact path.
+std::vector<char> findJointedBodies(const WorldData& world);
+// Per dense index: 1 for a body that an actuator still moves (a motor with
+// a target rate, a drive whose joint still moves), which must not fall
+// asleep however slowly it goes; empty when no joint acts so.
+std::vector<char> findActuatedBodies(const WorldData& world);
+// `detected` without the contacts of bodies that a joint joins (unless it
+// lets them collide): `detected` itself when no joint filters, else
+// `storage` filled.
+const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const WorldData& world,
+                                                              const std::vector<BodyContact>& detected,
+                                                              std::vector<BodyContact>& storage);
+// Puts every jointed body of an island that touches something into
+// step.solving (the contact path's kick and solve) and returns the joints'
+// velocity rows for the contact solve (null when no such island).
+std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
+                                                               const std::vector<char>& jointed,
+                                                               const std::vector<int>& islandOf);
+// The joint step of the jointed bodies over h (joint/joint_solver.h). An
+// island (`islandOf`) that touches nothing takes RATTLE: half kick, drift
+// and projection, half kick, velocity projection. An island in contact
+// takes the contact path's semi-implicit step around the same projection:
+// the whole kick and the contact impulses of world.solverBodies (for the
+// `solving` bodies) before the drift, and no kick after it, so that a body
+// resting on the ground leaves the step at rest.
+void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const std::vector<char>& solving,
+                       const std::vector<int>& islandOf, double h);
+
+// --- joints.cpp
+// Where a joint's side is: the body's pose.
+JointSidePose jointSidePose(const Body& body);
+bool jointIsEnforced(const WorldData& world, const JointConstraint& joint);
+JointId findJointByName(const WorldData& world, std::string_view name);  // null id when absent
+JointState jointStateAt(const WorldData& world, int denseIndex);
+// Removes the joints of a body (about to be removed or frozen); returns
+// their names, in creation order.
+std::vector<std::string> removeJointsOf(WorldData& world, BodyId body);
+Expected<JointId> createJoint(WorldData& world, const JointDef& def);
+Expected<bool> removeJoint(WorldData& world, JointId id);
+Expected<bool> setJointMotor(WorldData& world, JointId id, const JointMotor& motor);
+Expected<bool> setJointDrive(WorldData& world, JointId id, const JointDrive& drive);
+Expected<bool> setJointEffort(WorldData& world, JointId id, double effort);
+
+// --- penalty_step.cpp
+void stepPenalty(WorldData& world);
+
+// --- continuous_collision.cpp
+// Continuous collision for bodies flagged `continuousCollision`: a body
+// whose motion over the step (from `starts`) would pass through another
+// body is stopped at its time of impact, velocity kept, so the next step's
+// contact stops it (no tunnelling through thin geometry).
+void applyContinuousCollision(WorldData& world, const std::vector<RigidState>& starts);
+
+// --- snapshot.cpp (the format is described there)
+Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out);
+// Reads a snapshot's magic, version and recorded settings, which must be
+// `settings`; then readSnapshotContents reads the rest into a new world made
+// with them. Errors name the field and byte offset.
+Expected<bool> readSnapshotHeader(ByteReader& in, const WorldSettings& settings);
+Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in);
+
+}  // namespace rbsim
