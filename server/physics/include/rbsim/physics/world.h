@@ -1,8 +1,11 @@
 #pragma once
 // The world: owns the bodies and steps them by a fixed dt. With the headers
-// beside it (ids, body_definition, body_view, shapes, world_settings,
-// contacts, types) this is the physics library's public API; what lives in
-// the library's layer directories is internal to it.
+// beside it in include/rbsim/physics/ (the definitions, views and ids, and
+// the value types they use; types.h gathers the latter) this is the physics
+// library's public API: these headers include one another only, and what
+// lives in the library's layer directories is internal to it (checked by
+// tests/layering). World is a handle: its data and the step's stages are
+// in world/.
 //
 // Determinism: the same sequence of calls gives bit-identical states. Bodies
 // are stepped in creation order (kept across removals), no unordered
