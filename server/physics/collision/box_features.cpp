@@ -47,6 +47,7 @@ ConvexHull boxHull(const Vec3& halfExtents) {
       if ((i & 1 << axis) == 0) hull.edges.push_back({i, i | 1 << axis});
     }
   }
+  computeHullTopology(hull);
   return hull;
 }
 

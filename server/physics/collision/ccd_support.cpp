@@ -152,18 +152,11 @@ std::vector<Vec3> candidateAxes(const PlacedConvex& a, const PlacedConvex& b,
 // m: how far apart (centre distance plus size) two pieces may be for libccd.
 constexpr double kMaxLibccdReach = 1e50;
 
-Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
-                        const PenetrationSettings& settings) {
-  // GJK inside EPA needs at most maxIterations queries and EPA's start up
-  // to 32 more (libccd's points on a sphere); EPA itself needed fewer than
-  // 70 on cylinder pairs at the default tolerance.
-  const double scale = std::max({geometrySize(*a.geometry), geometrySize(*b.geometry), 1e-300});
-  const int budget = 4 * std::max(16, settings.maxIterations);
-  // Refusals reach at least 1 m behind the origin: libccd's zero tests are
-  // absolute (DBL_EPSILON), and a refusal must not read as "on the origin".
-  const CcdObject objectA(a, budget, scale + 1.0);
-  const CcdObject objectB(b, budget, scale + 1.0);
+namespace {
 
+// libccd's settings for a pair of pieces of size `scale`, with our
+// callbacks.
+ccd_t ccdSettings(const PenetrationSettings& settings, double scale) {
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.first_dir = ccdFirstDirection;
@@ -179,6 +172,47 @@ Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
   ccd.epa_tolerance = (settings.tolerance * scale) * (settings.tolerance * scale);
   ccd.mpr_tolerance = settings.tolerance * scale;
   ccd.dist_tolerance = settings.tolerance * scale;
+  return ccd;
+}
+
+}  // namespace
+
+std::optional<EpaBound> epaDepthBound(const PlacedConvex& a, const PlacedConvex& b,
+                                      const PenetrationSettings& settings) {
+  const double scale = std::max({geometrySize(*a.geometry), geometrySize(*b.geometry), 1e-300});
+  const int budget = 4 * std::max(16, settings.maxIterations);
+  const CcdObject objectA(a, budget, scale + 1.0);
+  const CcdObject objectB(b, budget, scale + 1.0);
+  const double reach = (objectB.center - objectA.center).norm() + scale;
+  // As in penetration(): libccd only sees finite, bounded input.
+  if (!(std::isfinite(reach) && reach < kMaxLibccdReach && a.pose.rotation.allFinite() &&
+        b.pose.rotation.allFinite() && a.pose.translation.allFinite() &&
+        b.pose.translation.allFinite()))
+    return std::nullopt;
+  const ccd_t ccd = ccdSettings(settings, scale);
+  ccd_real_t depth = 0.0;
+  ccd_vec3_t direction{};
+  ccd_vec3_t position{};
+  const int status = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
+  const CcdAnswer answer = readAnswer(status, depth, direction, position);
+  if (!answer.usable || objectA.exhausted || objectB.exhausted || !(depth >= 0.0))
+    return std::nullopt;
+  return EpaBound{depth, answer.normal};
+}
+
+Penetration penetration(const PlacedConvex& a, const PlacedConvex& b,
+                        const PenetrationSettings& settings) {
+  // GJK inside EPA needs at most maxIterations queries and EPA's start up
+  // to 32 more (libccd's points on a sphere); EPA itself needed fewer than
+  // 70 on cylinder pairs at the default tolerance.
+  const double scale = std::max({geometrySize(*a.geometry), geometrySize(*b.geometry), 1e-300});
+  const int budget = 4 * std::max(16, settings.maxIterations);
+  // Refusals reach at least 1 m behind the origin: libccd's zero tests are
+  // absolute (DBL_EPSILON), and a refusal must not read as "on the origin".
+  const CcdObject objectA(a, budget, scale + 1.0);
+  const CcdObject objectB(b, budget, scale + 1.0);
+
+  const ccd_t ccd = ccdSettings(settings, scale);
 
   // libccd dereferences a null face when its arithmetic meets NaN: from a
   // non-finite pose (found by fuzz_checkpoint: a body whose restored

@@ -6,6 +6,8 @@
 // the pieces (libccd computes "penetration of obj2 into obj1"; we pass A as
 // obj1, and the conversion is tested in test_signed_distance.cpp).
 
+#include <optional>
+
 #include "physics/collision/collider.h"
 #include "rbsim/physics/math_types.h"
 
@@ -49,6 +51,19 @@ struct Penetration {
   int epaStatus = 1;
   int mprStatus = 1;
 };
+
+// libccd's EPA alone, for pieces that overlap: the distance from the origin
+// to the nearest face of EPA's final polytope. That polytope is the hull of
+// support points of the Minkowski difference and holds the origin, so the
+// distance is a lower bound on the penetration depth, within `tolerance` ×
+// size of it; `normal` is that face's (A to B). Empty when EPA gives no
+// usable answer (libccd#25, the support budget, non-finite input).
+struct EpaBound {
+  double depth = 0.0;  // m, <= the true depth
+  Vec3 normal = Vec3::UnitZ();
+};
+std::optional<EpaBound> epaDepthBound(const PlacedConvex& a, const PlacedConvex& b,
+                                      const PenetrationSettings& settings);
 
 // For pieces that overlap (GJK says so); never fails: when libccd gives no
 // usable answer the support-based estimate stands in, and `method` says so.

@@ -84,7 +84,12 @@ bool collideHullCapsule(const ConvexHull& hull, const Transform& hullPose,
 bool collideBoxes(const BoxShape& boxA, const Transform& poseA, const BoxShape& boxB,
                   const Transform& poseB, const ContactSettings& settings, ContactManifold& out);
 
-// hull_contacts.cpp (a box pairs with a hull through boxHull)
+// hull_contacts.cpp (a box pairs with a hull through boxHull). collideHulls
+// takes the bounded search on pairs of many edges and gives the exhaustive
+// test's contact (tests compare the two).
+bool collideHullsExhaustive(const ConvexHull& hullA, const Transform& poseA,
+                            const ConvexHull& hullB, const Transform& poseB,
+                            const ContactSettings& settings, ContactManifold& out);
 bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
                   const Transform& poseB, const ContactSettings& settings, ContactManifold& out);
 

@@ -23,18 +23,11 @@ Vec3 unitOrZero(const Vec3& v) {
 }
 
 Vec3 hullSupport(const ConvexHull& hull, const Vec3& direction) {
-  // A linear scan: our hulls are small, and it never fails on a direction
-  // where hill climbing could stall on a plateau of coplanar vertices.
-  std::size_t best = 0;
-  double bestDot = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < hull.vertices.size(); ++i) {
-    const double d = hull.vertices[i].dot(direction);
-    if (d > bestDot) {
-      bestDot = d;
-      best = i;
-    }
-  }
-  return hull.vertices.empty() ? Vec3::Zero() : hull.vertices[best];
+  // Small hulls scan (the first farthest vertex); larger ones climb their
+  // vertex graph from a cube-map start (convex_hull.h), which stays exact on
+  // plateaus of coplanar vertices: any vertex of a plateau is farthest.
+  if (hull.vertices.empty()) return Vec3::Zero();
+  return hull.vertices[static_cast<std::size_t>(supportVertex(hull, direction))];
 }
 
 // The core of a capsule: the segment of its axis.

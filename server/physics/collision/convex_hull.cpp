@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <set>
 #include <utility>
@@ -151,6 +152,74 @@ void orderCounterClockwise(std::vector<int>& polygon, const std::vector<Vec3>& v
   for (std::size_t i = 0; i < polygon.size(); ++i) polygon[i] = byAngle[i].second;
 }
 
+// The cube map of directions behind supportVertex's starts: a face per
+// signed axis, kCubeCells × kCubeCells cells on each.
+constexpr int kCubeCells = 4;
+
+int cubeCell(const Vec3& direction) {
+  int axis = 0;
+  direction.cwiseAbs().maxCoeff(&axis);
+  const double major = direction[axis];
+  if (!(std::abs(major) > 0.0)) return 0;  // zero or NaN
+  const int face = 2 * axis + (major < 0.0 ? 1 : 0);
+  const auto bin = [&](double minor) {
+    const double t = 0.5 * (minor / std::abs(major) + 1.0);  // [0, 1]
+    return std::clamp(static_cast<int>(t * kCubeCells), 0, kCubeCells - 1);
+  };
+  return (face * kCubeCells + bin(direction[(axis + 1) % 3])) * kCubeCells +
+         bin(direction[(axis + 2) % 3]);
+}
+
+Vec3 cubeCellCenter(int cell) {
+  const int v = cell % kCubeCells;
+  const int u = (cell / kCubeCells) % kCubeCells;
+  const int face = cell / (kCubeCells * kCubeCells);
+  const int axis = face / 2;
+  Vec3 direction = Vec3::Zero();
+  direction[axis] = face % 2 == 0 ? 1.0 : -1.0;
+  direction[(axis + 1) % 3] = (2.0 * (u + 0.5) / kCubeCells) - 1.0;
+  direction[(axis + 2) % 3] = (2.0 * (v + 0.5) / kCubeCells) - 1.0;
+  return direction;
+}
+
+int scanSupport(const std::vector<Vec3>& vertices, const Vec3& direction) {
+  int best = 0;
+  double bestDot = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const double d = vertices[i].dot(direction);
+    if (d > bestDot) {
+      bestDot = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+// Steepest ascent of direction · v over the vertex graph: on a convex
+// polytope a vertex no neighbour of which is farther is a farthest vertex
+// (the polytope lies in the cone of its edges from there).
+int climb(const ConvexHull& hull, const Vec3& direction, int start) {
+  int current = start;
+  double currentDot = direction.dot(hull.vertices[static_cast<std::size_t>(current)]);
+  for (;;) {
+    int next = -1;
+    double nextDot = currentDot;
+    const std::size_t v = static_cast<std::size_t>(current);
+    for (int k = hull.vertexEdgeStart[v]; k < hull.vertexEdgeStart[v + 1]; ++k) {
+      const ConvexHull::FaceEdge& edge = hull.faceEdges[static_cast<std::size_t>(hull.vertexEdges[static_cast<std::size_t>(k)])];
+      const int other = edge.start == current ? edge.end : edge.start;
+      const double d = direction.dot(hull.vertices[static_cast<std::size_t>(other)]);
+      if (d > nextDot) {
+        nextDot = d;
+        next = other;
+      }
+    }
+    if (next < 0) return current;
+    current = next;
+    currentDot = nextDot;
+  }
+}
+
 }  // namespace
 
 Expected<ConvexHull> buildConvexHull(const std::vector<Vec3>& points,
@@ -228,7 +297,83 @@ Expected<ConvexHull> buildConvexHull(const std::vector<Vec3>& points,
               return std::lexicographical_compare(a.normal.data(), a.normal.data() + 3,
                                                   b.normal.data(), b.normal.data() + 3);
             });
+  computeHullTopology(hull);
   return hull;
+}
+
+void computeHullTopology(ConvexHull& hull) {
+  // Pairing the directed edges of the face loops finds each edge with both
+  // its faces; sorted by (min, max) vertex, then face.
+  struct Directed {
+    int low, high, start, end, face;
+  };
+  std::vector<Directed> directed;
+  for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+    const std::vector<int>& loop = hull.faces[f].vertices;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int a = loop[k];
+      const int b = loop[(k + 1) % loop.size()];
+      directed.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
+    }
+  }
+  std::sort(directed.begin(), directed.end(), [](const Directed& x, const Directed& y) {
+    if (x.low != y.low) return x.low < y.low;
+    if (x.high != y.high) return x.high < y.high;
+    return x.face < y.face;
+  });
+  hull.faceEdges.clear();
+  hull.faceEdges.reserve(directed.size() / 2);
+  for (std::size_t i = 0; i + 1 < directed.size();) {
+    const Directed& x = directed[i];
+    const Directed& y = directed[i + 1];
+    if (x.low == y.low && x.high == y.high) {
+      hull.faceEdges.push_back({x.start, x.end, x.face, y.face});
+      i += 2;
+    } else {
+      ++i;  // an edge without its twin (a malformed hull): no axis from it
+    }
+  }
+
+  const std::size_t vertexCount = hull.vertices.size();
+  hull.vertexEdgeStart.assign(vertexCount + 1, 0);
+  for (const ConvexHull::FaceEdge& edge : hull.faceEdges) {
+    ++hull.vertexEdgeStart[static_cast<std::size_t>(edge.start) + 1];
+    ++hull.vertexEdgeStart[static_cast<std::size_t>(edge.end) + 1];
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    hull.vertexEdgeStart[v + 1] += hull.vertexEdgeStart[v];
+  hull.vertexEdges.assign(static_cast<std::size_t>(hull.vertexEdgeStart[vertexCount]), 0);
+  std::vector<int> fill(hull.vertexEdgeStart.begin(), hull.vertexEdgeStart.end() - 1);
+  for (std::size_t e = 0; e < hull.faceEdges.size(); ++e) {
+    const ConvexHull::FaceEdge& edge = hull.faceEdges[e];
+    hull.vertexEdges[static_cast<std::size_t>(fill[static_cast<std::size_t>(edge.start)]++)] = static_cast<int>(e);
+    hull.vertexEdges[static_cast<std::size_t>(fill[static_cast<std::size_t>(edge.end)]++)] = static_cast<int>(e);
+  }
+
+  hull.faceNormals.clear();
+  hull.faceOffsets.clear();
+  for (const ConvexHull::Face& face : hull.faces) {
+    hull.faceNormals.push_back(face.normal);
+    hull.faceOffsets.push_back(face.offset);
+  }
+  hull.centroid = Vec3::Zero();
+  for (const Vec3& v : hull.vertices) hull.centroid += v;
+  if (vertexCount > 0) hull.centroid /= static_cast<double>(vertexCount);
+
+  hull.supportStarts.clear();
+  if (vertexCount > kWalkedSupportVertices) {
+    for (int cell = 0; cell < 6 * kCubeCells * kCubeCells; ++cell)
+      hull.supportStarts.push_back(scanSupport(hull.vertices, cubeCellCenter(cell)));
+  }
+}
+
+int supportVertex(const ConvexHull& hull, const Vec3& direction) {
+  if (hull.supportStarts.empty()) return scanSupport(hull.vertices, direction);
+  return climb(hull, direction, hull.supportStarts[static_cast<std::size_t>(cubeCell(direction))]);
+}
+
+int lowestVertexFrom(const ConvexHull& hull, const Vec3& direction, int start) {
+  return climb(hull, -direction, start);
 }
 
 Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName) {

@@ -4,13 +4,28 @@
 // Separating Axis Test between Convex Polyhedra", GDC 2013), then face
 // clipping or one edge–edge point as for boxes (Gregorius, "Robust contact
 // creation for physics simulations", GDC 2015).
+//
+// Two ways to the same answer. Small pairs test every face against every
+// vertex and every edge pair (collideHullsExhaustive). Larger pairs
+// (meshes of hundreds of vertices, where that costs milliseconds) first ask
+// GJK how far apart the hulls are, then test only the faces and edge pairs
+// that can decide the answer; each shortcut is a bound, so the result is the
+// exhaustive test's (see collideHulls below for each argument).
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <numbers>
+#include <optional>
 #include <cstddef>
 #include <limits>
 #include <vector>
 
+#include "physics/collision/ccd_support.h"
 #include "physics/collision/closest_points.h"
+#include "physics/collision/gjk.h"
 #include "physics/collision/contact_routines.h"
 #include "physics/collision/polygon_clipping.h"
 
@@ -24,50 +39,6 @@ struct AxisQuery {
   int second = -1;                                               // edge of B
   Vec3 axis = Vec3::Zero();  // edge queries: unit, in A's frame, from A towards B
 };
-
-// An edge with its two faces: face0 runs start -> end in its
-// counter-clockwise loop, face1 runs end -> start.
-struct HullEdge {
-  int start = 0;
-  int end = 0;
-  int face0 = 0;
-  int face1 = 0;
-};
-
-// ConvexHull lists edges without their faces; the Gauss-map test needs them.
-// Pairing the directed edges of the face loops finds both at once.
-std::vector<HullEdge> edgesWithFaces(const ConvexHull& hull) {
-  struct Directed {
-    int low, high, start, end, face;
-  };
-  std::vector<Directed> directed;
-  for (std::size_t f = 0; f < hull.faces.size(); ++f) {
-    const std::vector<int>& loop = hull.faces[f].vertices;
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const int a = loop[k];
-      const int b = loop[(k + 1) % loop.size()];
-      directed.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
-    }
-  }
-  std::sort(directed.begin(), directed.end(), [](const Directed& x, const Directed& y) {
-    if (x.low != y.low) return x.low < y.low;
-    if (x.high != y.high) return x.high < y.high;
-    return x.face < y.face;
-  });
-  std::vector<HullEdge> edges;
-  edges.reserve(directed.size() / 2);
-  for (std::size_t i = 0; i + 1 < directed.size();) {
-    const Directed& x = directed[i];
-    const Directed& y = directed[i + 1];
-    if (x.low == y.low && x.high == y.high) {
-      edges.push_back({x.start, x.end, x.face, y.face});
-      i += 2;
-    } else {
-      ++i;  // an edge without its twin (a malformed hull): no axis from it
-    }
-  }
-  return edges;
-}
 
 // Do the arcs a–b and c–d of the Gauss map cross? Then the two edges whose
 // adjacent face normals they join build a face of the Minkowski difference
@@ -134,22 +105,331 @@ bool faceContact(const ConvexHull& reference, const Transform& referencePose,
   return true;
 }
 
+
+// Everything below works in A's frame: B's vertices and normals are brought
+// there by bToA.
+struct HullPair {
+  const ConvexHull& a;
+  const ConvexHull& b;
+  Transform bToA;
+  double margin;
+  // B's face normals and vertices in A's frame when the caller has them
+  // all (the exhaustive test); null: each is brought over when needed.
+  const std::vector<Vec3>* normalsB = nullptr;
+  const std::vector<Vec3>* verticesB = nullptr;
+
+  Vec3 normalB(int face) const {
+    const std::size_t f = static_cast<std::size_t>(face);
+    return normalsB ? (*normalsB)[f] : Vec3(bToA.rotate(b.faceNormals[f]));
+  }
+  Vec3 vertexB(int vertex) const {
+    const std::size_t v = static_cast<std::size_t>(vertex);
+    return verticesB ? (*verticesB)[v] : Vec3(bToA.apply(b.vertices[v]));
+  }
+};
+
+// The edge axis of A's edge i and B's edge j if their arcs cross on the
+// Gauss map (a face of the Minkowski difference) and they are not parallel:
+// the separation along it, with the axis pointing away from A. The
+// arithmetic of the exhaustive test, so that both give the same bits.
+std::optional<AxisQuery> edgeAxis(const HullPair& pair, int i, int j) {
+  const ConvexHull::FaceEdge& eA = pair.a.faceEdges[static_cast<std::size_t>(i)];
+  const ConvexHull::FaceEdge& eB = pair.b.faceEdges[static_cast<std::size_t>(j)];
+  const Vec3& a = pair.a.faceNormals[static_cast<std::size_t>(eA.face0)];
+  const Vec3& b = pair.a.faceNormals[static_cast<std::size_t>(eA.face1)];
+  const Vec3 c = -pair.normalB(eB.face0);
+  const Vec3 d = -pair.normalB(eB.face1);
+  if (!isMinkowskiFace(a, b, c, d)) return std::nullopt;
+  const Vec3& pA = pair.a.vertices[static_cast<std::size_t>(eA.start)];
+  const Vec3 dA = pair.a.vertices[static_cast<std::size_t>(eA.end)] - pA;
+  const Vec3 pB = pair.vertexB(eB.start);
+  const Vec3 dB = pair.vertexB(eB.end) - pB;
+  Vec3 axis = dA.cross(dB);
+  const double length = axis.norm();
+  if (length < kParallelEdgeSine * dA.norm() * dB.norm()) return std::nullopt;
+  axis /= length;
+  if (axis.dot(pA - pair.a.centroid) < 0.0) axis = -axis;
+  return AxisQuery{axis.dot(pB - pA), i, j, axis};
+}
+
+// The result of an edge query: the deepest edge axis, or a proof of
+// separation (an edge axis farther than the margin).
+struct EdgeQuery {
+  AxisQuery best;
+  bool separated = false;
+};
+
+// Tests A's edges `edgesA` against B's `edgesB`, both ascending, in the
+// exhaustive test's order: the first pair of the largest separation wins.
+EdgeQuery queryEdgePairs(const HullPair& pair, const std::vector<int>& edgesA,
+                         const std::vector<int>& edgesB) {
+  EdgeQuery query;
+  for (const int i : edgesA) {
+    for (const int j : edgesB) {
+      const std::optional<AxisQuery> axis = edgeAxis(pair, i, j);
+      if (!axis) continue;
+      if (axis->separation > pair.margin) {
+        query.separated = true;
+        return query;
+      }
+      if (axis->separation > query.best.separation) query.best = *axis;
+    }
+  }
+  return query;
+}
+
+// Faces within 1e-9 m of the running best are examined rather than
+// skipped, so that rounding in the bound never hides the deepest face.
+constexpr double kBoundSlack = 1e-9;  // m
+
+// The face of `faces` whose plane `points` (placed by pointsToFaces, in
+// the faces' frame) lies farthest outside, as queryFaces finds it, but
+// examining only the faces that can win. Every face's separation is at
+// most its plane's distance to one point of `points`, the probe (the
+// vertex deepest towards the faces' hull): a face whose bound is below a
+// separation already found cannot be the deepest and is skipped. The probe
+// also starts each face's descent over `points`' vertex graph to its
+// lowest vertex along the face normal.
+AxisQuery queryFacesNear(const ConvexHull& faces, const ConvexHull& points,
+                         const Transform& pointsToFaces, int probe) {
+  const Vec3 probePoint = pointsToFaces.apply(points.vertices[static_cast<std::size_t>(probe)]);
+  const auto separation = [&](std::size_t f) {
+    const Vec3& normal = faces.faceNormals[f];
+    const Vec3 local = pointsToFaces.inverseRotate(normal);
+    const int lowest = lowestVertexFrom(points, local, probe);
+    return local.dot(points.vertices[static_cast<std::size_t>(lowest)]) +
+           normal.dot(pointsToFaces.translation) - faces.faceOffsets[f];
+  };
+  thread_local std::vector<double> bounds;
+  const std::size_t faceCount = faces.faceNormals.size();
+  bounds.resize(faceCount);
+  std::size_t loosest = 0;
+  for (std::size_t f = 0; f < faceCount; ++f) {
+    bounds[f] = faces.faceNormals[f].dot(probePoint) - faces.faceOffsets[f];
+    if (bounds[f] > bounds[loosest]) loosest = f;
+  }
+  // A separation some face has: the deepest is at least this.
+  double reached = separation(loosest);
+  AxisQuery best;
+  for (std::size_t f = 0; f < faceCount; ++f) {
+    if (bounds[f] + kBoundSlack < reached) continue;
+    const double s = separation(f);
+    if (s > best.separation) best = {s, static_cast<int>(f), -1, Vec3::Zero()};
+    reached = std::max(reached, s);
+  }
+  return best;
+}
+
+// Stamps that mark vertices and edges as seen by one search without
+// clearing an array per search.
+class Marks {
+ public:
+  void start(std::size_t size) {
+    if (m_stamps.size() < size) m_stamps.resize(size, 0);
+    if (++m_current == 0) {  // wrapped: forget every old stamp
+      std::fill(m_stamps.begin(), m_stamps.end(), 0);
+      m_current = 1;
+    }
+  }
+  // Marks `index`; false if it was marked already.
+  bool mark(int index) {
+    uint32_t& stamp = m_stamps[static_cast<std::size_t>(index)];
+    if (stamp == m_current) return false;
+    stamp = m_current;
+    return true;
+  }
+
+ private:
+  std::vector<uint32_t> m_stamps;
+  uint32_t m_current = 0;
+};
+
+// The largest u · n over the great-circle arc from a to b (unit, not
+// antipodal: the normals of two faces that share an edge).
+double highestOnArc(const Vec3& a, const Vec3& b, const Vec3& u) {
+  double highest = std::max(a.dot(u), b.dot(u));
+  const Vec3 plane = a.cross(b);
+  const double length2 = plane.squaredNorm();
+  if (length2 > 0.0) {
+    // u's projection onto the arc's plane; if it falls between a and b,
+    // the arc's highest point is in its direction.
+    const Vec3 inPlane = u - (u.dot(plane) / length2) * plane;
+    if (a.cross(inPlane).dot(plane) >= 0.0 && inPlane.cross(b).dot(plane) >= 0.0)
+      highest = std::max(highest, inPlane.norm());
+  }
+  return highest;
+}
+
+// The edges of `hull` whose Gauss-map arcs reach into the cap of unit
+// directions n with n · center >= cosine (center in the hull's frame),
+// ascending. The arcs divide the sphere into the vertices' normal cones;
+// the cones that meet the cap are connected through the arcs that do, so
+// a walk from the vertex farthest along `center` (whose cone holds it)
+// over those arcs finds them all.
+void edgesInCap(const ConvexHull& hull, const Vec3& center, double cosine,
+                std::vector<int>& out) {
+  thread_local Marks vertexMarks;
+  thread_local Marks edgeMarks;
+  thread_local std::vector<int> stack;
+  vertexMarks.start(hull.vertices.size());
+  edgeMarks.start(hull.faceEdges.size());
+  out.clear();
+  stack.clear();
+  const int first = supportVertex(hull, center);
+  vertexMarks.mark(first);
+  stack.push_back(first);
+  // Arcs that miss the cap by rounding only are taken too.
+  const double reach = cosine - 1e-12;
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    const std::size_t vertex = static_cast<std::size_t>(v);
+    for (int k = hull.vertexEdgeStart[vertex]; k < hull.vertexEdgeStart[vertex + 1]; ++k) {
+      const int e = hull.vertexEdges[static_cast<std::size_t>(k)];
+      if (!edgeMarks.mark(e)) continue;
+      const ConvexHull::FaceEdge& edge = hull.faceEdges[static_cast<std::size_t>(e)];
+      if (highestOnArc(hull.faceNormals[static_cast<std::size_t>(edge.face0)],
+                       hull.faceNormals[static_cast<std::size_t>(edge.face1)], center) < reach)
+        continue;
+      out.push_back(e);
+      const int other = edge.start == v ? edge.end : edge.start;
+      if (vertexMarks.mark(other)) stack.push_back(other);
+    }
+  }
+  std::sort(out.begin(), out.end());
+}
+
+// Every edge index of the hull, ascending.
+void allEdges(const ConvexHull& hull, std::vector<int>& out) {
+  out.resize(hull.faceEdges.size());
+  for (std::size_t e = 0; e < out.size(); ++e) out[e] = static_cast<int>(e);
+}
+
+double hullRadius(const ConvexHull& hull) {
+  double radius2 = 0.0;
+  for (const Vec3& v : hull.vertices) radius2 = std::max(radius2, (v - hull.centroid).squaredNorm());
+  return std::sqrt(radius2);
+}
+
+// An edge axis matters only if it separates the hulls by more than this:
+// more than the margin (then they are apart), or more than the face axes'
+// bar for an edge to be chosen.
+double edgeAxisBar(const AxisQuery& faceA, const AxisQuery& faceB, double margin) {
+  const double faceSeparation = std::max(faceA.separation, faceB.separation);
+  return std::min(kRelativeEdgeTolerance * faceSeparation + kAbsoluteTolerance, margin);
+}
+
+// The edge–edge contact of an edge axis: the closest points of the two edges.
+bool edgeContact(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
+                 const Transform& poseB, const AxisQuery& edge, const ContactSettings& settings,
+                 ContactManifold& out) {
+  const ConvexHull::FaceEdge& eA = hullA.faceEdges[static_cast<std::size_t>(edge.first)];
+  const ConvexHull::FaceEdge& eB = hullB.faceEdges[static_cast<std::size_t>(edge.second)];
+  const SegmentClosestPoints closest =
+      closestPointsOfSegments(poseA.apply(hullA.vertices[static_cast<std::size_t>(eA.start)]),
+                              poseA.apply(hullA.vertices[static_cast<std::size_t>(eA.end)]),
+                              poseB.apply(hullB.vertices[static_cast<std::size_t>(eB.start)]),
+                              poseB.apply(hullB.vertices[static_cast<std::size_t>(eB.end)]));
+  const Vec3 normal = poseA.rotate(edge.axis);
+  ContactPoint point;
+  point.pointA = closest.onFirst;
+  point.pointB = closest.onSecond;
+  point.depth = normal.dot(point.pointA - point.pointB);
+  point.featureId = makeFeatureId(FeatureKind::EdgeEdge, static_cast<uint32_t>(edge.first),
+                                  static_cast<uint32_t>(edge.second), 0);
+  if (point.depth < -settings.margin) return false;
+  out.normal = normal;
+  out.add(point);
+  return true;
+}
+
+// The contact from the three axis queries. The feature of the chosen axis
+// (with the hysteresis that keeps a resting contact's reference face) gives
+// it, and almost always does. On hulls of many small faces it can give
+// nothing: the face preferred within the hysteresis can lie beside the
+// other hull's deepest part, so that clipping leaves no point, or two
+// edges chosen can meet only beyond their ends. Overlapping hulls must
+// still touch, so the other features are tried, deepest axis first, and
+// last the deepest vertex of B along the deepest axis. An edge axis that
+// separates by no more than `needed` (see collideHulls) takes no part: the
+// bounded search does not look for those.
+bool contactFromAxes(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
+                     const Transform& poseB, const AxisQuery& faceA, const AxisQuery& faceB,
+                     AxisQuery edge, double needed, const ContactSettings& settings,
+                     ContactManifold& out) {
+  if (!(edge.separation > needed)) edge = AxisQuery{};
+  enum class Feature { FaceA, FaceB, Edge };
+  const auto generate = [&](Feature feature) {
+    out = ContactManifold{};
+    switch (feature) {
+      case Feature::Edge:
+        return edgeContact(hullA, poseA, hullB, poseB, edge, settings, out);
+      case Feature::FaceB:
+        return faceContact(hullB, poseB, hullA, poseA, faceB.first, false, settings, out);
+      case Feature::FaceA:
+        break;
+    }
+    return faceContact(hullA, poseA, hullB, poseB, faceA.first, true, settings, out);
+  };
+  const double faceSeparation = std::max(faceA.separation, faceB.separation);
+  Feature chosen = Feature::FaceA;
+  if (edge.first >= 0 &&
+      edge.separation > kRelativeEdgeTolerance * faceSeparation + kAbsoluteTolerance) {
+    chosen = Feature::Edge;
+  } else if (faceB.separation > kRelativeFaceTolerance * faceA.separation + kAbsoluteTolerance) {
+    chosen = Feature::FaceB;
+  }
+  if (generate(chosen)) return true;
+
+  struct Candidate {
+    Feature feature;
+    const AxisQuery* axis;
+  };
+  std::array<Candidate, 3> candidates{{{Feature::FaceA, &faceA}, {Feature::FaceB, &faceB},
+                                       {Feature::Edge, &edge}}};
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return x.axis->separation > y.axis->separation;
+  });
+  for (const Candidate& candidate : candidates) {
+    if (candidate.feature == chosen || candidate.axis->first < 0) continue;
+    if (generate(candidate.feature)) return true;
+  }
+
+  // The deepest vertex of B along the deepest axis, against A's support plane.
+  const Candidate& deepest = candidates.front();
+  Vec3 normal;  // world, A to B
+  if (deepest.feature == Feature::Edge) {
+    normal = poseA.rotate(edge.axis);
+  } else if (deepest.feature == Feature::FaceA) {
+    normal = poseA.rotate(hullA.faceNormals[static_cast<std::size_t>(faceA.first)]);
+  } else {
+    normal = -poseB.rotate(hullB.faceNormals[static_cast<std::size_t>(faceB.first)]);
+  }
+  const double separation = deepest.axis->separation;
+  if (deepest.axis->first < 0 || separation > settings.margin) return false;
+  const int vertexB = supportVertex(hullB, poseB.inverseRotate(-normal));
+  out = ContactManifold{};
+  ContactPoint point;
+  point.pointB = poseB.apply(hullB.vertices[static_cast<std::size_t>(vertexB)]);
+  point.pointA = point.pointB - separation * normal;
+  point.depth = -separation;
+  point.featureId = makeFeatureId(FeatureKind::Other, static_cast<uint32_t>(vertexB), 0, 0);
+  out.normal = normal;
+  out.add(point);
+  return true;
+}
+
 }  // namespace
 
-bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
-                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
+bool collideHullsExhaustive(const ConvexHull& hullA, const Transform& poseA,
+                            const ConvexHull& hullB, const Transform& poseB,
+                            const ContactSettings& settings, ContactManifold& out) {
   const double margin = settings.margin;
   // Everything in A's frame.
   const Transform bToA = poseA.inverse() * poseB;
   std::vector<Vec3> verticesB;
   verticesB.reserve(hullB.vertices.size());
   for (const Vec3& v : hullB.vertices) verticesB.push_back(bToA.apply(v));
-  std::vector<Vec3> normalsA;
-  std::vector<double> offsetsA;
-  for (const ConvexHull::Face& face : hullA.faces) {
-    normalsA.push_back(face.normal);
-    offsetsA.push_back(face.offset);
-  }
   std::vector<Vec3> normalsB;
   std::vector<double> offsetsB;
   for (const ConvexHull::Face& face : hullB.faces) {
@@ -157,71 +437,122 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
     offsetsB.push_back(face.offset + normalsB.back().dot(bToA.translation));
   }
 
-  const AxisQuery faceA = queryFaces(normalsA, offsetsA, verticesB);
+  const AxisQuery faceA = queryFaces(hullA.faceNormals, hullA.faceOffsets, verticesB);
   if (faceA.separation > margin) return false;
   const AxisQuery faceB = queryFaces(normalsB, offsetsB, hullA.vertices);
   if (faceB.separation > margin) return false;
 
-  Vec3 centroidA = Vec3::Zero();
-  for (const Vec3& v : hullA.vertices) centroidA += v;
-  centroidA /= static_cast<double>(hullA.vertices.size());
-  const std::vector<HullEdge> edgesA = edgesWithFaces(hullA);
-  const std::vector<HullEdge> edgesB = edgesWithFaces(hullB);
+  const HullPair pair{hullA, hullB, bToA, margin, &normalsB, &verticesB};
+  thread_local std::vector<int> edgesA;
+  thread_local std::vector<int> edgesB;
+  allEdges(hullA, edgesA);
+  allEdges(hullB, edgesB);
+  const EdgeQuery edge = queryEdgePairs(pair, edgesA, edgesB);
+  if (edge.separated) return false;
+  return contactFromAxes(hullA, poseA, hullB, poseB, faceA, faceB, edge.best,
+                         edgeAxisBar(faceA, faceB, margin), settings, out);
+}
+
+bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
+                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
+  // Below this many edge pairs the exhaustive test is the faster.
+  constexpr std::size_t kExhaustiveEdgePairs = 1024;
+  if (hullA.faceEdges.size() * hullB.faceEdges.size() <= kExhaustiveEdgePairs)
+    return collideHullsExhaustive(hullA, poseA, hullB, poseB, settings, out);
+
+  const double margin = settings.margin;
+  const Transform bToA = poseA.inverse() * poseB;
+  const HullPair pair{hullA, hullB, bToA, margin};
+  const double scale = std::max(hullRadius(hullA), hullRadius(hullB));
+
+  // 1. How far apart: GJK's distance D is the length of a vector between
+  // two points of the hulls, so it bounds the true distance from above, and
+  // on convergence from below to within 1e-12 of the size. No axis of the
+  // test separates the hulls by more than the true distance.
+  const ConvexGeometry geometryA = std::shared_ptr<const ConvexHull>(std::shared_ptr<void>(), &hullA);
+  const ConvexGeometry geometryB = std::shared_ptr<const ConvexHull>(std::shared_ptr<void>(), &hullB);
+  const PlacedConvex placedA{&geometryA, poseA};
+  const PlacedConvex placedB{&geometryB, poseB};
+  const GjkResult gjk = gjkDistance(placedA, placedB);
+  const double distanceSlack = 1e-9 * scale;
+  // Farther apart than the margin: no contact. (The exhaustive test can
+  // still find a point within the margin along a face normal when the
+  // nearest features are two vertices: there the hulls do not come within
+  // the margin, and this path reports nothing.)
+  if (gjk.converged && !gjk.overlap && gjk.distance - distanceSlack > margin) return false;
+  const bool apart = !gjk.overlap && gjk.distance > distanceSlack;
+  // Unit, A's frame, from A towards B.
+  Vec3 towardsB = apart ? poseA.inverseRotate((gjk.pointB - gjk.pointA) / gjk.distance)
+                        : Vec3(bToA.apply(hullB.centroid) - hullA.centroid);
+  if (!(towardsB.norm() > 0.0) || !towardsB.allFinite()) towardsB = Vec3::UnitZ();
+  towardsB.normalize();
+
+  // 2. The face queries, each over the faces that can win.
+  const AxisQuery faceA =
+      queryFacesNear(hullA, hullB, bToA, supportVertex(hullB, bToA.inverseRotate(-towardsB)));
+  if (faceA.separation > margin) return false;
+  const Transform aToB = bToA.inverse();
+  const AxisQuery faceB =
+      queryFacesNear(hullB, hullA, aToB, supportVertex(hullA, towardsB));
+  if (faceB.separation > margin) return false;
+
+  // 3. The edge query. An edge axis matters only if it separates by more
+  // than `needed`: more than the margin (then the hulls are apart), or more
+  // than the face axes' bar for an edge to be chosen. Every axis separates
+  // by at most `ceiling`, a bound on the largest separation of any axis:
+  // GJK's distance while apart or touching, minus EPA's lower bound on the
+  // depth while overlapping.
+  const double needed = edgeAxisBar(faceA, faceB, margin);
+  double ceiling = gjk.overlap ? 0.0 : gjk.distance;
+  double tolerance = distanceSlack;
+  Vec3 center = towardsB;  // where on the Gauss map the deciding edge axes lie
   AxisQuery edge;
-  for (std::size_t i = 0; i < edgesA.size(); ++i) {
-    const HullEdge& eA = edgesA[i];
-    const Vec3& pA = hullA.vertices[static_cast<std::size_t>(eA.start)];
-    const Vec3 dA = hullA.vertices[static_cast<std::size_t>(eA.end)] - pA;
-    const Vec3& a = normalsA[static_cast<std::size_t>(eA.face0)];
-    const Vec3& b = normalsA[static_cast<std::size_t>(eA.face1)];
-    for (std::size_t j = 0; j < edgesB.size(); ++j) {
-      const HullEdge& eB = edgesB[j];
-      if (!isMinkowskiFace(a, b, -normalsB[static_cast<std::size_t>(eB.face0)],
-                           -normalsB[static_cast<std::size_t>(eB.face1)])) {
-        continue;
-      }
-      const Vec3& pB = verticesB[static_cast<std::size_t>(eB.start)];
-      const Vec3 dB = verticesB[static_cast<std::size_t>(eB.end)] - pB;
-      Vec3 axis = dA.cross(dB);
-      const double length = axis.norm();
-      if (length < kParallelEdgeSine * dA.norm() * dB.norm()) continue;
-      axis /= length;
-      if (axis.dot(pA - centroidA) < 0.0) axis = -axis;
-      const double separation = axis.dot(pB - pA);
-      if (separation > margin) return false;
-      if (separation > edge.separation) {
-        edge = {separation, static_cast<int>(i), static_cast<int>(j), axis};
+  if (ceiling > needed + tolerance) {
+    if (!apart) {
+      // Overlapping by more than the bar allows: EPA's polytope lies in the
+      // Minkowski difference, so its nearest face bounds the depth from below.
+      constexpr double kEpaTolerance = 1e-9;
+      const std::optional<EpaBound> epa =
+          epaDepthBound(placedA, placedB, PenetrationSettings{64, kEpaTolerance});
+      if (epa) {
+        ceiling = -epa->depth;
+        center = poseA.inverseRotate(epa->normal);
+        tolerance = 10.0 * kEpaTolerance * scale;
+      } else {
+        ceiling = std::numeric_limits<double>::infinity();  // no bound: search everything
       }
     }
   }
-
-  const double faceSeparation = std::max(faceA.separation, faceB.separation);
-  if (edge.first >= 0 &&
-      edge.separation > kRelativeEdgeTolerance * faceSeparation + kAbsoluteTolerance) {
-    const HullEdge& eA = edgesA[static_cast<std::size_t>(edge.first)];
-    const HullEdge& eB = edgesB[static_cast<std::size_t>(edge.second)];
-    const SegmentClosestPoints closest =
-        closestPointsOfSegments(poseA.apply(hullA.vertices[static_cast<std::size_t>(eA.start)]),
-                                poseA.apply(hullA.vertices[static_cast<std::size_t>(eA.end)]),
-                                poseB.apply(hullB.vertices[static_cast<std::size_t>(eB.start)]),
-                                poseB.apply(hullB.vertices[static_cast<std::size_t>(eB.end)]));
-    const Vec3 normal = poseA.rotate(edge.axis);
-    ContactPoint point;
-    point.pointA = closest.onFirst;
-    point.pointB = closest.onSecond;
-    point.depth = normal.dot(point.pointA - point.pointB);
-    point.featureId = makeFeatureId(FeatureKind::EdgeEdge, static_cast<uint32_t>(edge.first),
-                                    static_cast<uint32_t>(edge.second), 0);
-    if (point.depth < -margin) return false;
-    out.normal = normal;
-    out.add(point);
-    return true;
+  if (ceiling > needed + tolerance) {
+    // Search caps of the Gauss map around `center`, widening until nothing
+    // outside can matter: the deepest pair found reaches the ceiling; or,
+    // apart, the cap holds every direction n with n · u > s / D (an axis
+    // separating by s has n · (pB − pA) >= s for GJK's closest points pA,
+    // pB, which are D apart along u); or the cap is the whole sphere.
+    thread_local std::vector<int> edgesA;
+    thread_local std::vector<int> edgesB;
+    // rad; without a ceiling nothing short of the whole sphere is known to do
+    double angle = std::isfinite(ceiling) ? 0.25 : std::numbers::pi;
+    for (;;) {
+      const bool whole = angle >= std::numbers::pi;
+      if (whole) {
+        allEdges(hullA, edgesA);
+        allEdges(hullB, edgesB);
+      } else {
+        const double cosine = std::cos(angle);
+        edgesInCap(hullA, center, cosine, edgesA);
+        edgesInCap(hullB, bToA.inverseRotate(-center), cosine, edgesB);
+      }
+      const EdgeQuery query = queryEdgePairs(pair, edgesA, edgesB);
+      if (query.separated) return false;
+      edge = query.best;
+      const double bar = std::max(needed, edge.separation);
+      if (whole || ceiling <= bar + tolerance) break;
+      if (apart && std::cos(angle) <= bar / gjk.distance - 1e-12) break;
+      angle *= 2.0;
+    }
   }
-
-  if (faceB.separation > kRelativeFaceTolerance * faceA.separation + kAbsoluteTolerance) {
-    return faceContact(hullB, poseB, hullA, poseA, faceB.first, false, settings, out);
-  }
-  return faceContact(hullA, poseA, hullB, poseB, faceA.first, true, settings, out);
+  return contactFromAxes(hullA, poseA, hullB, poseB, faceA, faceB, edge, needed, settings, out);
 }
 
 }  // namespace rbsim

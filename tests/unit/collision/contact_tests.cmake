@@ -5,6 +5,7 @@ rbsim_add_gtest(test_collision_contacts
   unit/collision/test_contacts_capsules.cpp
   unit/collision/test_contacts_boxes.cpp
   unit/collision/test_contacts_hulls.cpp
+  unit/collision/test_hull_search.cpp
   unit/collision/test_contacts_cylinders.cpp
   unit/collision/test_contacts_classification.cpp
 )

@@ -75,6 +75,7 @@ inline std::shared_ptr<const ConvexHull> makeHull(const std::vector<Vec3>& verti
       if (a < b) hull->edges.push_back({a, b});
     }
   }
+  computeHullTopology(*hull);
   return hull;
 }
 
