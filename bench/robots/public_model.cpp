@@ -215,4 +215,27 @@ std::vector<JointGains> publicGains(const PublicScene& s) {
   return gains;
 }
 
+RootInertial rootInertial(const PublicScene& s) {
+  const PublicWorld w = loadPublicWorld(s, {});
+  const Expected<World> world = World::fromDef(w.def);
+  if (!world.ok()) fail(world.error().message);
+  for (const BodyDef& body : w.def.bodies) {
+    if (body.name.rfind(s.robot + "/", 0) != 0) continue;
+    bool child = false;
+    for (const NamedJointDef& j : w.def.joints) child = child || j.bodyB == body.name;
+    if (child) continue;
+    const BodyView view = world->body(world->findBody(body.name));
+    const rbsim::Vec3& c = view.position();
+    const Quaternion& q = view.orientation();
+    const rbsim::Vec3 i = view.dynamics().inertiaBody;
+    RootInertial r;
+    r.mass = view.mass();
+    r.centre = toLocal(s.base, {c.x(), c.y(), c.z()});
+    r.axes = multiply(conjugate(s.base.orientation), {q.w, q.x, q.y, q.z});
+    r.moments = {i.x(), i.y(), i.z()};
+    return r;
+  }
+  fail("scene " + s.name + ": no root body");
+}
+
 }  // namespace rbsim::bench::robots

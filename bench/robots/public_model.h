@@ -40,4 +40,16 @@ PublicWorld loadPublicWorld(const PublicScene& s, const std::vector<JointGains>&
 // keep an explicit PD (Bullet's and MuJoCo's efforts) stable at dt = 1 ms.
 std::vector<JointGains> publicGains(const PublicScene& s);
 
+// The mass properties of the robot's root body as rbsim makes it (the root
+// link with the links fixed to it merged), in the root link's frame: for
+// engines that lose them on import (MuJoCo welds a URDF's root link to the
+// world; a floating base needs them back).
+struct RootInertial {
+  double mass = 0;
+  Vec3 centre{0, 0, 0};  // m
+  Quat axes{1, 0, 0, 0};  // principal axes -> root link frame
+  Vec3 moments{0, 0, 0};  // kg m²
+};
+RootInertial rootInertial(const PublicScene& s);
+
 }  // namespace rbsim::bench::robots
