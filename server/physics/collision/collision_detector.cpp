@@ -93,6 +93,7 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
   m_previousContacts.swap(m_contacts);
   m_previousContactKeys.swap(m_contactKeys);
   m_previousPairKeys.swap(m_pairKeys);
+  m_previousSeparations.swap(m_separations);
   const std::vector<BodyPair>& pairs = m_broadPhase.pairs();
   m_pairKeys.resize(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k)
@@ -106,17 +107,20 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
   });
   m_contacts.clear();
   m_contactKeys.clear();
+  m_separations.clear();
   for (std::size_t chunk = 0; chunk < chunkCount(pairs.size(), kPairsPerRun); ++chunk) {
     const PairRun& run = m_runs[chunk];
     m_contacts.insert(m_contacts.end(), run.contacts.begin(), run.contacts.end());
     m_contactKeys.insert(m_contactKeys.end(), run.contactKeys.begin(), run.contactKeys.end());
+    m_separations.insert(m_separations.end(), run.separations.begin(), run.separations.end());
   }
 }
 
 void CollisionDetector::collideRun(PairRun& run, std::size_t firstPair, std::size_t endPair) const {
   run.contacts.clear();
   run.contactKeys.clear();
-  // Where this run's pairs start in the previous lists (both sorted by key).
+  run.separations.clear();
+  // Where this run's pairs start in the previous lists (all sorted by key).
   const uint64_t firstKey = m_pairKeys[firstPair];
   run.previousPairCursor = static_cast<std::size_t>(
       std::lower_bound(m_previousPairKeys.begin(), m_previousPairKeys.end(), firstKey) -
@@ -124,6 +128,10 @@ void CollisionDetector::collideRun(PairRun& run, std::size_t firstPair, std::siz
   run.previousContactCursor = static_cast<std::size_t>(
       std::lower_bound(m_previousContactKeys.begin(), m_previousContactKeys.end(), firstKey) -
       m_previousContactKeys.begin());
+  run.previousSeparationCursor = static_cast<std::size_t>(
+      std::lower_bound(m_previousSeparations.begin(), m_previousSeparations.end(), firstKey,
+                       [](const KeptSeparation& kept, uint64_t key) { return kept.key < key; }) -
+      m_previousSeparations.begin());
   const std::vector<BodyPair>& pairs = m_broadPhase.pairs();
   for (std::size_t k = firstPair; k < endPair; ++k) {
     const BodyPair& pair = pairs[k];
@@ -131,7 +139,7 @@ void CollisionDetector::collideRun(PairRun& run, std::size_t firstPair, std::siz
     const BodyGeometry& b = m_geometry[at(pair.b)];
     const uint64_t key = m_pairKeys[k];
     if (!(a.unchanged && b.unchanged && reusePair(run, key, pair.a, pair.b)))
-      collidePair(run, pair.a, pair.b);
+      collidePair(run, key, pair.a, pair.b);
     run.contactKeys.resize(run.contacts.size(), key);
   }
 }
@@ -150,18 +158,51 @@ bool CollisionDetector::reusePair(PairRun& run, uint64_t key, int indexA, int in
     contact.bodyB = indexB;
     run.contacts.push_back(contact);
   }
+  // The pair's separation caches carry over with its manifolds.
+  std::size_t& separationCursor = run.previousSeparationCursor;
+  while (separationCursor < m_previousSeparations.size() &&
+         m_previousSeparations[separationCursor].key < key)
+    ++separationCursor;
+  for (; separationCursor < m_previousSeparations.size() &&
+         m_previousSeparations[separationCursor].key == key;
+       ++separationCursor)
+    run.separations.push_back(m_previousSeparations[separationCursor]);
   return true;
 }
 
-void CollisionDetector::collidePair(PairRun& run, int indexA, int indexB) const {
-  const double reach = m_geometry[at(indexA)].reach + m_geometry[at(indexB)].reach;
-  if (reach == 0.0) return collidePair(run, indexA, indexB, m_settings);
-  ContactSettings settings = m_settings;
-  settings.margin += reach;
-  collidePair(run, indexA, indexB, settings);
+SeparationCache CollisionDetector::previousSeparation(PairRun& run, uint64_t key, int pieceA,
+                                                      int pieceB) const {
+  const auto before = [](const KeptSeparation& kept, uint64_t k, int a, int b) {
+    if (kept.key != k) return kept.key < k;
+    if (kept.pieceA != a) return kept.pieceA < a;
+    return kept.pieceB < b;
+  };
+  std::size_t& cursor = run.previousSeparationCursor;
+  while (cursor < m_previousSeparations.size() &&
+         before(m_previousSeparations[cursor], key, pieceA, pieceB))
+    ++cursor;
+  if (cursor < m_previousSeparations.size()) {
+    const KeptSeparation& kept = m_previousSeparations[cursor];
+    if (kept.key == key && kept.pieceA == pieceA && kept.pieceB == pieceB) return kept.cache;
+  }
+  return {};
 }
 
-void CollisionDetector::collidePair(PairRun& run, int indexA, int indexB,
+void CollisionDetector::collidePair(PairRun& run, uint64_t key, int indexA, int indexB) const {
+  const double reach = m_geometry[at(indexA)].reach + m_geometry[at(indexB)].reach;
+  if (reach == 0.0) return collidePair(run, key, indexA, indexB, m_settings);
+  ContactSettings settings = m_settings;
+  settings.margin += reach;
+  collidePair(run, key, indexA, indexB, settings);
+}
+
+namespace {
+bool isHull(const ConvexGeometry& geometry) {
+  return std::holds_alternative<std::shared_ptr<const ConvexHull>>(geometry);
+}
+}  // namespace
+
+void CollisionDetector::collidePair(PairRun& run, uint64_t key, int indexA, int indexB,
                                     const ContactSettings& settings) const {
   const BodyGeometry& a = m_geometry[at(indexA)];
   const BodyGeometry& b = m_geometry[at(indexB)];
@@ -223,7 +264,16 @@ void CollisionDetector::collidePair(PairRun& run, int indexA, int indexB,
       if (!boxA.overlaps(run.placedB[j].box)) continue;
       contact.pieceB = static_cast<int>(j);
       contact.manifold = {};
-      collideConvex(placedA, run.placedB[j].convex, settings, contact.manifold);
+      const PlacedConvex& placedB = run.placedB[j].convex;
+      if (isHull(*placedA.geometry) || isHull(*placedB.geometry)) {
+        // Hull pairs keep what they learnt about their separation.
+        KeptSeparation kept{key, contact.pieceA, contact.pieceB,
+                            previousSeparation(run, key, contact.pieceA, contact.pieceB)};
+        collideConvex(placedA, placedB, settings, contact.manifold, &kept.cache);
+        if (kept.cache.axis != Vec3::Zero()) run.separations.push_back(kept);
+      } else {
+        collideConvex(placedA, placedB, settings, contact.manifold);
+      }
       if (contact.manifold.pointCount > 0) run.contacts.push_back(contact);
     }
   }

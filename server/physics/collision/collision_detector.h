@@ -50,6 +50,10 @@ class CollisionDetector {
   const std::vector<BodyContact>& contacts() const { return m_contacts; }
   int contactPointCount() const;
   const BroadPhase& broadPhase() const { return m_broadPhase; }
+  // Hull piece pairs of the last detect() that keep a separating direction
+  // for the next (SeparationCache), and how many pairs the kept direction
+  // alone proved apart in it (a measure of temporal coherence).
+  std::size_t keptSeparationCount() const { return m_separations.size(); }
 
  private:
   struct PlacedPiece {
@@ -78,20 +82,34 @@ class CollisionDetector {
     bool unchanged = false;
   };
 
+  // A hull pair's SeparationCache, kept from one detect() to the next.
+  struct KeptSeparation {
+    uint64_t key = 0;  // (serial A, serial B)
+    int pieceA = 0;
+    int pieceB = 0;
+    SeparationCache cache;
+  };
+
   // The narrow phase of a run of consecutive candidate pairs, done by one
   // thread into its own lists; the runs' lists are joined in pair order.
   struct PairRun {
     std::vector<BodyContact> contacts;
     std::vector<uint64_t> contactKeys;  // (serial A, serial B) of each contact
+    std::vector<KeptSeparation> separations;  // in (key, piece A, piece B) order
     std::vector<PlacedPiece> placedB;   // scratch
     // Merge walks over the previous detect()'s lists: pairs come in key order.
     std::size_t previousContactCursor = 0;
     std::size_t previousPairCursor = 0;
+    std::size_t previousSeparationCursor = 0;
   };
 
   void collideRun(PairRun& run, std::size_t firstPair, std::size_t endPair) const;
-  void collidePair(PairRun& run, int indexA, int indexB) const;
-  void collidePair(PairRun& run, int indexA, int indexB, const ContactSettings& settings) const;
+  void collidePair(PairRun& run, uint64_t key, int indexA, int indexB) const;
+  void collidePair(PairRun& run, uint64_t key, int indexA, int indexB,
+                   const ContactSettings& settings) const;
+  // The previous detect()'s cache of the pieces' pair (zero if none); moves
+  // the run's cursor, so pieces must be asked for in (key, A, B) order.
+  SeparationCache previousSeparation(PairRun& run, uint64_t key, int pieceA, int pieceB) const;
   // Copies the previous detect()'s manifolds of the pair (serial order key);
   // false when the pair was not a candidate then.
   bool reusePair(PairRun& run, uint64_t key, int indexA, int indexB) const;
@@ -104,6 +122,8 @@ class CollisionDetector {
   std::vector<BodyContact> m_previousContacts;
   std::vector<uint64_t> m_previousContactKeys;
   std::vector<uint64_t> m_previousPairKeys;
+  std::vector<KeptSeparation> m_separations;  // of this detect(), in (key, A, B) order
+  std::vector<KeptSeparation> m_previousSeparations;
   std::vector<PairRun> m_runs;
   std::vector<BroadPhaseBody> m_broadPhaseInputs;
   std::vector<BodyGeometry> m_geometry;  // by dense body index, for the current detect()

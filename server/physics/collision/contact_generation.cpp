@@ -65,24 +65,31 @@ bool dedicated(const BoxShape& a, const Transform& poseA, const CapsuleShape& b,
   return collideHullCapsule(boxHull(a.halfExtents), poseA, b, poseB, settings, out);
 }
 bool dedicated(const ConvexHull& a, const Transform& poseA, const ConvexHull& b,
-               const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
-  return collideHulls(a, poseA, b, poseB, settings, out);
+               const Transform& poseB, const ContactSettings& settings, ContactManifold& out,
+               SeparationCache* cache) {
+  return collideHulls(a, poseA, b, poseB, settings, out, cache);
 }
 bool dedicated(const BoxShape& a, const Transform& poseA, const ConvexHull& b,
-               const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
-  return collideHulls(boxHull(a.halfExtents), poseA, b, poseB, settings, out);
+               const Transform& poseB, const ContactSettings& settings, ContactManifold& out,
+               SeparationCache* cache) {
+  return collideHulls(boxHull(a.halfExtents), poseA, b, poseB, settings, out, cache);
 }
 // Both orders of box and hull keep their order: the face-axis hysteresis
 // prefers the first solid's face, and a flipped call would prefer the other's.
 bool dedicated(const ConvexHull& a, const Transform& poseA, const BoxShape& b,
-               const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
-  return collideHulls(a, poseA, boxHull(b.halfExtents), poseB, settings, out);
+               const Transform& poseB, const ContactSettings& settings, ContactManifold& out,
+               SeparationCache* cache) {
+  return collideHulls(a, poseA, boxHull(b.halfExtents), poseB, settings, out, cache);
 }
 
 template <class GeometryA, class GeometryB>
 bool collidePair(const GeometryA& geometryA, const GeometryB& geometryB, const PlacedConvex& a,
-                 const PlacedConvex& b, const ContactSettings& settings, ContactManifold& out) {
-  if constexpr (requires { dedicated(geometryA, a.pose, geometryB, b.pose, settings, out); }) {
+                 const PlacedConvex& b, const ContactSettings& settings, ContactManifold& out,
+                 SeparationCache* cache) {
+  // The hull pairs keep a SeparationCache; they are written for both orders.
+  if constexpr (requires { dedicated(geometryA, a.pose, geometryB, b.pose, settings, out, cache); }) {
+    return dedicated(geometryA, a.pose, geometryB, b.pose, settings, out, cache);
+  } else if constexpr (requires { dedicated(geometryA, a.pose, geometryB, b.pose, settings, out); }) {
     return dedicated(geometryA, a.pose, geometryB, b.pose, settings, out);
   } else if constexpr (requires {
                          dedicated(geometryB, b.pose, geometryA, a.pose, settings, out);
@@ -107,12 +114,12 @@ const ConvexHull& unwrap(const std::shared_ptr<const ConvexHull>& hull) {
 }  // namespace
 
 bool collideConvex(const PlacedConvex& a, const PlacedConvex& b, const ContactSettings& settings,
-                   ContactManifold& out) {
+                   ContactManifold& out, SeparationCache* cache) {
   assert(a.geometry != nullptr && b.geometry != nullptr);
   out = ContactManifold{};
   const bool touching = std::visit(
       [&](const auto& geometryA, const auto& geometryB) {
-        return collidePair(unwrap(geometryA), unwrap(geometryB), a, b, settings, out);
+        return collidePair(unwrap(geometryA), unwrap(geometryB), a, b, settings, out, cache);
       },
       *a.geometry, *b.geometry);
   if (!touching) out = ContactManifold{};

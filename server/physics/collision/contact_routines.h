@@ -91,7 +91,8 @@ bool collideHullsExhaustive(const ConvexHull& hullA, const Transform& poseA,
                             const ConvexHull& hullB, const Transform& poseB,
                             const ContactSettings& settings, ContactManifold& out);
 bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
-                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out);
+                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out,
+                  SeparationCache* cache = nullptr);
 
 // general_contacts.cpp: signed distance plus clipping of the support features,
 // for the pairs without a dedicated routine (those with a cylinder).

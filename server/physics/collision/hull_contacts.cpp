@@ -453,8 +453,18 @@ bool collideHullsExhaustive(const ConvexHull& hullA, const Transform& poseA,
                          edgeAxisBar(faceA, faceB, margin), settings, out);
 }
 
+// The pieces' separation along `axis` (unit, A's frame): the lowest point
+// of B along it minus the highest of A.
+double separationAlong(const HullPair& pair, const Vec3& axis) {
+  const Vec3 highestA = pair.a.vertices[static_cast<std::size_t>(supportVertex(pair.a, axis))];
+  const Vec3 lowestB = pair.bToA.apply(
+      pair.b.vertices[static_cast<std::size_t>(supportVertex(pair.b, pair.bToA.inverseRotate(-axis)))]);
+  return axis.dot(lowestB - highestA);
+}
+
 bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexHull& hullB,
-                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out) {
+                  const Transform& poseB, const ContactSettings& settings, ContactManifold& out,
+                  SeparationCache* cache) {
   // Below this many edge pairs the exhaustive test is the faster.
   constexpr std::size_t kExhaustiveEdgePairs = 1024;
   if (hullA.faceEdges.size() * hullB.faceEdges.size() <= kExhaustiveEdgePairs)
@@ -464,6 +474,15 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
   const Transform bToA = poseA.inverse() * poseB;
   const HullPair pair{hullA, hullB, bToA, margin};
   const double scale = std::max(hullRadius(hullA), hullRadius(hullB));
+  const double distanceSlack = 1e-9 * scale;
+
+  // 0. Temporal coherence: still apart along last step's direction by more
+  // than margin + slack? The true distance is at least that separation and
+  // GJK's distance at least the true one, so step 1 would reject the pair
+  // too (when GJK converges, as it does within its 64 iterations on hulls).
+  if (cache && cache->axis != Vec3::Zero() &&
+      separationAlong(pair, cache->axis) > margin + distanceSlack)
+    return false;
 
   // 1. How far apart: GJK's distance D is the length of a vector between
   // two points of the hulls, so it bounds the true distance from above, and
@@ -474,18 +493,21 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
   const PlacedConvex placedA{&geometryA, poseA};
   const PlacedConvex placedB{&geometryB, poseB};
   const GjkResult gjk = gjkDistance(placedA, placedB);
-  const double distanceSlack = 1e-9 * scale;
   // Farther apart than the margin: no contact. (The exhaustive test can
   // still find a point within the margin along a face normal when the
   // nearest features are two vertices: there the hulls do not come within
   // the margin, and this path reports nothing.)
-  if (gjk.converged && !gjk.overlap && gjk.distance - distanceSlack > margin) return false;
+  if (gjk.converged && !gjk.overlap && gjk.distance - distanceSlack > margin) {
+    if (cache) cache->axis = poseA.inverseRotate((gjk.pointB - gjk.pointA) / gjk.distance);
+    return false;
+  }
   const bool apart = !gjk.overlap && gjk.distance > distanceSlack;
   // Unit, A's frame, from A towards B.
   Vec3 towardsB = apart ? poseA.inverseRotate((gjk.pointB - gjk.pointA) / gjk.distance)
                         : Vec3(bToA.apply(hullB.centroid) - hullA.centroid);
   if (!(towardsB.norm() > 0.0) || !towardsB.allFinite()) towardsB = Vec3::UnitZ();
   towardsB.normalize();
+  if (cache) cache->axis = apart ? towardsB : Vec3::Zero();
 
   // 2. The face queries, each over the faces that can win.
   const AxisQuery faceA =

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <random>
+#include <vector>
 #include <string>
 #include <tuple>
 
@@ -155,6 +157,69 @@ TEST(CollisionDetector, ComparesOnlyThePiecesOfCompoundsThatMeet) {
   const int touched = contacts[2].pieceA;
   EXPECT_GT(collider.pieces[static_cast<std::size_t>(touched)].bounds.center().x(), 0.0);
   for (const BodyContact& contact : contacts) EXPECT_EQ(contact.manifold.pointCount, 4);
+}
+
+// A convex mesh of `count` random points on a sphere of radius `radius`.
+MeshShape randomConvexMesh(std::mt19937_64& random, int count, double radius) {
+  std::normal_distribution<double> gauss;
+  std::vector<Vec3> points;
+  for (int i = 0; i < count; ++i)
+    points.push_back(radius * Vec3(gauss(random), gauss(random), gauss(random)).normalized());
+  auto mesh = convexHullMesh(points, "random mesh");
+  EXPECT_TRUE(static_cast<bool>(mesh));
+  return MeshShape{"random mesh", std::make_shared<TriangleMesh>(std::move(mesh).value())};
+}
+
+// What the narrow phase keeps of hull pairs between steps (their last
+// separating direction) never changes its answer: a detector that keeps it
+// and a new detector each step give the same contacts, bit for bit, along a
+// pile of many-vertex mesh bodies falling and settling.
+TEST(CollisionDetector, KeptSeparationsGiveTheContactsOfAFreshDetectorBitForBit) {
+  std::mt19937_64 random(35);
+  World world;
+  ASSERT_TRUE(world.createBody(groundDef()));
+  for (int i = 0; i < 12; ++i) {
+    BodyDef body;
+    body.name = "rock" + std::to_string(i);
+    body.shape = randomConvexMesh(random, 150, 0.1);
+    body.position = Vec3(0.21 * (i % 3), 0.21 * ((i / 3) % 2), 0.15 + 0.22 * (i / 6));
+    body.angularVelocity = Vec3(0.3 * i, -0.2 * i, 0.1);
+    ASSERT_TRUE(world.createBody(body));
+  }
+  CollisionDetector kept;
+  std::size_t keptTotal = 0;
+  std::size_t contactTotal = 0;
+  for (int step = 0; step < 300; ++step) {
+    world.step();
+    const testing::BodyCopies copies(world);
+    detectContacts(kept, copies.bodies(), world.settings());
+    CollisionDetector fresh;
+    detectContacts(fresh, copies.bodies(), world.settings());
+    const std::vector<BodyContact>& a = kept.contacts();
+    const std::vector<BodyContact>& b = fresh.contacts();
+    ASSERT_EQ(a.size(), b.size()) << "step " << step;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      ASSERT_EQ(a[k].bodyA, b[k].bodyA);
+      ASSERT_EQ(a[k].bodyB, b[k].bodyB);
+      ASSERT_EQ(a[k].pieceA, b[k].pieceA);
+      ASSERT_EQ(a[k].pieceB, b[k].pieceB);
+      ASSERT_EQ(a[k].manifold.pointCount, b[k].manifold.pointCount) << "step " << step;
+      ASSERT_EQ(a[k].manifold.normal, b[k].manifold.normal) << "step " << step;
+      for (int p = 0; p < a[k].manifold.pointCount; ++p) {
+        const ContactPoint& x = a[k].manifold.points[static_cast<std::size_t>(p)];
+        const ContactPoint& y = b[k].manifold.points[static_cast<std::size_t>(p)];
+        ASSERT_EQ(x.pointA, y.pointA);
+        ASSERT_EQ(x.pointB, y.pointB);
+        ASSERT_EQ(x.depth, y.depth);
+        ASSERT_EQ(x.featureId, y.featureId);
+      }
+    }
+    keptTotal += kept.keptSeparationCount();
+    contactTotal += a.size();
+  }
+  // The comparison means something only if both were exercised.
+  EXPECT_GT(keptTotal, 300u);
+  EXPECT_GT(contactTotal, 300u);
 }
 
 }  // namespace
