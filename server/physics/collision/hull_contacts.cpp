@@ -533,7 +533,10 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
     if (!apart) {
       // Overlapping by more than the bar allows: EPA's polytope lies in the
       // Minkowski difference, so its nearest face bounds the depth from below.
-      constexpr double kEpaTolerance = 1e-9;
+      // EPA stops within its tolerance of the depth; much tighter than 1e-6
+      // it can stall on rounding until its support budget ends it (seen on
+      // the iiwa's links at 1e-9), and its answer is then not trusted.
+      constexpr double kEpaTolerance = 1e-6;
       const std::optional<EpaBound> epa =
           epaDepthBound(placedA, placedB, PenetrationSettings{64, kEpaTolerance});
       if (epa) {
