@@ -185,36 +185,77 @@ constexpr double kBoundSlack = 1e-9;  // m
 // The face of `faces` whose plane `points` (placed by pointsToFaces, in
 // the faces' frame) lies farthest outside, as queryFaces finds it, but
 // examining only the faces that can win. Every face's separation is at
-// most its plane's distance to one point of `points`, the probe (the
-// vertex deepest towards the faces' hull): a face whose bound is below a
-// separation already found cannot be the deepest and is skipped. The probe
-// also starts each face's descent over `points`' vertex graph to its
-// lowest vertex along the face normal.
+// most its plane's distance to any point of `points`: to the probe, the
+// vertex of `points` deepest towards the faces' hull along `towards` (unit,
+// faces' frame, from the faces' hull to the points' hull). A face whose
+// bound is below a separation already found cannot be the deepest and is
+// skipped; the others descend over `points`' vertex graph from the probe
+// to the lowest vertex along the face normal. When the hulls overlap
+// deeply the probe lies deep inside and leaves many faces; their bounds
+// are then tightened with four more probes, deepest along directions
+// tilted off `towards`, and each descends from its nearest probe.
 AxisQuery queryFacesNear(const ConvexHull& faces, const ConvexHull& points,
-                         const Transform& pointsToFaces, int probe) {
-  const Vec3 probePoint = pointsToFaces.apply(points.vertices[static_cast<std::size_t>(probe)]);
-  const auto separation = [&](std::size_t f) {
-    const Vec3& normal = faces.faceNormals[f];
-    const Vec3 local = pointsToFaces.inverseRotate(normal);
-    const int lowest = lowestVertexFrom(points, local, probe);
-    return local.dot(points.vertices[static_cast<std::size_t>(lowest)]) +
-           normal.dot(pointsToFaces.translation) - faces.faceOffsets[f];
+                         const Transform& pointsToFaces, const Vec3& towards) {
+  const auto probeAlong = [&](const Vec3& direction) {
+    return supportVertex(points, pointsToFaces.inverseRotate(-direction));
   };
+  const auto placed = [&](int vertex) {
+    return Vec3(pointsToFaces.apply(points.vertices[static_cast<std::size_t>(vertex)]));
+  };
+  const int probe = probeAlong(towards);
+  const Vec3 probePoint = placed(probe);
   thread_local std::vector<double> bounds;
+  thread_local std::vector<int> starts;
   const std::size_t faceCount = faces.faceNormals.size();
   bounds.resize(faceCount);
+  starts.assign(faceCount, probe);
   std::size_t loosest = 0;
   for (std::size_t f = 0; f < faceCount; ++f) {
     bounds[f] = faces.faceNormals[f].dot(probePoint) - faces.faceOffsets[f];
     if (bounds[f] > bounds[loosest]) loosest = f;
   }
+  const auto separation = [&](std::size_t f) {
+    const Vec3& normal = faces.faceNormals[f];
+    const Vec3 local = pointsToFaces.inverseRotate(normal);
+    const int lowest = lowestVertexFrom(points, local, starts[f]);
+    return local.dot(points.vertices[static_cast<std::size_t>(lowest)]) +
+           normal.dot(pointsToFaces.translation) - faces.faceOffsets[f];
+  };
   // A separation some face has: the deepest is at least this.
   double reached = separation(loosest);
+
+  thread_local std::vector<int> open;  // the faces the bound leaves
+  open.clear();
+  for (std::size_t f = 0; f < faceCount; ++f)
+    if (bounds[f] + kBoundSlack >= reached) open.push_back(static_cast<int>(f));
+  constexpr std::size_t kFewFaces = 16;
+  if (open.size() > kFewFaces) {
+    constexpr double kTilt = 0.5;
+    int smallest = 0;
+    towards.cwiseAbs().minCoeff(&smallest);
+    const Vec3 u = towards.cross(Vec3::Unit(smallest)).normalized();
+    const Vec3 v = towards.cross(u);
+    for (const Vec3& direction : {Vec3(towards + kTilt * u), Vec3(towards - kTilt * u),
+                                  Vec3(towards + kTilt * v), Vec3(towards - kTilt * v)}) {
+      const int extra = probeAlong(direction);
+      const Vec3 extraPoint = placed(extra);
+      for (const int face : open) {
+        const std::size_t f = static_cast<std::size_t>(face);
+        const double bound = faces.faceNormals[f].dot(extraPoint) - faces.faceOffsets[f];
+        if (bound < bounds[f]) {
+          bounds[f] = bound;
+          starts[f] = extra;
+        }
+      }
+    }
+  }
+
   AxisQuery best;
-  for (std::size_t f = 0; f < faceCount; ++f) {
+  for (const int face : open) {
+    const std::size_t f = static_cast<std::size_t>(face);
     if (bounds[f] + kBoundSlack < reached) continue;
     const double s = separation(f);
-    if (s > best.separation) best = {s, static_cast<int>(f), -1, Vec3::Zero()};
+    if (s > best.separation) best = {s, face, -1, Vec3::Zero()};
     reached = std::max(reached, s);
   }
   return best;
@@ -510,12 +551,10 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
   if (cache) cache->axis = apart ? towardsB : Vec3::Zero();
 
   // 2. The face queries, each over the faces that can win.
-  const AxisQuery faceA =
-      queryFacesNear(hullA, hullB, bToA, supportVertex(hullB, bToA.inverseRotate(-towardsB)));
+  const AxisQuery faceA = queryFacesNear(hullA, hullB, bToA, towardsB);
   if (faceA.separation > margin) return false;
   const Transform aToB = bToA.inverse();
-  const AxisQuery faceB =
-      queryFacesNear(hullB, hullA, aToB, supportVertex(hullA, towardsB));
+  const AxisQuery faceB = queryFacesNear(hullB, hullA, aToB, aToB.rotate(-towardsB));
   if (faceB.separation > margin) return false;
 
   // 3. The edge query. An edge axis matters only if it separates by more
