@@ -376,16 +376,95 @@ int lowestVertexFrom(const ConvexHull& hull, const Vec3& direction, int start) {
   return climb(hull, -direction, start);
 }
 
-Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName) {
-  Expected<ConvexHull> hull = buildConvexHull(points, sourceName);
-  if (!hull) return hull.error();
+}  // namespace rbsim
+
+namespace rbsim {
+
+namespace {
+
+// How far `point` lies outside the hull: the largest distance above its
+// face planes (negative inside).
+double distanceOutside(const ConvexHull& hull, const Vec3& point) {
+  double outside = -std::numeric_limits<double>::infinity();
+  for (const ConvexHull::Face& face : hull.faces)
+    outside = std::max(outside, face.normal.dot(point) - face.offset);
+  return outside;
+}
+
+TriangleMesh fanTriangulation(const ConvexHull& hull) {
   TriangleMesh mesh;
-  mesh.vertices = hull->vertices;
+  mesh.vertices = hull.vertices;
   // Each face is convex and counter-clockwise seen from outside: a fan.
-  for (const ConvexHull::Face& face : hull->faces)
+  for (const ConvexHull::Face& face : hull.faces)
     for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
       mesh.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
   return mesh;
+}
+
+}  // namespace
+
+Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName) {
+  Expected<ConvexHull> hull = buildConvexHull(points, sourceName);
+  if (!hull) return hull.error();
+  return fanTriangulation(*hull);
+}
+
+Expected<SimplifiedHullMesh> simplifiedConvexHullMesh(const std::vector<Vec3>& points,
+                                                      std::size_t maxVertices, double tolerance,
+                                                      const std::string& sourceName) {
+  if (!(std::isfinite(tolerance) && tolerance >= 0.0))
+    return Error{sourceName + ": the hull tolerance must be finite and not negative"};
+  if (maxVertices < 4) return Error{sourceName + ": a hull needs at least 4 vertices"};
+  Expected<ConvexHull> full = buildConvexHull(points, sourceName);
+  if (!full) return full.error();
+  SimplifiedHullMesh result;
+  result.fullVertexCount = full->vertices.size();
+  const std::vector<Vec3>& candidates = full->vertices;
+
+  // Start from the extreme vertices along the axes and the diagonals, in a
+  // fixed order, so that the result depends on the points alone.
+  std::vector<char> chosen(candidates.size(), 0);
+  std::vector<Vec3> subset;
+  const auto choose = [&](std::size_t i) {
+    if (chosen[i]) return;
+    chosen[i] = 1;
+    subset.push_back(candidates[i]);
+  };
+  for (const Vec3& direction :
+       {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1),
+        Vec3(0, 0, -1), Vec3(1, 1, 1), Vec3(-1, -1, -1), Vec3(1, -1, 1), Vec3(-1, 1, -1)}) {
+    if (subset.size() >= maxVertices) break;
+    choose(static_cast<std::size_t>(scanSupport(candidates, direction)));
+  }
+  for (;;) {
+    Expected<ConvexHull> hull = buildConvexHull(subset, sourceName);
+    if (!hull) {
+      // The extremes can be coplanar (a thin plate): the full hull stands.
+      result.mesh = fanTriangulation(*full);
+      return result;
+    }
+    // Each round adds the farthest vertices outside, up to a quarter as
+    // many as the hull has (one qhull run per round, not per vertex).
+    std::vector<std::pair<double, std::size_t>> outsiders;
+    double outside = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (chosen[i]) continue;
+      const double d = distanceOutside(*hull, candidates[i]);
+      outside = std::max(outside, d);
+      if (d > tolerance) outsiders.emplace_back(-d, i);  // farthest first, then by index
+    }
+    result.outside = std::max(0.0, outside);
+    if (outsiders.empty() || hull->vertices.size() >= maxVertices) {
+      result.mesh = fanTriangulation(*hull);
+      return result;
+    }
+    const std::size_t room = maxVertices - std::min(maxVertices, subset.size());
+    const std::size_t batch =
+        std::min({outsiders.size(), std::max<std::size_t>(1, subset.size() / 4), std::max<std::size_t>(1, room)});
+    std::partial_sort(outsiders.begin(), outsiders.begin() + static_cast<std::ptrdiff_t>(batch),
+                      outsiders.end());
+    for (std::size_t k = 0; k < batch; ++k) choose(outsiders[k].second);
+  }
 }
 
 }  // namespace rbsim

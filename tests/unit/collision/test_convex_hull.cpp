@@ -3,11 +3,15 @@
 // random point sets, and the rejection of inputs without volume.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <set>
+#include <vector>
 #include <string>
 
 #include "geometry_test_helpers.h"
 #include "physics/collision/convex_hull.h"
+#include "rbsim/physics/shapes.h"
 
 namespace rbsim {
 namespace {
@@ -157,6 +161,73 @@ TEST(ConvexHull, RejectsInputsWithoutVolume) {
   std::vector<Vec3> withNan = boxCorners(Vec3::Ones());
   withNan.push_back(Vec3(std::nan(""), 0, 0));
   expectRejected(withNan, "non-finite");
+}
+
+// The largest distance of `point` above the planes of the hull's faces.
+double outsideOf(const ConvexHull& hull, const Vec3& point) {
+  double outside = -1e300;
+  for (const ConvexHull::Face& face : hull.faces)
+    outside = std::max(outside, face.normal.dot(point) - face.offset);
+  return outside;
+}
+
+std::vector<Vec3> pointsOnEllipsoid(int count, const Vec3& axes, unsigned seed) {
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> gauss;
+  std::vector<Vec3> points;
+  for (int i = 0; i < count; ++i)
+    points.push_back(Vec3(gauss(random), gauss(random), gauss(random)).normalized().cwiseProduct(axes));
+  return points;
+}
+
+TEST(SimplifiedHull, HoldsTheFullHullWithinItsToleranceWithFewerVertices) {
+  const std::vector<Vec3> points = pointsOnEllipsoid(576, Vec3(0.1, 0.06, 0.15), 7);
+  const auto full = buildConvexHull(points, "full");
+  ASSERT_TRUE(static_cast<bool>(full));
+  for (const double tolerance : {0.0005, 0.002, 0.01}) {
+    const auto simplified = simplifiedConvexHullMesh(points, 1000, tolerance, "simplified");
+    ASSERT_TRUE(static_cast<bool>(simplified));
+    EXPECT_EQ(simplified->fullVertexCount, full->vertices.size());
+    EXPECT_LE(simplified->outside, tolerance);
+    const auto hull = buildConvexHull(simplified->mesh.vertices, "check");
+    ASSERT_TRUE(static_cast<bool>(hull));
+    EXPECT_LT(hull->vertices.size(), full->vertices.size()) << "tolerance " << tolerance;
+    RecordProperty("vertices_at_" + std::to_string(tolerance), static_cast<int>(hull->vertices.size()));
+    // Every vertex of the full hull within the tolerance of the simplified
+    // hull's planes, and the reported distance is the largest.
+    double largest = 0.0;
+    for (const Vec3& v : full->vertices) largest = std::max(largest, outsideOf(*hull, v));
+    EXPECT_LE(largest, tolerance + 1e-12);
+    EXPECT_NEAR(largest, simplified->outside, 1e-12);
+    // Its vertices are the full hull's own: an inner hull, never larger.
+    for (const Vec3& v : simplified->mesh.vertices)
+      EXPECT_LE(outsideOf(*full, v), 1e-12);
+  }
+}
+
+TEST(SimplifiedHull, TheVertexBudgetEndsTheGrowthAndSaysHowFarOff) {
+  const std::vector<Vec3> points = pointsOnEllipsoid(576, Vec3(0.1, 0.1, 0.1), 8);
+  const auto simplified = simplifiedConvexHullMesh(points, 24, 0.0, "budget");
+  ASSERT_TRUE(static_cast<bool>(simplified));
+  EXPECT_LE(simplified->mesh.vertices.size(), 24u);
+  // 24 points cannot hold a 576-point sphere of radius 0.1 m to 1 mm.
+  EXPECT_GT(simplified->outside, 0.001);
+  const auto hull = buildConvexHull(simplified->mesh.vertices, "check");
+  ASSERT_TRUE(static_cast<bool>(hull));
+  double largest = 0.0;
+  for (const Vec3& v : points) largest = std::max(largest, outsideOf(*hull, v));
+  EXPECT_NEAR(largest, simplified->outside, 1e-12);
+}
+
+TEST(SimplifiedHull, ZeroToleranceKeepsEveryVertexOfACube) {
+  std::vector<Vec3> cube;
+  for (int i = 0; i < 8; ++i) cube.push_back(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+  const auto simplified = simplifiedConvexHullMesh(cube, 100, 0.0, "cube");
+  ASSERT_TRUE(static_cast<bool>(simplified));
+  EXPECT_EQ(simplified->mesh.vertices.size(), 8u);
+  EXPECT_EQ(simplified->outside, 0.0);
+  EXPECT_FALSE(static_cast<bool>(simplifiedConvexHullMesh(cube, 100, -1.0, "cube")));
+  EXPECT_FALSE(static_cast<bool>(simplifiedConvexHullMesh(cube, 3, 0.0, "cube")));
 }
 
 }  // namespace

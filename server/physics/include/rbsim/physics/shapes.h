@@ -86,4 +86,22 @@ std::optional<CompoundPartShape> toPartShape(Shape shape);
 // `sourceName`: fewer than 4 distinct points, or all in a plane.
 Expected<TriangleMesh> convexHullMesh(const std::vector<Vec3>& points, const std::string& sourceName);
 
+// The convex hull of `points` with fewer vertices, as physics engines cook
+// hulls for collision (Jolt's hull tolerance, PhysX's vertex limit): the
+// hull of a subset of its vertices, grown greedily from its extreme points
+// by adding the vertex farthest outside, until every vertex of the full
+// hull lies within `tolerance` (m) of the simplified hull's face planes or
+// the simplified hull has `maxVertices` vertices. So the full hull lies
+// inside the simplified one with its faces moved out by `outside` (m), the
+// largest such distance left, which may exceed the tolerance only when the
+// vertex budget ends the growth.
+struct SimplifiedHullMesh {
+  TriangleMesh mesh;
+  std::size_t fullVertexCount = 0;  // vertices of the full hull
+  double outside = 0.0;             // m
+};
+Expected<SimplifiedHullMesh> simplifiedConvexHullMesh(const std::vector<Vec3>& points,
+                                                      std::size_t maxVertices, double tolerance,
+                                                      const std::string& sourceName);
+
 }  // namespace rbsim
