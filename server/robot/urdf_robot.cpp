@@ -12,6 +12,7 @@
 #include <functional>
 #include <mutex>
 #include <set>
+#include <iomanip>
 #include <sstream>
 
 #include "meshio/contained_path.h"
@@ -335,13 +336,24 @@ Expected<CompoundPartShape> RobotBuilder::makeMesh(const urdf::Mesh& mesh, const
   }
   // A mirroring scale turns the triangles inside out; the hull does not care.
   const Expected<bool> closed = validateClosedMesh(*loaded, *path);
-  Expected<TriangleMesh> hull = convexHullMesh(loaded->vertices, linkAt(link) + ": mesh '" + mesh.filename + "'");
+  Expected<SimplifiedHullMesh> hull =
+      simplifiedConvexHullMesh(loaded->vertices, m_placement.hullMaxVertices, m_placement.hullTolerance,
+                               linkAt(link) + ": mesh '" + mesh.filename + "'");
   if (!hull) return hull.error();
+  const std::size_t kept = hull->mesh.vertices.size();
+  std::string simplified;
+  if (kept < hull->fullVertexCount) {
+    std::ostringstream text;
+    text << ", simplified to " << kept << " vertices, the full hull within " << std::fixed
+         << std::setprecision(2) << hull->outside * 1000.0 << " mm of their faces";
+    simplified = text.str();
+  }
   m_out.report.push_back("link '" + link + "': mesh '" + mesh.filename + "' (" +
                          std::to_string(loaded->triangles.size()) + " triangles, " +
                          (closed ? std::string("closed") : "open: " + closed.error().message) +
-                         ") collides as its convex hull (" + std::to_string(hull->vertices.size()) + " vertices)");
-  return CompoundPartShape{MeshShape{mesh.filename, std::make_shared<const TriangleMesh>(std::move(*hull))}};
+                         ") collides as its convex hull (" + std::to_string(hull->fullVertexCount) + " vertices" +
+                         simplified + ")");
+  return CompoundPartShape{MeshShape{mesh.filename, std::make_shared<const TriangleMesh>(std::move(hull->mesh))}};
 }
 
 Expected<CompoundPartShape> RobotBuilder::makeShape(const urdf::Geometry& geometry, const std::string& link) {

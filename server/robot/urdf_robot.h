@@ -23,6 +23,7 @@
 //    combined exactly when the robot asks for it (merge_fixed_links).
 // Errors name the file and the line of the element at fault.
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -44,6 +45,13 @@ struct RobotPlacement {
   // Initial joint positions by the URDF's joint names (rad or m); the
   // others start at 0. The joints read them as their positions there.
   std::map<std::string, double, std::less<>> jointPositions;
+  // Collision meshes collide as their convex hulls, simplified as engines
+  // cook hulls (simplifiedConvexHullMesh): to at most hullMaxVertices
+  // vertices while the full hull stays within hullTolerance of the
+  // simplified hull's face planes (tolerance 0 and a budget of at least
+  // the hull's vertices keep every vertex).
+  double hullTolerance = 0.001;  // m
+  std::size_t hullMaxVertices = 256;
 };
 
 // Where a URDF's files are: its own directory (for relative mesh paths) and

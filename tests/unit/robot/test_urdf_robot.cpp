@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include "robot/urdf_robot.h"
@@ -272,6 +274,93 @@ TEST(UrdfRobot, AnOpenPackagedMeshCollidesAsItsConvexHull) {
   EXPECT_TRUE(reportHas(robot, "open_box.obj' (10 triangles, open:")) << reportText(robot);
   EXPECT_EQ(std::get<MeshShape>(parts.parts[1].shape).mesh->vertices.size(), 4u);
   EXPECT_EQ(parts.parts[1].position, Vec3(0, 0, 0.5));
+}
+
+// A link whose collision mesh is a UV sphere of radius 0.1 m (`rings`
+// latitude rings of `segments` vertices and the poles), written as OBJ next
+// to the URDF in a temporary directory.
+std::string writeSphereRobot(int rings, int segments) {
+  const std::string directory = ::testing::TempDir();
+  std::ofstream obj(directory + "/sphere_link.obj");
+  obj << "v 0 0 0.1\nv 0 0 -0.1\n";
+  for (int i = 1; i <= rings; ++i) {
+    const double polar = kPi * i / (rings + 1);
+    for (int j = 0; j < segments; ++j) {
+      const double azimuth = 2.0 * kPi * j / segments;
+      obj << "v " << 0.1 * std::sin(polar) * std::cos(azimuth) << " "
+          << 0.1 * std::sin(polar) * std::sin(azimuth) << " " << 0.1 * std::cos(polar) << "\n";
+    }
+  }
+  const auto at = [&](int ring, int j) { return 3 + (ring - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    obj << "f 1 " << at(1, j) << " " << at(1, j + 1) << "\n";
+    obj << "f 2 " << at(rings, j + 1) << " " << at(rings, j) << "\n";
+    for (int i = 1; i < rings; ++i) {
+      obj << "f " << at(i, j) << " " << at(i + 1, j) << " " << at(i + 1, j + 1) << "\n";
+      obj << "f " << at(i, j) << " " << at(i + 1, j + 1) << " " << at(i, j + 1) << "\n";
+    }
+  }
+  return R"(<robot name="ball"><link name="ball">
+      <inertial><mass value="2"/><inertia ixx="0.008" iyy="0.008" izz="0.008" ixy="0" ixz="0" iyz="0"/></inertial>
+      <collision><geometry><mesh filename=")" +
+         directory + R"(/sphere_link.obj"/></geometry></collision></link></robot>)";
+}
+
+TEST(UrdfRobot, ACollisionHullIsSimplifiedWithinTheToleranceAndTheReportSaysHowFar) {
+  const std::string xml = writeSphereRobot(18, 24);  // 434 vertices
+  const auto meshOf = [](const RobotModel& robot) {
+    const BodyDef& body = robot.bodies.at(0);
+    const auto* compound = std::get_if<CompoundShape>(&body.shape);
+    const MeshShape& mesh = compound ? std::get<MeshShape>(compound->parts.at(0).shape)
+                                     : std::get<MeshShape>(body.shape);
+    return mesh.mesh;
+  };
+  RobotPlacement exact;
+  exact.name = "r";
+  exact.hullTolerance = 0.0;
+  exact.hullMaxVertices = 100000;
+  Expected<RobotModel> full = buildRobot(xml, exact, filesFor("ball.urdf"));
+  ASSERT_TRUE(full.ok()) << full.error().message;
+  EXPECT_EQ(meshOf(*full)->vertices.size(), 434u);
+  const std::string fullText = reportText(*full);
+  EXPECT_NE(fullText.find("collides as its convex hull (434 vertices)"), std::string::npos) << fullText;
+
+  RobotPlacement cooked = exact;
+  cooked.hullTolerance = 0.002;
+  Expected<RobotModel> simplified = buildRobot(xml, cooked, filesFor("ball.urdf"));
+  ASSERT_TRUE(simplified.ok()) << simplified.error().message;
+  const std::size_t kept = meshOf(*simplified)->vertices.size();
+  EXPECT_LT(kept, 434u);
+  const std::string text = reportText(*simplified);
+  EXPECT_NE(text.find("collides as its convex hull (434 vertices, simplified to " + std::to_string(kept) +
+                      " vertices, the full hull within "),
+            std::string::npos)
+      << text;
+  // Every vertex of the full hull within 2 mm of the simplified hull's faces.
+  // (The simplified mesh is a hull, wound outwards: its triangles' planes.)
+  const TriangleMesh& hull = *meshOf(*simplified);
+  for (const Vec3& v : meshOf(*full)->vertices) {
+    double outside = -1.0;
+    for (const auto& triangle : hull.triangles) {
+      const Vec3& a = hull.vertices[static_cast<std::size_t>(triangle[0])];
+      const Vec3 normal = (hull.vertices[static_cast<std::size_t>(triangle[1])] - a)
+                              .cross(hull.vertices[static_cast<std::size_t>(triangle[2])] - a)
+                              .normalized();
+      outside = std::max(outside, normal.dot(v - a));
+    }
+    EXPECT_LE(outside, 0.002 + 1e-9);
+  }
+  // The mass properties are the description's, whatever the hull.
+  EXPECT_EQ(simplified->bodies[0].mass, full->bodies[0].mass);
+  EXPECT_EQ(simplified->bodies[0].inertia, full->bodies[0].inertia);
+  EXPECT_EQ(simplified->bodies[0].centerOfMass, full->bodies[0].centerOfMass);
+
+  RobotPlacement budget = exact;
+  budget.hullTolerance = 0.0001;
+  budget.hullMaxVertices = 40;
+  Expected<RobotModel> capped = buildRobot(xml, budget, filesFor("ball.urdf"));
+  ASSERT_TRUE(capped.ok()) << capped.error().message;
+  EXPECT_LE(meshOf(*capped)->vertices.size(), 40u);
 }
 
 TEST(UrdfRobot, APackageIsFoundThroughRosPackagePathOrNamedWhenItIsNot) {
