@@ -42,15 +42,16 @@ struct AxisQuery {
 
 // Do the arcs a–b and c–d of the Gauss map cross? Then the two edges whose
 // adjacent face normals they join build a face of the Minkowski difference
-// (Gregorius 2013; c and d are B's normals, already negated).
-bool isMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 bxa = b.cross(a);
-  const Vec3 dxc = d.cross(c);
+// (Gregorius 2013; c and d are B's normals, already negated). bxa = b × a
+// and dxc = d × c belong to one edge each, so callers compute them once.
+bool isMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c, const Vec3& d,
+                     const Vec3& dxc) {
   const double cba = c.dot(bxa);
   const double dba = d.dot(bxa);
+  if (!(cba * dba < 0.0)) return false;
   const double adc = a.dot(dxc);
   const double bdc = b.dot(dxc);
-  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
+  return adc * bdc < 0.0 && cba * bdc > 0.0;
 }
 
 // The largest separation of `points` from the planes normal · p = offset.
@@ -128,28 +129,40 @@ struct HullPair {
   }
 };
 
-// The edge axis of A's edge i and B's edge j if their arcs cross on the
-// Gauss map (a face of the Minkowski difference) and they are not parallel:
-// the separation along it, with the axis pointing away from A. The
-// arithmetic of the exhaustive test, so that both give the same bits.
-std::optional<AxisQuery> edgeAxis(const HullPair& pair, int i, int j) {
-  const ConvexHull::FaceEdge& eA = pair.a.faceEdges[static_cast<std::size_t>(i)];
-  const ConvexHull::FaceEdge& eB = pair.b.faceEdges[static_cast<std::size_t>(j)];
-  const Vec3& a = pair.a.faceNormals[static_cast<std::size_t>(eA.face0)];
-  const Vec3& b = pair.a.faceNormals[static_cast<std::size_t>(eA.face1)];
-  const Vec3 c = -pair.normalB(eB.face0);
-  const Vec3 d = -pair.normalB(eB.face1);
-  if (!isMinkowskiFace(a, b, c, d)) return std::nullopt;
-  const Vec3& pA = pair.a.vertices[static_cast<std::size_t>(eA.start)];
-  const Vec3 dA = pair.a.vertices[static_cast<std::size_t>(eA.end)] - pA;
-  const Vec3 pB = pair.vertexB(eB.start);
-  const Vec3 dB = pair.vertexB(eB.end) - pB;
-  Vec3 axis = dA.cross(dB);
-  const double length = axis.norm();
-  if (length < kParallelEdgeSine * dA.norm() * dB.norm()) return std::nullopt;
-  axis /= length;
-  if (axis.dot(pA - pair.a.centroid) < 0.0) axis = -axis;
-  return AxisQuery{axis.dot(pB - pA), i, j, axis};
+// What the edge pairs' test needs of one edge, in A's frame: its Gauss-map
+// arc (the normals of its faces, negated for B, and their cross product)
+// and its segment.
+struct EdgeData {
+  Vec3 normal0;
+  Vec3 normal1;
+  Vec3 arcCross;  // normal1 × normal0
+  Vec3 start;
+  Vec3 along;  // end − start
+  double length;
+};
+
+EdgeData edgeDataOfA(const HullPair& pair, int i) {
+  const ConvexHull::FaceEdge& e = pair.a.faceEdges[static_cast<std::size_t>(i)];
+  EdgeData data;
+  data.normal0 = pair.a.faceNormals[static_cast<std::size_t>(e.face0)];
+  data.normal1 = pair.a.faceNormals[static_cast<std::size_t>(e.face1)];
+  data.arcCross = data.normal1.cross(data.normal0);
+  data.start = pair.a.vertices[static_cast<std::size_t>(e.start)];
+  data.along = pair.a.vertices[static_cast<std::size_t>(e.end)] - data.start;
+  data.length = data.along.norm();
+  return data;
+}
+
+EdgeData edgeDataOfB(const HullPair& pair, int j) {
+  const ConvexHull::FaceEdge& e = pair.b.faceEdges[static_cast<std::size_t>(j)];
+  EdgeData data;
+  data.normal0 = -pair.normalB(e.face0);
+  data.normal1 = -pair.normalB(e.face1);
+  data.arcCross = data.normal1.cross(data.normal0);
+  data.start = pair.vertexB(e.start);
+  data.along = pair.vertexB(e.end) - data.start;
+  data.length = data.along.norm();
+  return data;
 }
 
 // The result of an edge query: the deepest edge axis, or a proof of
@@ -161,18 +174,32 @@ struct EdgeQuery {
 
 // Tests A's edges `edgesA` against B's `edgesB`, both ascending, in the
 // exhaustive test's order: the first pair of the largest separation wins.
+// A pair counts if its arcs cross on the Gauss map (a face of the
+// Minkowski difference) and the edges are not parallel; its axis points
+// away from A.
 EdgeQuery queryEdgePairs(const HullPair& pair, const std::vector<int>& edgesA,
                          const std::vector<int>& edgesB) {
+  thread_local std::vector<EdgeData> dataB;
+  dataB.clear();
+  for (const int j : edgesB) dataB.push_back(edgeDataOfB(pair, j));
   EdgeQuery query;
   for (const int i : edgesA) {
-    for (const int j : edgesB) {
-      const std::optional<AxisQuery> axis = edgeAxis(pair, i, j);
-      if (!axis) continue;
-      if (axis->separation > pair.margin) {
+    const EdgeData a = edgeDataOfA(pair, i);
+    for (std::size_t k = 0; k < dataB.size(); ++k) {
+      const EdgeData& b = dataB[k];
+      if (!isMinkowskiFace(a.normal0, a.normal1, a.arcCross, b.normal0, b.normal1, b.arcCross))
+        continue;
+      Vec3 axis = a.along.cross(b.along);
+      const double length = axis.norm();
+      if (length < kParallelEdgeSine * a.length * b.length) continue;
+      axis /= length;
+      if (axis.dot(a.start - pair.a.centroid) < 0.0) axis = -axis;
+      const double separation = axis.dot(b.start - a.start);
+      if (separation > pair.margin) {
         query.separated = true;
         return query;
       }
-      if (axis->separation > query.best.separation) query.best = *axis;
+      if (separation > query.best.separation) query.best = {separation, i, edgesB[k], axis};
     }
   }
   return query;
@@ -468,11 +495,14 @@ bool collideHullsExhaustive(const ConvexHull& hullA, const Transform& poseA,
   const double margin = settings.margin;
   // Everything in A's frame.
   const Transform bToA = poseA.inverse() * poseB;
-  std::vector<Vec3> verticesB;
-  verticesB.reserve(hullB.vertices.size());
+  // Scratch kept per thread: this runs for every small hull pair.
+  thread_local std::vector<Vec3> verticesB;
+  thread_local std::vector<Vec3> normalsB;
+  thread_local std::vector<double> offsetsB;
+  verticesB.clear();
+  normalsB.clear();
+  offsetsB.clear();
   for (const Vec3& v : hullB.vertices) verticesB.push_back(bToA.apply(v));
-  std::vector<Vec3> normalsB;
-  std::vector<double> offsetsB;
   for (const ConvexHull::Face& face : hullB.faces) {
     normalsB.push_back(bToA.rotate(face.normal));
     offsetsB.push_back(face.offset + normalsB.back().dot(bToA.translation));
