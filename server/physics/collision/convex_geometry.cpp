@@ -76,9 +76,7 @@ Aabb geometryBounds(const ConvexGeometry& geometry) {
         } else if constexpr (std::is_same_v<T, CylinderShape>) {
           half = Vec3(g.radius, g.radius, g.halfLength);
         } else {
-          Aabb box;
-          for (const Vec3& v : g->vertices) box.include(v);
-          return box;
+          return Aabb{g->lowerCorner, g->upperCorner};  // computed with the hull
         }
         return {-half, half};
       },
@@ -103,12 +101,8 @@ double geometrySize(const ConvexGeometry& geometry) {
 }
 
 Vec3 interiorPoint(const ConvexGeometry& geometry) {
-  if (const auto* hull = std::get_if<std::shared_ptr<const ConvexHull>>(&geometry)) {
-    Vec3 sum = Vec3::Zero();
-    for (const Vec3& v : (*hull)->vertices) sum += v;
-    return (*hull)->vertices.empty() ? sum
-                                     : Vec3(sum / static_cast<double>((*hull)->vertices.size()));
-  }
+  if (const auto* hull = std::get_if<std::shared_ptr<const ConvexHull>>(&geometry))
+    return (*hull)->centroid;  // the mean of the vertices, computed with the hull
   return Vec3::Zero();
 }
 

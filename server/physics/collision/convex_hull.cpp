@@ -359,6 +359,15 @@ void computeHullTopology(ConvexHull& hull) {
   hull.centroid = Vec3::Zero();
   for (const Vec3& v : hull.vertices) hull.centroid += v;
   if (vertexCount > 0) hull.centroid /= static_cast<double>(vertexCount);
+  double radius2 = 0.0;
+  hull.lowerCorner = Vec3::Constant(std::numeric_limits<double>::infinity());
+  hull.upperCorner = -hull.lowerCorner;
+  for (const Vec3& v : hull.vertices) {
+    radius2 = std::max(radius2, (v - hull.centroid).squaredNorm());
+    hull.lowerCorner = hull.lowerCorner.cwiseMin(v);
+    hull.upperCorner = hull.upperCorner.cwiseMax(v);
+  }
+  hull.radius = std::sqrt(radius2);
 
   hull.supportStarts.clear();
   if (vertexCount > kWalkedSupportVertices) {

@@ -43,6 +43,9 @@ struct ConvexHull {
   std::vector<Vec3> faceNormals;    // faces[f].normal, contiguous for the face queries
   std::vector<double> faceOffsets;  // faces[f].offset
   Vec3 centroid = Vec3::Zero();     // mean of the vertices: a point strictly inside
+  double radius = 0.0;              // m: the farthest vertex from the centroid
+  Vec3 lowerCorner = Vec3::Zero();  // m: the vertices' bounding box
+  Vec3 upperCorner = Vec3::Zero();
   // For hulls of more than kWalkedSupportVertices vertices: the support
   // vertex of each cell of a cube map of directions, where a hill climb over
   // the vertex graph starts (supportVertex); empty for small hulls.

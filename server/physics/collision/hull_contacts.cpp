@@ -373,11 +373,6 @@ void allEdges(const ConvexHull& hull, std::vector<int>& out) {
   for (std::size_t e = 0; e < out.size(); ++e) out[e] = static_cast<int>(e);
 }
 
-double hullRadius(const ConvexHull& hull) {
-  double radius2 = 0.0;
-  for (const Vec3& v : hull.vertices) radius2 = std::max(radius2, (v - hull.centroid).squaredNorm());
-  return std::sqrt(radius2);
-}
 
 // An edge axis matters only if it separates the hulls by more than this:
 // more than the margin (then they are apart), or more than the face axes'
@@ -544,7 +539,7 @@ bool collideHulls(const ConvexHull& hullA, const Transform& poseA, const ConvexH
   const double margin = settings.margin;
   const Transform bToA = poseA.inverse() * poseB;
   const HullPair pair{hullA, hullB, bToA, margin};
-  const double scale = std::max(hullRadius(hullA), hullRadius(hullB));
+  const double scale = std::max(hullA.radius, hullB.radius);
   const double distanceSlack = 1e-9 * scale;
 
   // 0. Temporal coherence: still apart along last step's direction by more
