@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "rbsim/physics/collision_filter.h"
 #include "rbsim/physics/freeze_reason.h"
 #include "rbsim/physics/material.h"
 #include "rbsim/physics/rigid_state.h"
@@ -57,6 +58,7 @@ struct BodyDescription {
   Material material;                 // resolved against the world's defaults
   bool continuousCollision = false;  // swept against fast motion (see BodyDef)
   bool collides = true;              // false: no collider, never in a contact (see BodyDef)
+  CollisionFilter collisionFilter;   // its group and mask (see BodyDef)
 };
 
 class Body;
