@@ -93,6 +93,11 @@ std::optional<std::string> addSpawn(World& world, const SpawnDef& spawn) {
     if (!id) return undo(named.source + ": " + id.error().message);
     joints.push_back(*id);
   }
+  // Pairs of the new robots' bodies (removing the bodies would drop them).
+  for (const ExcludedPair& pair : spawn.excludedPairs) {
+    const auto set = world.setPairCollision(world.findBody(pair.bodyA), world.findBody(pair.bodyB), false);
+    if (!set) return undo(set.error().message);
+  }
   return std::nullopt;
 }
 

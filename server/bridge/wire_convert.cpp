@@ -105,6 +105,8 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   copyTo(out.inertia, body.dynamics().inertiaBody);
   out.mass_properties_given = d.massPropertiesGiven;
   out.collides = d.collides;
+  out.collision_group = d.collisionFilter.group;
+  out.collision_mask = d.collisionFilter.mask;
   out.linear_damping = body.dynamics().linearDamping;
   out.angular_damping = body.dynamics().angularDamping;
   out.shape_type = shapeTypeName(d.shape);

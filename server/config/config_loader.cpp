@@ -13,6 +13,7 @@
 #include <memory>
 #include <utility>
 
+#include "config/collision_filter_config.h"
 #include "config/contact_config.h"
 #include "config/joint_config.h"
 #include "config/orientation_config.h"
@@ -49,10 +50,10 @@ constexpr std::array<std::string_view, 8> kTopLevelKeys = {
 constexpr std::array<std::string_view, 3> kSpawnKeys = {"bodies", "robots", "joints"};
 constexpr std::array<std::string_view, 5> kWorldKeys = {"dt", "gravity", "integrator", "damping", "threads"};
 constexpr std::array<std::string_view, 2> kDampingKeys = {"linear", "angular"};
-constexpr std::array<std::string_view, 16> kBodyKeys = {
+constexpr std::array<std::string_view, 18> kBodyKeys = {
     "name",     "shape",       "mass", "density",         "center_of_mass",   "inertia",
     "position", "orientation", "rpy",  "linear_velocity", "angular_velocity", "static",
-    "damping",  "material",    "ccd",  "collides"};
+    "damping",  "material",    "ccd",  "collides",        kCollisionGroupKey, kCollisionMaskKey};
 
 constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
@@ -220,6 +221,7 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
       spawn.bodies.push_back(std::move(body));
     }
     for (NamedJointDef& joint : made.joints) spawn.joints.push_back(std::move(joint));
+    spawn.excludedPairs = std::move(made.excludedPairs);
     spawn.robotReport = std::move(report);
   }
   if (const YamlMap::Entry* joints = top->find("joints")) {
@@ -405,6 +407,9 @@ Expected<BodyDef> ConfigParser::parseBody(const YamlNode& node) const {
   Expected<bool> collides = m_reader.boolean(*map, "collides", true);
   if (!collides) return collides.error();
   body.collides = *collides;
+  // Which bodies it collides with: Bullet's group and mask (config/collision_filter_config.h).
+  if (auto error = parseCollisionFilter(m_reader, *map, kCollisionGroupKey, kCollisionMaskKey, body.collisionFilter))
+    return *error;
   return body;
 }
 

@@ -65,6 +65,7 @@ Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& s
 struct SpawnDef {
   std::vector<BodyDef> bodies;  // the spawn's bodies, then its robots' links
   std::vector<NamedJointDef> joints;  // its robots' joints, then the spawn's own
+  std::vector<ExcludedPair> excludedPairs;  // pairs of its robots' bodies that never collide
   std::vector<std::string> robotReport;  // what the robots were made into (robot/urdf_robot.h)
 };
 

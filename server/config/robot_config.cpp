@@ -7,6 +7,7 @@
 #include <set>
 #include <string_view>
 
+#include "config/collision_filter_config.h"
 #include "config/joint_config.h"
 #include "config/orientation_config.h"
 #include "meshio/contained_path.h"
@@ -16,9 +17,10 @@ namespace rbsim {
 
 namespace {
 
-constexpr std::array<std::string_view, 10> kRobotKeys = {
-    "name",          "urdf",          "position", "orientation", "rpy", "fixed_base", "merge_fixed_links",
-    "joint_positions", "joint_drives", "package_paths"};
+constexpr std::array<std::string_view, 13> kRobotKeys = {
+    "name",           "urdf",          "position",           "orientation",   "rpy",
+    "fixed_base",     "merge_fixed_links", "joint_positions", "joint_drives",  "package_paths",
+    "self_collision", "disable_collisions", "link_collision"};
 constexpr double kMaxLength = 1e6;           // m, as the bodies' positions
 constexpr double kMaxJointPosition = 1e6;    // rad or m
 constexpr std::size_t kMaxNameLength = 128;  // characters, as body names
@@ -166,6 +168,7 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     }
     if (const YamlMap::Entry* drives = map->find("joint_drives"))
       if (auto error = applyJointDrives(reader, drives->value, *robot)) return *error;
+    if (auto error = applyRobotCollisions(reader, *map, *name, *robot, world.excludedPairs)) return *error;
     for (const BodyDef& body : robot->bodies)
       if (taken(body.name))
         return reader.error(*nameNode, "robot \"" + *name + "\" makes a body named \"" + body.name +

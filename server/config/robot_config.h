@@ -15,6 +15,10 @@
 //       joint_drives: {shoulder_joint: {stiffness: 200, damping: 20}}  # as a joint's drive:
 //                                  # no target: hold where the joint is placed
 //       package_paths: [robots]    # where package://NAME/... is looked up
+//       self_collision: false      # its links collide with each other (default: no)
+//       disable_collisions: [[link1, link3]]   # with self_collision: pairs that never collide
+//       link_collision: {gripper: {group: 2, mask: 1}}   # a link's collision group and mask
+//                                  # (config/collision_filter_config.h)
 //
 // Errors name the world file's line and key, and the URDF's line.
 
@@ -36,8 +40,8 @@ using BodyNameTaken = std::function<bool(const std::string& name)>;
 // it names must lie inside the spawn directory, meshio/contained_path.h).
 enum class RobotFilePaths { Anywhere, InsideBaseDirectory };
 
-// Reads the list `node`, appends each robot's bodies and joints to `world`
-// and its load report (robot/urdf_robot.h) to `report`. Relative paths are
+// Reads the list `node`, appends each robot's bodies, joints and pairs of
+// bodies excluded from collision to `world` and its load report (robot/urdf_robot.h) to `report`. Relative paths are
 // relative to `baseDirectory`.
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,

@@ -247,6 +247,27 @@ Expected<bool> YamlReader::boolean(const YamlNode& node) const {
   return error(node, "expected true or false, got " + describeNode(node.node));
 }
 
+Expected<uint64_t> YamlReader::wholeNumber(const YamlNode& node, uint64_t max, std::string_view what) const {
+  const auto refuse = [&] {
+    return error(node, "expected a whole number from 0 to " + std::to_string(max) + " (" + std::string(what) +
+                           "; 0x for hexadecimal), got " + describeNode(node.node));
+  };
+  if (!node.node.IsScalar()) return refuse();
+  const std::string_view tag = node.node.Tag();
+  if (tag != kPlainTag && tag != kIntTag) return refuse();
+  std::string_view text = node.node.Scalar();
+  int base = 10;
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    base = 16;
+    text.remove_prefix(2);
+  }
+  // from_chars takes no sign, spaces or prefix: "-1", "+1", " 1" and "1.0" are refused.
+  uint64_t value = 0;
+  const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), value, base);
+  if (text.empty() || status != std::errc() || end != text.data() + text.size() || value > max) return refuse();
+  return value;
+}
+
 Expected<std::string> YamlReader::string(const YamlNode& node) const {
   if (!node.node.IsScalar())
     return error(node, "expected a string, got " + describeNode(node.node));

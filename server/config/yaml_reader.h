@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -95,6 +96,10 @@ class YamlReader {
   template <std::size_t N>
   Expected<std::array<double, N>> numbers(const YamlNode& node, NumberRule rule) const;
   Expected<Vec3> vec3(const YamlNode& node, NumberRule rule) const;
+  // A whole number from 0 to `max`, written in decimal or in hexadecimal
+  // with 0x (for bit sets); `what` says what it is in the message
+  // ("a set of 32 collision bits").
+  Expected<uint64_t> wholeNumber(const YamlNode& node, uint64_t max, std::string_view what) const;
   // true or false (YAML 1.2 core schema spellings only, not yes/no/on/off).
   Expected<bool> boolean(const YamlNode& node) const;
   // Any scalar, as written (quoted or plain), possibly empty.

@@ -43,18 +43,30 @@ std::string massPropertiesJson(const World& world) {
   bool first = true;
   for (const BodyView body : world.bodies()) {
     const BodyDescription& d = body.description();
-    const MassProperties& m = d.massProperties;
+    // A static body is immovable: the dynamics give it infinite mass and
+    // never read what the shape would weigh (createBody still computes it,
+    // to place the body frame), and world_t reports mass 0. So does this
+    // report, whatever the shape: a URDF's fixed base with <mass value="0"/>
+    // or no <inertial> is not "6.24 kg" because its mesh has a volume.
+    MassProperties m = d.massProperties;
+    Vec3 moments = body.dynamics().inertiaBody;
+    if (d.isStatic) {
+      m = MassProperties{};
+      m.volume = d.massProperties.volume;  // the shape's, which it still has
+      moments = Vec3::Zero();
+    }
     // Principal axes in the shape frame are the rows of shapeRotation (it
     // maps shape coordinates to body coordinates).
     const Mat3 axes = d.shapeRotation.transpose();
-    const Vec3 moments = body.dynamics().inertiaBody;
     out << (first ? "\n" : ",\n") << "    {\n";
     out << "      \"name\": " << jsonString(d.name) << ",\n";
     out << "      \"shape\": " << jsonString(shapeTypeName(d.shape)) << ",\n";
     out << "      \"static\": " << (d.isStatic ? "true" : "false") << ",\n";
     // "given": the config's mass, center_of_mass and inertia; "shape":
-    // computed from the shape at its density (or scaled to its mass).
-    out << "      \"source\": \"" << (d.massPropertiesGiven ? "given" : "shape") << "\",\n";
+    // computed from the shape at its density (or scaled to its mass);
+    // "static": none, an immovable body.
+    const char* source = d.isStatic ? "static" : d.massPropertiesGiven ? "given" : "shape";
+    out << "      \"source\": \"" << source << "\",\n";
     out << "      \"mass\": " << number(m.mass) << ",\n";
     out << "      \"volume\": " << number(m.volume) << ",\n";
     out << "      \"center_of_mass\": " << vector3(m.centerOfMass) << ",\n";

@@ -546,6 +546,7 @@ Expected<RobotModel> RobotBuilder::build() {
     if (!body) return body.error();
     m_out.bodies.push_back(std::move(*body));
   }
+  for (const std::string& link : m_document.linkOrder) m_out.linkBodies.emplace_back(link, prefixed(m_bodyOf.at(link)));
   // Joints in the order their child links are written.
   for (const std::string& link : m_document.linkOrder) {
     const urdf::LinkConstSharedPtr l = m_model->getLink(link);

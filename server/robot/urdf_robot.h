@@ -27,6 +27,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rbsim/physics/body_definition.h"
@@ -79,6 +80,11 @@ struct RobotModel {
   std::vector<BodyDef> bodies;
   std::vector<NamedJointDef> joints;
   std::vector<std::string> report;  // one line each
+  // Every link of the URDF, in document order, with the body it is part of
+  // (its own, "<robot>/<link>", or the body it was merged into): what the
+  // world file's per-link settings (collision filters, excluded pairs)
+  // apply to.
+  std::vector<std::pair<std::string, std::string>> linkBodies;
 };
 
 // Builds the robot of the URDF text `xml`. Errors: XML that is not a URDF

@@ -1,7 +1,8 @@
 // Writes the seed corpus of fuzz_checkpoint (tests/fuzz/corpus/checkpoint/):
 // checkpoint payloads of sessions of the small world, with spawned bodies
-// of every shape, wrenches pending and acting, contacts in the solver's
-// warm-start cache, and joints of every kind. Run after the checkpoint format changes:
+// of every shape, one with its own collision group and mask, a pair
+// excluded from collision, wrenches pending and acting, contacts in the
+// solver's warm-start cache, and joints of every kind. Run after the checkpoint format changes:
 //
 //   build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/checkpoint
 
@@ -62,6 +63,8 @@ int main(int argc, char** argv) {
         "{name: t, shape: {type: mesh, file: tetrahedron.stl}, position: [0, 1, 0.5]}",
         "{name: s, shape: {type: sphere, radius: 0.2}, position: [1, 1, 0.2], ccd: true}",
         "{name: v, shape: {type: box, half_extents: [0.1, 0.1, 0.1]}, position: [0, 0, 0.1], collides: false}",
+        "{name: f, shape: {type: sphere, radius: 0.1}, position: [1, -1, 0.2], collision_group: 2, "
+        "collision_mask: 0xFFFFFFFD}",
         "{name: g, shape: {type: box, half_extents: [0.2, 0.1, 0.01]}, position: [-1, 0, 0.3], "
         "mass: 2, center_of_mass: [0.05, 0, 0], inertia: [[0.01, -0.001, 0], [-0.001, 0.02, 0], "
         "[0, 0, 0.03]]}"}) {
@@ -70,6 +73,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "cannot spawn %s\n", yaml);
       return 1;
     }
+  }
+  // A pair excluded from collision (as a robot's links are).
+  if (!busy.world().setPairCollision(busy.world().findBody("crate"), busy.world().findBody("ball"), false)) {
+    std::fprintf(stderr, "cannot exclude crate-ball\n");
+    return 1;
   }
   busy.wrenches().add(push("crate", WrenchMode::Persistent, 1));
   busy.wrenches().add(push("ball", WrenchMode::Duration, 1));

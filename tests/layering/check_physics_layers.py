@@ -38,6 +38,7 @@ PUBLIC_HEADERS = {
     "freeze_reason.h": "body",
     "integrator_kind.h": "body",
     "material.h": "body",
+    "collision_filter.h": "body",
     "types.h": "body",
     "body_definition.h": "body",
     "body_view.h": "body",

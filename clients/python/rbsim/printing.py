@@ -88,6 +88,8 @@ def world_lines(world) -> List[str]:
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
         if not b.collides:
             line += " collides false"
+        if b.collision_group != 1 or b.collision_mask != 0xFFFFFFFF:  # the defaults go unsaid
+            line += " collision_group %d collision_mask %d" % (b.collision_group, b.collision_mask)
         if b.frozen:
             line += " frozen " + b.frozen
         lines.append(line)
@@ -185,6 +187,7 @@ def world_json(world) -> str:
         "bodies": [{"id": b.id, "name": b.name, "shape": b.shape_type, "static": bool(b.is_static),
                     "mass": b.mass, "inertia": [float(v) for v in b.inertia],
                     "mass_properties_given": bool(b.mass_properties_given),
-                    "collides": bool(b.collides), "frozen": b.frozen}
+                    "collides": bool(b.collides), "collision_group": b.collision_group,
+                    "collision_mask": b.collision_mask, "frozen": b.frozen}
                    for b in world.bodies],
     })

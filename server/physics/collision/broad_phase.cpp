@@ -29,6 +29,7 @@ BroadPhase::BroadPhase(double fatMargin, double contactMargin)
 BroadPhaseShape BroadPhaseShape::of(const Body& body) {
   BroadPhaseShape shape;
   shape.isStatic = body.isStatic();
+  shape.filter = body.description().collisionFilter;
   if (const Collider* collider = body.description().collider.get()) {
     if (!collider->pieces.empty()) shape.bounds = collider->bounds;
     shape.plane = collider->plane;
@@ -41,12 +42,13 @@ BroadPhaseBody BroadPhaseShape::placed(int32_t serial, int index, const Transfor
   body.serial = serial;
   body.index = index;
   body.isStatic = isStatic;
+  body.filter = filter;
   if (bounds) body.box = transformedAabb(*bounds, pose);
   if (plane) body.plane = worldHalfSpace(*plane, pose);
   return body;
 }
 
-void BroadPhase::update(std::span<const Body> bodies) {
+void BroadPhase::update(std::span<const Body> bodies, std::span<const uint64_t> excludedPairs) {
   m_inputs.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
@@ -55,20 +57,22 @@ void BroadPhase::update(std::span<const Body> bodies) {
       m_inputs.push_back(
           shape.placed(body.serial(), static_cast<int>(i), {body.rotation(), body.position()}));
   }
-  update(m_inputs);
+  update(m_inputs, excludedPairs);
 }
 
-void BroadPhase::update(std::span<const BroadPhaseBody> bodies) {
+void BroadPhase::update(std::span<const BroadPhaseBody> bodies, std::span<const uint64_t> excludedPairs) {
+  assert(std::is_sorted(excludedPairs.begin(), excludedPairs.end()));
   m_movedCount = 0;
   if (!canFollow(bodies)) clear();
   const bool entriesShifted = syncEntries(bodies);
   updateCandidates(entriesShifted);
-  collectPairs();
+  collectPairs(excludedPairs);
 }
 
 void BroadPhase::clear() {
   m_tree = DynamicAabbTree(m_fatMargin);
   m_entries.clear();
+  m_filters.clear();
   m_candidates.clear();
 }
 
@@ -95,6 +99,7 @@ bool BroadPhase::canFollow(std::span<const BroadPhaseBody> bodies) const {
 bool BroadPhase::syncEntries(std::span<const BroadPhaseBody> bodies) {
   m_planes.clear();
   const std::size_t oldCount = m_entries.size();
+  m_filters.resize(oldCount);
   m_remap.assign(oldCount, -1);
   std::size_t next = 0;  // next input body
   int write = 0;
@@ -115,8 +120,10 @@ bool BroadPhase::syncEntries(std::span<const BroadPhaseBody> bodies) {
   }
   const bool shifted = at(write) != oldCount;
   m_entries.resize(at(write));
+  m_filters.resize(at(write));
   for (; next < bodies.size(); ++next) {
     const int index = static_cast<int>(m_entries.size());
+    m_filters.emplace_back();
     Entry& entry = m_entries.emplace_back();
     entry.serial = bodies[next].serial;
     entry.isStatic = bodies[next].isStatic;
@@ -130,6 +137,7 @@ void BroadPhase::syncEntry(int entryIndex, const BroadPhaseBody& body) {
   entry.moved = entry.isStatic != body.isStatic;
   entry.isStatic = body.isStatic;
   entry.index = body.index;
+  m_filters[at(entryIndex)] = body.filter;
   if (body.plane) m_planes.push_back({entryIndex, *body.plane});
   if (body.box) {
     const Aabb box = body.box->fattened(0.5 * m_contactMargin);
@@ -195,11 +203,22 @@ void BroadPhase::updateCandidates(bool entriesShifted) {
   m_candidates.swap(m_merged);
 }
 
-void BroadPhase::collectPairs() {
-  // Candidates whose grown tight boxes overlap, still sorted by key.
+bool BroadPhase::filtersAllow(const Candidate& candidate, std::span<const uint64_t> excludedPairs,
+                              std::size_t& excludedCursor) const {
+  if (!m_filters[at(candidate.entryA)].allows(m_filters[at(candidate.entryB)])) return false;
+  // Candidates come in ascending key order: the cursor only moves forward.
+  while (excludedCursor < excludedPairs.size() && excludedPairs[excludedCursor] < candidate.key) ++excludedCursor;
+  return excludedCursor == excludedPairs.size() || excludedPairs[excludedCursor] != candidate.key;
+}
+
+void BroadPhase::collectPairs(std::span<const uint64_t> excludedPairs) {
+  // Candidates whose grown tight boxes overlap and whose filters allow
+  // them, still sorted by key.
   m_touching.clear();
+  std::size_t excludedCursor = 0;
   for (const Candidate& candidate : m_candidates) {
-    if (m_entries[at(candidate.entryA)].box.overlaps(m_entries[at(candidate.entryB)].box))
+    if (m_entries[at(candidate.entryA)].box.overlaps(m_entries[at(candidate.entryB)].box) &&
+        filtersAllow(candidate, excludedPairs, excludedCursor))
       m_touching.push_back(candidate);
   }
 
@@ -222,6 +241,13 @@ void BroadPhase::collectPairs() {
   const std::vector<Candidate>* sorted = &m_touching;
   if (!m_found.empty()) {
     std::sort(m_found.begin(), m_found.end(), byKey);
+    excludedCursor = 0;
+    std::size_t kept = 0;
+    for (const Candidate& candidate : m_found)
+      if (filtersAllow(candidate, excludedPairs, excludedCursor)) m_found[kept++] = candidate;
+    m_found.resize(kept);
+  }
+  if (!m_found.empty()) {
     m_merged.clear();
     std::merge(m_touching.begin(), m_touching.end(), m_found.begin(), m_found.end(),
                std::back_inserter(m_merged), byKey);

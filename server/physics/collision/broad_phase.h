@@ -8,12 +8,18 @@
 // O(M log N) tree work for the M proxies that moved and O(K log K) to sort
 // the K pairs they found; and O(N) per plane.
 //
-// What is reported is a pure function of the current poses (not of the
-// tree's history): two bodies pair when their tight boxes, each grown by
-// half the contact margin, overlap; a body pairs with a plane when its grown
-// box reaches the plane's half-space grown by half the margin. The fat boxes
-// of the tree only make finding those pairs cheap. So a broad phase rebuilt
-// from scratch (after a restore, say) gives exactly the same pairs.
+// What is reported is a pure function of the current poses and collision
+// filters (not of the tree's history): two bodies pair when their tight
+// boxes, each grown by half the contact margin, overlap; a body pairs with a
+// plane when its grown box reaches the plane's half-space grown by half the
+// margin; and, either way, only when their collision groups and masks allow
+// it (rbsim/physics/collision_filter.h) and their pair is not among the
+// excluded ones given to update() (bodies a joint joins, pairs a robot or
+// the user left out). The fat boxes of the tree only make finding those
+// pairs cheap, and the filters are applied to the pairs found, not to the
+// tree's candidates, so a change of filters takes effect at the next update.
+// So a broad phase rebuilt from scratch (after a restore, say) gives exactly
+// the same pairs.
 
 #include <cstdint>
 #include <optional>
@@ -23,6 +29,7 @@
 #include "physics/body/body.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/dynamic_aabb_tree.h"
+#include "rbsim/physics/collision_filter.h"
 #include "rbsim/physics/transform.h"
 
 namespace rbsim {
@@ -34,6 +41,15 @@ struct BodyPair {
   int b = 0;
   friend bool operator==(const BodyPair&, const BodyPair&) = default;
 };
+
+// The key of the pair of bodies with these serials, whichever order they
+// come in: (lower serial << 32) | higher serial. Sorting keys sorts pairs
+// by (serial A, serial B), the order in which the broad phase reports them.
+inline uint64_t serialPairKey(int32_t serialA, int32_t serialB) {
+  const auto low = static_cast<uint64_t>(static_cast<uint32_t>(serialA < serialB ? serialA : serialB));
+  const auto high = static_cast<uint64_t>(static_cast<uint32_t>(serialA < serialB ? serialB : serialA));
+  return (low << 32) | high;
+}
 
 // A half-space in the world frame: normal · p <= offset is solid.
 struct HalfSpace {
@@ -63,6 +79,7 @@ struct BroadPhaseBody {
   bool isStatic = false;
   std::optional<Aabb> box;         // world box of the convex pieces; none: no pieces
   std::optional<HalfSpace> plane;  // the body's half-space, if it is a plane
+  CollisionFilter filter;          // its collision group and mask
 };
 
 // What the broad phase needs of a body's geometry, fixed when the body is
@@ -72,6 +89,7 @@ struct BroadPhaseShape {
   bool isStatic = false;
   std::optional<Aabb> bounds;       // body frame, of the convex pieces; none without pieces
   std::optional<PlaneShape> plane;  // body frame
+  CollisionFilter filter;           // the body's collision group and mask
 
   static BroadPhaseShape of(const Body& body);  // no geometry when the collider is null
   bool hasGeometry() const { return bounds || plane; }
@@ -90,14 +108,17 @@ class BroadPhase {
   // the last update) and recomputes the candidate pairs; `bodies` in
   // ascending serial order, as a World keeps them. Bodies without a
   // collider (a null description().collider) and frozen ones take no part.
-  void update(std::span<const Body> bodies);
+  // `excludedPairs`: keys (serialPairKey) of pairs never to report, sorted
+  // ascending; keys of bodies not given are ignored.
+  void update(std::span<const Body> bodies, std::span<const uint64_t> excludedPairs = {});
   // The same from explicit inputs, in ascending serial order. A serial seen
   // before must keep its isStatic; a new serial must exceed every serial
   // seen before (as World's do), otherwise everything is rebuilt.
-  void update(std::span<const BroadPhaseBody> bodies);
+  void update(std::span<const BroadPhaseBody> bodies, std::span<const uint64_t> excludedPairs = {});
 
   // Candidate pairs, sorted by (serial(a), serial(b)): deterministic
-  // whatever the tree's shape.
+  // whatever the tree's shape. Filtered: no pair the bodies' groups and
+  // masks, or the excluded pairs, rule out.
   const std::vector<BodyPair>& pairs() const { return m_pairs; }
   const DynamicAabbTree& tree() const { return m_tree; }
   double contactMargin() const { return m_contactMargin; }
@@ -132,13 +153,18 @@ class BroadPhase {
   bool syncEntries(std::span<const BroadPhaseBody> bodies);
   void syncEntry(int entryIndex, const BroadPhaseBody& body);
   void updateCandidates(bool entriesMoved);
-  void collectPairs();
+  void collectPairs(std::span<const uint64_t> excludedPairs);
+  // Whether the filters let the two entries' bodies collide (`key` their pair's).
+  bool filtersAllow(const Candidate& candidate, std::span<const uint64_t> excludedPairs,
+                    std::size_t& excludedCursor) const;
   Candidate makeCandidate(int entryA, int entryB) const;
 
   double m_fatMargin;
   double m_contactMargin;
   DynamicAabbTree m_tree;
   std::vector<Entry> m_entries;
+  // Parallel to m_entries (kept out of Entry, which fills its cache line).
+  std::vector<CollisionFilter> m_filters;
   std::vector<PlaneEntry> m_planes;     // the entries with a plane, in entry order
   std::vector<int> m_remap;             // old entry index -> new one (-1: removed), during update
   std::vector<Candidate> m_candidates;  // sorted by key

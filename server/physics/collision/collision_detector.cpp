@@ -89,7 +89,7 @@ void CollisionDetector::detect(std::span<const Body> bodies, const DetectionStep
       if (reach > 0.0 && box) box = box->fattened(reach);
     }
   }
-  m_broadPhase.update(m_broadPhaseInputs);
+  m_broadPhase.update(m_broadPhaseInputs, step.excludedPairs);
   m_previousContacts.swap(m_contacts);
   m_previousContactKeys.swap(m_contactKeys);
   m_previousPairKeys.swap(m_pairKeys);

@@ -31,6 +31,10 @@ struct DetectionStep {
   // is computed. Negative: unknown, each body is checked.
   double maxSquaredSpeed = -1.0;
   double maxSquaredSpin = -1.0;
+  // Pairs the broad phase leaves out (BroadPhase::update: serialPairKey
+  // keys, ascending): their narrow phase is never run. The world's joined
+  // and excluded pairs; groups and masks come with the bodies.
+  std::span<const uint64_t> excludedPairs;
 };
 
 class CollisionDetector {

@@ -3,6 +3,7 @@
 // the world's settings handed to the collision layer, which knows neither
 // World nor WorldData.
 
+#include <cstdint>
 #include <span>
 
 #include "physics/body/body.h"
@@ -15,7 +16,10 @@ namespace rbsim {
 // Speculative contacts belong to the impulse model: the penalty model
 // pushes on overlaps only and needs none.
 inline DetectionStep detectionStep(const WorldSettings& settings) {
-  return {settings.dt, settings.contact.model == ContactModel::Impulse};
+  DetectionStep step;
+  step.dt = settings.dt;
+  step.speculative = settings.contact.model == ContactModel::Impulse;
+  return step;
 }
 
 // On the calling thread, without bounds on the bodies' speeds.
@@ -24,13 +28,16 @@ inline void detectContacts(CollisionDetector& detector, std::span<const Body> bo
   detector.detect(bodies, detectionStep(settings), caller);
 }
 
-// With the world's bounds on its bodies' speeds (negative: unknown), on
-// the pool's threads.
+// With the world's bounds on its bodies' speeds (negative: unknown) and
+// the pairs it leaves out (DetectionStep::excludedPairs), on the pool's
+// threads.
 inline void detectContacts(CollisionDetector& detector, std::span<const Body> bodies, const WorldSettings& settings,
-                           double maxSquaredSpeed, double maxSquaredSpin, TaskPool& pool) {
+                           double maxSquaredSpeed, double maxSquaredSpin, std::span<const uint64_t> excludedPairs,
+                           TaskPool& pool) {
   DetectionStep step = detectionStep(settings);
   step.maxSquaredSpeed = maxSquaredSpeed;
   step.maxSquaredSpin = maxSquaredSpin;
+  step.excludedPairs = excludedPairs;
   detector.detect(bodies, step, pool);
 }
 

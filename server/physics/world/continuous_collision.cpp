@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "physics/body/body.h"
+#include "physics/collision/broad_phase.h"
 #include "physics/collision/collision_detector.h"
 #include "physics/collision/time_of_impact.h"
 #include "physics/world/step_stages.h"
@@ -32,6 +33,12 @@ void applyContinuousCollision(WorldData& world, const std::vector<RigidState>& s
       inContact.emplace_back(world.bodies[static_cast<std::size_t>(c.bodyA)].serial(),
                              world.bodies[static_cast<std::size_t>(c.bodyB)].serial());
   }
+  // Pairs the collision filters rule out never collide, swept or not.
+  const std::span<const uint64_t> leftOut = pairsLeftOut(world);
+  const auto filteredOut = [&](const Body& a, const Body& b) {
+    return !a.description().collisionFilter.allows(b.description().collisionFilter) ||
+           std::binary_search(leftOut.begin(), leftOut.end(), serialPairKey(a.serial(), b.serial()));
+  };
   const auto touched = [&](const Body& a, const Body& b) {
     // By value: minmax of two values returns references to them.
     const int32_t low = std::min(a.serial(), b.serial());
@@ -50,7 +57,7 @@ void applyContinuousCollision(WorldData& world, const std::vector<RigidState>& s
     for (std::size_t j = 0; j < n; ++j) {
       // A frozen body is out of the simulation: nothing collides with it.
       if (j == i || !world.bodies[j].description().collider || world.bodies[j].isFrozen()) continue;
-      if (touched(body, world.bodies[j])) continue;
+      if (touched(body, world.bodies[j]) || filteredOut(body, world.bodies[j])) continue;
       const Collider& other = *world.bodies[j].description().collider;
       if (!other.plane && !sweptI.overlaps(sweptBox(j))) continue;
       Body startJ = world.bodies[j];

@@ -360,14 +360,14 @@ void keepSleepingContacts(const WorldData& world, const std::vector<BodyContact>
 
 void findContacts(WorldData& world) {
   detectContacts(*world.detector, world.bodies, world.settings, world.maxSquaredSpeed, world.maxSquaredSpin,
-                 taskPool(world));
+                 pairsLeftOut(world), taskPool(world));
 }
 
 void stepImpulse(WorldData& world) {
   const double dt = world.settings.dt;
   findContacts(world);
-  std::vector<BodyContact> unjoined;  // when joints filter some pairs out
-  const std::vector<BodyContact>& detected = contactsBetweenUnjoinedBodies(world, world.detector->contacts(), unjoined);
+  // Joined and excluded pairs never reach the narrow phase (collision_filtering.cpp).
+  const std::vector<BodyContact>& detected = world.detector->contacts();
   const std::vector<int> islandOf = findIslands(world, detected);
   wakeIslands(world, islandOf);
   const std::vector<char> jointed = findJointedBodies(world);  // empty: no joint to enforce

@@ -1,7 +1,8 @@
 // The joint step of the jointed bodies (joint/joint_solver.h): RATTLE for
 // islands that touch nothing, the contact path's semi-implicit step around
-// the same projection for islands in contact; and which bodies and contacts
-// the joints take out of the other paths.
+// the same projection for islands in contact; and which bodies the joints
+// take out of the other paths (the pairs they join never reach the narrow
+// phase: collision_filtering.cpp).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,30 +55,6 @@ void collectJointLinks(const WorldData& world, const std::vector<int>& local, st
 }
 
 }  // namespace
-
-const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const WorldData& world,
-                                                              const std::vector<BodyContact>& detected,
-                                                              std::vector<BodyContact>& storage) {
-  if (world.joints.empty() || detected.empty()) return detected;
-  std::vector<std::pair<int, int>> joined;  // dense (lower, higher)
-  for (const JointConstraint& joint : world.joints) {
-    if (joint.def.collideConnected || joint.def.bodyA.isNull() || joint.def.bodyB.isNull()) continue;
-    const int a = static_cast<int>(denseIndexOf(world, joint.def.bodyA));
-    const int b = static_cast<int>(denseIndexOf(world, joint.def.bodyB));
-    joined.emplace_back(std::min(a, b), std::max(a, b));
-  }
-  if (joined.empty()) return detected;
-  std::sort(joined.begin(), joined.end());
-  const auto isJoined = [&](const BodyContact& c) {
-    return std::binary_search(joined.begin(), joined.end(),
-                              std::make_pair(std::min(c.bodyA, c.bodyB), std::max(c.bodyA, c.bodyB)));
-  };
-  if (std::none_of(detected.begin(), detected.end(), isJoined)) return detected;
-  storage.clear();
-  for (const BodyContact& c : detected)
-    if (!isJoined(c)) storage.push_back(c);
-  return storage;
-}
 
 std::vector<char> findActuatedBodies(const WorldData& world) {
   // A drive moves its joint until it settles; a body's own sleep thresholds

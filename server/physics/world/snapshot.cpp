@@ -6,11 +6,12 @@
 // state numbers as bit patterns, its description (shape with mesh vertices,
 // mass properties and whether they were given, placement of the shape in
 // body space, material, flags: static, continuous collision, whether it
-// collides at all), its dynamics, the load given for the coming
+// collides at all, its collision group and mask), its dynamics, the load given for the coming
 // step, its sleep state (asleep, time at rest) and whether the numerical
 // guard froze it; the slot table behind BodyIds; every joint with its
 // definition (actuation included), its data in the bodies' frames and its
-// last reaction, and the slot table behind JointIds; and the contact
+// last reaction, and the slot table behind JointIds; the pairs of bodies
+// excluded from collision (by serial); and the contact
 // solver's warm-start cache (last step's solved manifolds), because the
 // next step's impulses start from it. Colliders, body-space meshes, the
 // broad phase and the joint solver's kept factorisation pattern are rebuilt
@@ -28,6 +29,7 @@
 #include "physics/world/step_stages.h"
 #include "physics/world/world_data.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -36,6 +38,7 @@
 
 #include "physics/body/body.h"
 #include "physics/body/external_load.h"
+#include "physics/collision/broad_phase.h"
 #include "physics/collision/collider.h"
 #include "physics/joint/joint_constraint.h"
 #include "rbsim/physics/byte_stream.h"
@@ -229,9 +232,19 @@ void checkSettings(ByteReader& in, const WorldSettings& s) {
   const bool sleeping = in.boolean("sleeping");
   if (in.failed()) return;
   if (std::bit_cast<uint64_t>(dt) != std::bit_cast<uint64_t>(s.dt)) differs("dt", text(dt) + " s", text(s.dt) + " s");
-  if (gravity != s.gravity)
-    differs("gravity", "[" + text(gravity.x()) + ", " + text(gravity.y()) + ", " + text(gravity.z()) + "]",
-            "[" + text(s.gravity.x()) + ", " + text(s.gravity.y()) + ", " + text(s.gravity.z()) + "]");
+  // Appended piece by piece: GCC 12 reports a false -Warray-bounds inside
+  // `const char* + std::string&&` here once it is inlined.
+  const auto vectorText = [&](const Vec3& v) {
+    std::string out = "[";
+    out += text(v.x());
+    out += ", ";
+    out += text(v.y());
+    out += ", ";
+    out += text(v.z());
+    out += "]";
+    return out;
+  };
+  if (gravity != s.gravity) differs("gravity", vectorText(gravity), vectorText(s.gravity));
   if (integrator != static_cast<uint8_t>(s.integrator))
     differs("integrator", std::to_string(integrator), std::string(integratorName(s.integrator)));
   if (enabled != s.contact.enabled || model != static_cast<uint8_t>(s.contact.model) ||
@@ -486,6 +499,32 @@ Expected<bool> readJointsSnapshot(WorldData& world, ByteReader& in) {
   return true;
 }
 
+// The pairs excluded from collision: distinct serials of bodies present,
+// lower first, pairs ascending (as World keeps them).
+Expected<bool> readExcludedPairs(WorldData& world, ByteReader& in) {
+  const uint32_t count = in.count("excluded pair count", 8);
+  // The bodies were read in ascending serial order.
+  const auto present = [&](int32_t serial) {
+    const auto found = std::lower_bound(world.bodies.begin(), world.bodies.end(), serial,
+                                        [](const Body& body, int32_t s) { return body.serial() < s; });
+    return found != world.bodies.end() && found->serial() == serial;
+  };
+  uint64_t previous = 0;
+  for (uint32_t i = 0; i < count && !in.failed(); ++i) {
+    const int32_t low = in.i32("excluded pair body");
+    const int32_t high = in.i32("excluded pair body");
+    if (in.failed()) break;
+    const uint64_t key = serialPairKey(low, high);
+    if (!(low < high) || !present(low) || !present(high) || (i > 0 && key <= previous))
+      return Error{"world snapshot: excluded pair " + std::to_string(i) + " (serials " + std::to_string(low) + ", " +
+                   std::to_string(high) + ") names no two bodies of the snapshot, or is out of order"};
+    world.excludedPairs.push_back(key);
+    previous = key;
+  }
+  if (in.failed()) return Error{"world snapshot: " + in.error()};
+  return true;
+}
+
 }  // namespace
 
 Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out) {
@@ -512,6 +551,8 @@ Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out) {
     out.boolean(d.isStatic);
     out.boolean(d.continuousCollision);
     out.boolean(d.collides);
+    out.u32(d.collisionFilter.group);
+    out.u32(d.collisionFilter.mask);
     if (auto shape = writeShape(d.shape, d.name, out); !shape) return shape;
     out.f64(d.massProperties.mass);
     out.f64(d.massProperties.volume);
@@ -551,6 +592,11 @@ Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out) {
   for (std::size_t j = 0; j < world.joints.size(); ++j) {
     out.i32(world.jointIds[j].index);
     writeJoint(world.joints[j], out);
+  }
+  out.u32(static_cast<uint32_t>(world.excludedPairs.size()));
+  for (const uint64_t key : world.excludedPairs) {
+    out.i32(static_cast<int32_t>(key >> 32));
+    out.i32(static_cast<int32_t>(static_cast<uint32_t>(key)));
   }
   writeWarmStart(world.contacts, out);
   return true;
@@ -614,6 +660,8 @@ Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
     description->isStatic = in.boolean("static flag");
     description->continuousCollision = in.boolean("continuous collision flag");
     description->collides = in.boolean("collides flag");
+    description->collisionFilter.group = in.u32("collision group");
+    description->collisionFilter.mask = in.u32("collision mask");
     description->shape = readShape(in, description->name);
     description->massProperties.mass = in.f64("mass");
     description->massProperties.volume = in.f64("volume");
@@ -710,6 +758,7 @@ Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
                  std::to_string(world.bodies.size()) + " bodies"};
 
   if (auto joints = readJointsSnapshot(world, in); !joints) return joints.error();
+  if (auto excluded = readExcludedPairs(world, in); !excluded) return excluded.error();
   world.contacts = readWarmStart(in, static_cast<int>(world.bodies.size()));
   if (in.failed()) return failure();
   return true;

@@ -8,10 +8,13 @@
 //   joints.cpp                joints made, changed, removed and reported
 //   penalty_step.cpp          the penalty model's step
 //   continuous_collision.cpp  no tunnelling for flagged fast bodies
+//   collision_filtering.cpp   which pairs of bodies never collide
 //   snapshot.cpp              the world as bytes and back
 // World (world.cpp) forwards its public functions to them.
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -72,12 +75,6 @@ std::vector<char> findJointedBodies(const WorldData& world);
 // a target rate, a drive whose joint still moves), which must not fall
 // asleep however slowly it goes; empty when no joint acts so.
 std::vector<char> findActuatedBodies(const WorldData& world);
-// `detected` without the contacts of bodies that a joint joins (unless it
-// lets them collide): `detected` itself when no joint filters, else
-// `storage` filled.
-const std::vector<BodyContact>& contactsBetweenUnjoinedBodies(const WorldData& world,
-                                                              const std::vector<BodyContact>& detected,
-                                                              std::vector<BodyContact>& storage);
 // Puts every jointed body of an island that touches something into
 // step.solving (the contact path's kick and solve) and returns the joints'
 // velocity rows for the contact solve (null when no such island).
@@ -111,6 +108,22 @@ Expected<bool> setJointEffort(WorldData& world, JointId id, double effort);
 
 // --- penalty_step.cpp
 void stepPenalty(WorldData& world);
+
+// --- collision_filtering.cpp
+// The pairs the broad phase leaves out now (DetectionStep::excludedPairs):
+// world.excludedPairs and the pairs of bodies a joint joins unless it has
+// collideConnected, as serialPairKey keys, ascending (gathered in
+// world.pairsLeftOut when joints add some). A function of the bodies'
+// serials, the joints and the exclusions, never of the past.
+std::span<const uint64_t> pairsLeftOut(WorldData& world);
+// Whether the filters (groups and masks, joints, exclusions) let the bodies
+// at these dense indices collide.
+bool filtersAllowPair(const WorldData& world, std::size_t a, std::size_t b);
+// Adds (collide false) or drops the exclusion of the pair of two distinct
+// valid bodies.
+void setPairExcluded(WorldData& world, BodyId a, BodyId b, bool excluded);
+// Drops the exclusions of a body about to be removed.
+void dropExclusionsOf(WorldData& world, int32_t serial);
 
 // --- continuous_collision.cpp
 // Continuous collision for bodies flagged `continuousCollision`: a body

@@ -169,6 +169,14 @@ Expected<World> World::fromDef(const WorldDef& def) {
     const auto id = world.createJoint(joint);
     if (!id) return Error{where + id.error().message};
   }
+  for (const ExcludedPair& pair : def.excludedPairs) {
+    const BodyId a = world.findBody(pair.bodyA);
+    const BodyId b = world.findBody(pair.bodyB);
+    const std::string which = "excluded pair ('" + pair.bodyA + "', '" + pair.bodyB + "'): ";
+    if (a.isNull() || b.isNull())
+      return Error{which + "no body named '" + (a.isNull() ? pair.bodyA : pair.bodyB) + "'"};
+    if (auto set = world.setPairCollision(a, b, false); !set) return Error{which + set.error().message};
+  }
   return world;
 }
 
@@ -215,6 +223,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   description->material = resolveMaterial(def.material, m_data->settings.contact.defaultMaterial);
   description->continuousCollision = def.continuousCollision;
   description->collides = def.collides;
+  description->collisionFilter = def.collisionFilter;
   if (description->material.restitution > 1.0 || description->material.restitution < 0.0 ||
       description->material.friction < 0.0 ||
       description->material.staticCoefficient() < description->material.friction)
@@ -311,6 +320,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
 Expected<bool> World::removeBody(BodyId id) {
   if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) return Error{"cannot remove: " + why};
   removeJointsOf(*m_data, id);
+  dropExclusionsOf(*m_data, bodyRef(*m_data, id).serial());
   IdSlot& slot = m_data->slots[static_cast<size_t>(id.index - 1)];
   const auto dense = static_cast<size_t>(slot.denseIndex);
   m_data->idByName.erase(m_data->bodies[dense].name());
@@ -327,6 +337,35 @@ Expected<bool> World::removeBody(BodyId id) {
   ++slot.generation;
   m_data->freeSlots.push_back(id.index - 1);
   return true;
+}
+
+Expected<bool> World::setPairCollision(BodyId a, BodyId b, bool collide) {
+  for (const BodyId id : {a, b})
+    if (const std::string why = invalidIdReason(*m_data, id); !why.empty())
+      return Error{"cannot filter the pair: " + why};
+  if (a == b) return Error{"body '" + bodyRef(*m_data, a).name() + "' cannot be paired with itself"};
+  setPairExcluded(*m_data, a, b, !collide);
+  return true;
+}
+
+bool World::canCollide(BodyId a, BodyId b) const {
+  for (const BodyId id : {a, b})
+    if (const std::string why = invalidIdReason(*m_data, id); !why.empty()) throw std::invalid_argument(why);
+  return a != b && filtersAllowPair(*m_data, denseIndexOf(*m_data, a), denseIndexOf(*m_data, b));
+}
+
+std::vector<std::pair<BodyId, BodyId>> World::excludedPairs() const {
+  // Serials ascend along the dense order: a body's serial finds its index.
+  const auto idOfSerial = [&](uint32_t serial) {
+    const auto found = std::lower_bound(m_data->bodies.begin(), m_data->bodies.end(), serial,
+                                        [](const Body& body, uint32_t s) { return static_cast<uint32_t>(body.serial()) < s; });
+    return m_data->denseIds[static_cast<std::size_t>(found - m_data->bodies.begin())];
+  };
+  std::vector<std::pair<BodyId, BodyId>> pairs;
+  pairs.reserve(m_data->excludedPairs.size());
+  for (const uint64_t key : m_data->excludedPairs)
+    pairs.emplace_back(idOfSerial(static_cast<uint32_t>(key >> 32)), idOfSerial(static_cast<uint32_t>(key)));
+  return pairs;
 }
 
 BodyId findBodyByName(const WorldData& world, std::string_view name) {

@@ -76,6 +76,12 @@ struct WorldData {
   std::vector<JointId> jointIds;
   std::vector<IdSlot> jointSlots;
   std::vector<int32_t> freeJointSlots;
+  // Pairs of bodies that never collide (World::setPairCollision), as
+  // serialPairKey keys (collision/broad_phase.h), ascending.
+  std::vector<uint64_t> excludedPairs;
+  // Scratch of the step: those and the pairs joints join, for the broad
+  // phase (collision_filtering.cpp).
+  std::vector<uint64_t> pairsLeftOut;
   // Name lookup only; never iterated, so its order cannot leak into a step.
   std::unordered_map<std::string, BodyId> idByName;
   int64_t stepCount = 0;

@@ -70,13 +70,16 @@ RandomScene makeRandomScene(SceneRandom& random, int boxes, double extent) {
 }
 
 // The definition, pair by pair, O(N²).
-std::vector<BodyPair> bruteForcePairs(const std::vector<BroadPhaseBody>& bodies, double margin) {
+std::vector<BodyPair> bruteForcePairs(const std::vector<BroadPhaseBody>& bodies, double margin,
+                                      const std::vector<uint64_t>& excluded = {}) {
   std::vector<BodyPair> pairs;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     for (std::size_t j = i + 1; j < bodies.size(); ++j) {
       const BroadPhaseBody& a = bodies[i];
       const BroadPhaseBody& b = bodies[j];
       if (a.isStatic && b.isStatic) continue;
+      if ((a.filter.group & b.filter.mask) == 0 || (b.filter.group & a.filter.mask) == 0) continue;
+      if (std::find(excluded.begin(), excluded.end(), serialPairKey(a.serial, b.serial)) != excluded.end()) continue;
       bool touch =
           a.box && b.box && a.box->fattened(0.5 * margin).overlaps(b.box->fattened(0.5 * margin));
       for (const auto& [plane, other] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
@@ -200,6 +203,43 @@ TEST(BroadPhase, CorrectAfterRemovingAndAddingBodiesAndIndependentOfHistory) {
     scene.renumber();
     scene.move();
   }
+}
+
+// Groups and masks of a few bits, and pairs excluded at random: the pairs
+// are the definition's with the filters applied, whatever the history, and
+// a change of filters (a body's, or the excluded set) takes effect at the
+// next update.
+TEST(BroadPhase, LeavesOutWhatTheFiltersRuleOutWhateverTheHistory) {
+  SceneRandom random(41);
+  RandomScene scene = makeRandomScene(random, 300, 1.0);
+  const auto randomFilter = [&]() {
+    CollisionFilter filter;
+    filter.group = 1u << static_cast<int>(random.uniform(0, 3));     // one of three categories
+    filter.mask = static_cast<uint32_t>(random.uniform(0, 8)) | 1u;  // the ground's and some others
+    return filter;
+  };
+  BroadPhase broadPhase(0.05, kContactMargin);
+  std::size_t filteredOut = 0;
+  for (int round = 0; round < 20; ++round) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      if (scene.bodies[i].box && random.uniform(0, 1) < 0.3) scene.bodies[i].filter = randomFilter();
+    // Exclude about a third of the pairs the filters still allow.
+    std::vector<uint64_t> excluded;
+    for (const BodyPair& pair : bruteForcePairs(scene.bodies, kContactMargin))
+      if (random.uniform(0, 1) < 0.33)
+        excluded.push_back(serialPairKey(scene.bodies[static_cast<std::size_t>(pair.a)].serial,
+                                         scene.bodies[static_cast<std::size_t>(pair.b)].serial));
+    std::sort(excluded.begin(), excluded.end());
+    broadPhase.update(scene.bodies, excluded);
+    const std::vector<BodyPair> expected = bruteForcePairs(scene.bodies, kContactMargin, excluded);
+    ASSERT_EQ(broadPhase.pairs(), expected) << "round " << round;
+    filteredOut += bruteForcePairs(scene.bodies, kContactMargin).size() - expected.size();
+    BroadPhase fresh(0.05, kContactMargin);
+    fresh.update(scene.bodies, excluded);
+    ASSERT_EQ(fresh.pairs(), broadPhase.pairs()) << "round " << round;
+    scene.move();
+  }
+  EXPECT_GT(filteredOut, 100u);  // the filters had pairs to leave out
 }
 
 TEST(BroadPhase, RebuildsWhenSerialsDoNotFollowOn) {

@@ -1,10 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
-#include <vector>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "physics/world/contact_detection.h"
 #include "rbsim/physics/world.h"
@@ -220,6 +221,64 @@ TEST(CollisionDetector, KeptSeparationsGiveTheContactsOfAFreshDetectorBitForBit)
   // The comparison means something only if both were exercised.
   EXPECT_GT(keptTotal, 300u);
   EXPECT_GT(contactTotal, 300u);
+
+// Filtered pairs never reach the narrow phase: the detector collides only
+// the broad phase's pairs (collideRun walks pairs() and nothing else), and
+// those leave out what the bodies' groups and masks, and the excluded pairs
+// (a joint's, a robot's), rule out.
+TEST(CollisionDetector, FilteredPairsNeverReachTheNarrowPhase) {
+  World world;
+  ASSERT_TRUE(world.createBody(groundDef()));
+  // A column of four boxes, each 2 cm into the next; the top one's mask
+  // leaves out the group of the one under it.
+  for (int i = 0; i < 4; ++i) {
+    BodyDef box = boxDef("box" + std::to_string(i), Vec3(0, 0, 0.49 + 0.98 * i));
+    if (i == 2) box.collisionFilter = {2, CollisionFilter::kAllBits};
+    if (i == 3) box.collisionFilter = {1, ~2u};
+    ASSERT_TRUE(world.createBody(box));
+  }
+  const testing::BodyCopies copies(world);
+  const auto serial = [&](const char* name) { return world.body(world.findBody(name)).serial(); };
+  const auto pairsOf = [&](const CollisionDetector& detector) {
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    for (const BodyPair& pair : detector.broadPhase().pairs())
+      pairs.emplace_back(copies.bodies()[static_cast<std::size_t>(pair.a)].serial(),
+                         copies.bodies()[static_cast<std::size_t>(pair.b)].serial());
+    return pairs;
+  };
+  const auto contactPairsOf = [&](const CollisionDetector& detector) {
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    for (const BodyContact& contact : detector.contacts())
+      pairs.emplace_back(copies.bodies()[static_cast<std::size_t>(contact.bodyA)].serial(),
+                         copies.bodies()[static_cast<std::size_t>(contact.bodyB)].serial());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+  };
+  TaskPool caller(1);
+  DetectionStep step = detectionStep(world.settings());
+
+  CollisionDetector unfiltered;
+  step.excludedPairs = {};
+  unfiltered.detect(copies.bodies(), step, caller);
+  // The ground with box0, then box0-box1, box1-box2; box2-box3 is filtered.
+  using Pairs = std::vector<std::pair<int32_t, int32_t>>;
+  const Pairs column{{serial("ground"), serial("box0")}, {serial("box0"), serial("box1")},
+                     {serial("box1"), serial("box2")}};
+  EXPECT_EQ(pairsOf(unfiltered), column);
+  EXPECT_EQ(contactPairsOf(unfiltered), column);
+
+  // Exclude box0-box1 (as a joint between them would).
+  const std::vector<uint64_t> excluded{serialPairKey(serial("box1"), serial("box0"))};
+  CollisionDetector filtered;
+  step.excludedPairs = excluded;
+  filtered.detect(copies.bodies(), step, caller);
+  const Pairs left{{serial("ground"), serial("box0")}, {serial("box1"), serial("box2")}};
+  EXPECT_EQ(pairsOf(filtered), left);
+  EXPECT_EQ(contactPairsOf(filtered), left);
+  // The same detector, the exclusion taken back: the pair is collided anew.
+  step.excludedPairs = {};
+  filtered.detect(copies.bodies(), step, caller);
+  EXPECT_EQ(contactPairsOf(filtered), column);
 }
 
 }  // namespace

@@ -448,7 +448,7 @@ bodies:
 )"),
             "test.yaml:4:5: bodies[0].colour: unknown key; a body has: name, shape, mass, "
             "density, center_of_mass, inertia, position, orientation, rpy, linear_velocity, "
-            "angular_velocity, static, damping, material, ccd, collides");
+            "angular_velocity, static, damping, material, ccd, collides, collision_group, collision_mask");
   // Keys of another shape type are unknown too.
   EXPECT_EQ(errorOf(R"(
 bodies:

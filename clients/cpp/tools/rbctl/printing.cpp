@@ -117,6 +117,10 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
     }
     if (!b.collides) std::fprintf(out, " collides false");
+    // The defaults (group 1, every bit of the mask) go unsaid.
+    if (b.collision_group != 1 || b.collision_mask != 0xFFFFFFFFLL)
+      std::fprintf(out, " collision_group %lld collision_mask %lld", static_cast<long long>(b.collision_group),
+                   static_cast<long long>(b.collision_mask));
     if (!b.frozen.empty()) std::fprintf(out, " frozen %s", b.frozen.c_str());
     std::fputc('\n', out);
   }
@@ -249,6 +253,8 @@ void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
                     {"inertia", array(b.inertia)},
                     {"mass_properties_given", b.mass_properties_given},
                     {"collides", b.collides},
+                    {"collision_group", b.collision_group},
+                    {"collision_mask", b.collision_mask},
                     {"frozen", b.frozen}});
   const json document = {{"world_revision", world.world_revision},
                          {"step", world.step},

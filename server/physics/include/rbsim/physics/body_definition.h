@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "rbsim/physics/collision_filter.h"
 #include "rbsim/physics/material.h"
 #include "rbsim/physics/mass_properties.h"  // inertiaTensorProblem: checks a tensor given as data
 #include "rbsim/physics/quaternion.h"
@@ -59,6 +60,10 @@ struct BodyDef {
   // given). It is integrated, jointed, pushed and put to sleep like any
   // other body.
   bool collides = true;
+  // Which bodies it may collide with (rbsim/physics/collision_filter.h):
+  // its collision group and mask, Bullet's convention. The defaults collide
+  // with everything.
+  CollisionFilter collisionFilter;
 
   static constexpr double kDefaultDensity = 1000.0;  // kg/m³, water
 };

@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "rbsim/physics/collision_filter.h"
 #include "rbsim/physics/freeze_reason.h"
 #include "rbsim/physics/material.h"
 #include "rbsim/physics/rigid_state.h"
@@ -33,7 +34,10 @@ struct BodyDescription {
   std::string name;
   Shape shape;                  // in the shape's own frame, as the user gave it
   bool isStatic = false;
-  MassProperties massProperties;  // in the shape's frame (zero for static bodies)
+  // In the shape's frame. A static body's are what its shape would weigh
+  // at the default density (they place its body frame); the dynamics never
+  // read them, BodyView::mass() is 0, and reports say 0.
+  MassProperties massProperties;
   // True when the mass, centre of mass and inertia were given (BodyDef::
   // inertia) rather than computed from the shape; the volume is the shape's
   // either way.
@@ -57,6 +61,7 @@ struct BodyDescription {
   Material material;                 // resolved against the world's defaults
   bool continuousCollision = false;  // swept against fast motion (see BodyDef)
   bool collides = true;              // false: no collider, never in a contact (see BodyDef)
+  CollisionFilter collisionFilter;   // its group and mask (see BodyDef)
 };
 
 class Body;

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rbsim/physics/body_definition.h"
@@ -163,6 +164,24 @@ class World {
   Expected<bool> freezeBody(BodyId id, FreezeReason reason = FreezeReason::Requested);
   void setStateLimits(const StateLimits& limits);
 
+  // Collision filtering (rbsim/physics/collision_filter.h). Two bodies are
+  // handed to the narrow phase only when their groups and masks allow it,
+  // no joint joins them (unless the joint has collideConnected), and their
+  // pair is not excluded here; what is filtered out is never tested, so it
+  // costs nothing past the broad phase.
+  //  - setPairCollision: excludes the pair of two distinct bodies (collide
+  //    false) or takes the exclusion back (true); the groups, masks and
+  //    joints still apply. Errors name an invalid id or a body paired with
+  //    itself. Removing a body drops its exclusions.
+  //  - canCollide: whether the filters let the two bodies collide now (all
+  //    three rules); an invalid id throws std::invalid_argument, as body().
+  //  - excludedPairs: the exclusions of setPairCollision, ordered by the
+  //    bodies' creation (lower first in a pair, pairs by their first then
+  //    their second body).
+  Expected<bool> setPairCollision(BodyId a, BodyId b, bool collide);
+  bool canCollide(BodyId a, BodyId b) const;
+  std::vector<std::pair<BodyId, BodyId>> excludedPairs() const;
+
   // The contacts of the last step (solved impulses included), sorted by
   // (serial A, serial B, piece A, piece B).
   const std::vector<SolvedManifold>& contacts() const;
@@ -206,8 +225,10 @@ class World {
   // the body, and whether a body's mass properties were given as data; 4:
   // joints; 5: a joint's coordinate at creation (JointDef::position); 6:
   // whether a body collides at all (BodyDef::collides); 7: a joint's
-  // actuator limits (JointDef::actuatorLimits).
-  static constexpr uint32_t kSnapshotVersion = 7;
+  // actuator limits (JointDef::actuatorLimits); 8: a body's collision
+  // group and mask (BodyDef::collisionFilter) and the excluded pairs
+  // (setPairCollision).
+  static constexpr uint32_t kSnapshotVersion = 8;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);

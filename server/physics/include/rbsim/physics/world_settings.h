@@ -72,11 +72,21 @@ struct WorldSettings {
   int threads = 0;  // 0 to kMaxThreads
 };
 
+// Two bodies, by name, that never collide with each other whatever their
+// collision filters (World::setPairCollision): a robot's links when its
+// self-collision is off, an SRDF's disable_collisions pair.
+struct ExcludedPair {
+  std::string bodyA;
+  std::string bodyB;
+  friend bool operator==(const ExcludedPair&, const ExcludedPair&) = default;
+};
+
 // A whole world as loaded from a config file, before it is built.
 struct WorldDef {
   WorldSettings settings;
   std::vector<BodyDef> bodies;
   std::vector<NamedJointDef> joints;  // after the bodies, which they name
+  std::vector<ExcludedPair> excludedPairs;  // of the bodies above
 };
 
 }  // namespace rbsim
