@@ -221,6 +221,7 @@ TEST(CollisionDetector, KeptSeparationsGiveTheContactsOfAFreshDetectorBitForBit)
   // The comparison means something only if both were exercised.
   EXPECT_GT(keptTotal, 300u);
   EXPECT_GT(contactTotal, 300u);
+}
 
 // Filtered pairs never reach the narrow phase: the detector collides only
 // the broad phase's pairs (collideRun walks pairs() and nothing else), and
