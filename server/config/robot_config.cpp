@@ -17,13 +17,15 @@ namespace rbsim {
 
 namespace {
 
-constexpr std::array<std::string_view, 13> kRobotKeys = {
+constexpr std::array<std::string_view, 15> kRobotKeys = {
     "name",           "urdf",          "position",           "orientation",   "rpy",
     "fixed_base",     "merge_fixed_links", "joint_positions", "joint_drives",  "package_paths",
-    "self_collision", "disable_collisions", "link_collision"};
+    "self_collision", "disable_collisions", "link_collision", "hull_tolerance", "hull_max_vertices"};
 constexpr double kMaxLength = 1e6;           // m, as the bodies' positions
 constexpr double kMaxJointPosition = 1e6;    // rad or m
 constexpr std::size_t kMaxNameLength = 128;  // characters, as body names
+constexpr double kMaxHullTolerance = 1.0;      // m: a simplified hull this far off is no longer the mesh
+constexpr uint64_t kMaxHullVertices = 1000000;  // as many as a mesh may have
 
 std::filesystem::path resolved(const std::filesystem::path& base, const std::string& file) {
   std::filesystem::path path(file);
@@ -114,6 +116,17 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     Expected<bool> merge = reader.boolean(*map, "merge_fixed_links", false);
     if (!merge) return merge.error();
     placement.mergeFixedLinks = *merge;
+    // How far a collision mesh's hull may be simplified (urdf_robot.h).
+    Expected<double> hullTolerance =
+        reader.number(*map, "hull_tolerance", NumberRule::nonNegative(kMaxHullTolerance), placement.hullTolerance);
+    if (!hullTolerance) return hullTolerance.error();
+    placement.hullTolerance = *hullTolerance;
+    if (const YamlMap::Entry* budget = map->find("hull_max_vertices")) {
+      Expected<uint64_t> vertices = reader.wholeNumber(budget->value, kMaxHullVertices, "hull_max_vertices");
+      if (!vertices) return vertices.error();
+      if (*vertices < 4) return reader.error(budget->value, "hull_max_vertices must be at least 4 (a tetrahedron)");
+      placement.hullMaxVertices = static_cast<std::size_t>(*vertices);
+    }
 
     const YamlMap::Entry* positions = map->find("joint_positions");
     if (positions != nullptr) {

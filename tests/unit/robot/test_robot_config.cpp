@@ -125,6 +125,34 @@ TEST(RobotConfig, TheLoadReportComesWithTheConfig) {
       << config->robotReport.front();
 }
 
+// hull_tolerance and hull_max_vertices: how far a collision mesh's hull is
+// simplified. The open box's hull is a cube of 8 vertices; a budget of 5
+// keeps 5, and the report says how far the cube lies outside them.
+TEST(RobotConfig, HullKeysBoundTheCollisionHullAndAreChecked) {
+  const std::string robot = "robots:\n  - name: bin\n    urdf: packaged_meshes.urdf\n    package_paths: [packages]\n";
+  const Expected<Config> cooked =
+      parseConfig(robot + "    hull_tolerance: 0\n    hull_max_vertices: 5\n", kUrdfDir + "/w.yaml", kUrdfDir);
+  ASSERT_TRUE(cooked.ok()) << cooked.error().message;
+  std::string report;
+  for (const std::string& line : cooked->robotReport) report += line + "\n";
+  EXPECT_NE(report.find("open_box.obj' (10 triangles, open:"), std::string::npos) << report;
+  EXPECT_NE(report.find("collides as its convex hull (8 vertices, simplified to 5 vertices, the full hull within"),
+            std::string::npos)
+      << report;
+  const Expected<Config> plain = parseConfig(robot, kUrdfDir + "/w.yaml", kUrdfDir);
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  std::string plainReport;
+  for (const std::string& line : plain->robotReport) plainReport += line + "\n";
+  EXPECT_NE(plainReport.find("collides as its convex hull (8 vertices)"), std::string::npos) << plainReport;
+
+  const std::string few = errorOf(robot + "    hull_max_vertices: 3\n");
+  EXPECT_NE(few.find("w.yaml:5:24: robots[0].hull_max_vertices: hull_max_vertices must be at least 4"),
+            std::string::npos)
+      << few;
+  const std::string negative = errorOf(robot + "    hull_tolerance: -0.001\n");
+  EXPECT_NE(negative.find("w.yaml:5:21: robots[0].hull_tolerance"), std::string::npos) << negative;
+}
+
 // joint_drives: a URDF has no drives, so a world file gives them, and a
 // robot holds its pose from the first step. Held against gravity, each
 // servo rests where its spring's effort balances the closed-form gravity
