@@ -127,6 +127,23 @@ std::vector<PublicScene> publicScenes() {
   // Stiffer than the arms: the legs carry the trunk (12 kg in all).
   a1.naturalFrequency = 20.0;
   scenes.push_back(a1);
+  // The Solo-12 standing, the quadruped whose links collide as meshes (STL
+  // hulls; the feet are discs): its "standing" pose of example-robot-data's
+  // srdf/solo.srdf (hips ±0.1 rad outward, the front knees bent back, the
+  // hind ones forward: the feet 0.22 m below the hips, their discs' radius
+  // 16 mm), dropped from about 1 cm.
+  PublicScene solo = arm("stand-solo12", "solo12", "solo12/solo12.urdf", {}, {});
+  solo.fixedBase = false;
+  solo.base.position = {0, 0, 0.25};
+  for (const char* leg : {"FL", "FR", "HL", "HR"}) {
+    const double side = leg[1] == 'L' ? 1 : -1, end = leg[0] == 'F' ? 1 : -1;
+    for (const char* joint : {"_HAA", "_HFE", "_KFE"})
+      solo.joints.push_back(std::string(leg) + joint);
+    solo.start.insert(solo.start.end(), {0.1 * side, 0.8 * end, -1.6 * end});
+  }
+  // As the A1's: the legs carry the trunk.
+  solo.naturalFrequency = 20.0;
+  scenes.push_back(solo);
   // (4) The table.
   scenes.push_back(table());
   return scenes;

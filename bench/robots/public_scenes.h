@@ -9,6 +9,7 @@
 //   fold-<arm>   the arm driven through a joint-space trajectory that folds
 //                it (links come close); self-collision on
 //   stand-a1     the Unitree A1 standing on the ground, its 12 joints held
+//   stand-solo12 the Solo-12 (mesh collision geometry) standing likewise
 //   table-panda  the Panda beside a table with 20 objects on it (boxes,
 //                cylinders, convex mesh pebbles), held at a pose above them
 // dt = 1 ms, gravity (0, 0, −9.81) m/s², a ground plane at z = 0.

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Makes bench/robots/data/ from the public repositories it comes from.
 
-    python3 bench/robots/data/prepare_data.py BULLET3_CLONE UNIVERSAL_ROBOT_CLONE
+    python3 bench/robots/data/prepare_data.py BULLET3_CLONE UNIVERSAL_ROBOT_CLONE \
+        EXAMPLE_ROBOT_DATA_CLONE
 
 Each argument is a git clone (or bare mirror) holding the commit named
 below; every file is read from that commit with `git show`, so the work
@@ -18,6 +19,12 @@ robot's SOURCE.md; in short:
   no xacro is installable here, so ur5e.urdf is written by this script from
   ur_description's ur_macro.xacro and its config/ur5e/*.yaml (the same
   numbers, expanded by hand in ur5e_urdf() below), collision STLs only.
+* solo12 (Gepetto/example-robot-data): solo12.urdf without its <visual>
+  elements (they name the same STLs as the collisions), without the
+  <material> elements inside <collision> (not URDF) and the pybullet
+  <contact> elements; the package:// mesh paths made meshes/<file> (the 9
+  collision STLs, copied unchanged, in one folder: MuJoCo looks meshes up
+  by file name in one meshdir); the licence.
 """
 import math
 import os
@@ -27,6 +34,7 @@ import sys
 
 BULLET3_COMMIT = "6c888f4abd7b46f572587360cc214985f02e5c6b"
 UR_COMMIT = "a7a2c5459b9702ba8b07ebf35f0134159e50e680"
+EXAMPLE_ROBOT_DATA_COMMIT = "39aa94379908fa743da90b21dc9e1fb8308f746b"
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -90,6 +98,28 @@ def a1(bullet3):
     write("a1/a1.urdf", header(drop_visuals(urdf),
                                f"bullet3 {src}/a1.urdf, <visual> elements removed"))
     write("a1/LICENSE", show(bullet3, BULLET3_COMMIT, f"{src}/LICENSE"))
+
+
+def solo12(erd):
+    src = "robots/solo_description"
+    urdf = show(erd, EXAMPLE_ROBOT_DATA_COMMIT, f"{src}/robots/solo12.urdf").decode()
+    urdf = drop_visuals(urdf)
+    urdf = re.sub(r"[ \t]*<!-- [A-Z ]*VISUAL -->[ \t]*\n", "", urdf)
+    urdf = re.sub(r"<collision>.*?</collision>",
+                  lambda m: re.sub(r"[ \t]*<material .*?</material>[ \t]*\n", "", m.group(0),
+                                   flags=re.S), urdf, flags=re.S)
+    urdf = re.sub(r"[ \t]*<!-- Bullet specific paramters -->[ \t]*\n", "", urdf)
+    urdf = re.sub(r"[ \t]*<contact>.*?</contact>[ \t]*\n", "", urdf, flags=re.S)
+    prefix = f"package://example-robot-data/{src}/meshes/stl/"
+    meshes = sorted(set(re.findall(re.escape(prefix) + r"([^\"]+)\"", urdf)))
+    for mesh in meshes:
+        write(f"solo12/meshes/{os.path.basename(mesh)}",
+              show(erd, EXAMPLE_ROBOT_DATA_COMMIT, f"{src}/meshes/stl/{mesh}"))
+    urdf = re.sub(re.escape(prefix) + r"(?:[^\"/]+/)*([^\"/]+)\"", r'meshes/\1"', urdf)
+    write("solo12/solo12.urdf",
+          header(urdf, f"example-robot-data {src}/robots/solo12.urdf, <visual>, <contact> and "
+                 "collision <material> elements removed, package:// mesh paths made meshes/<file>"))
+    write("solo12/LICENSE", show(erd, EXAMPLE_ROBOT_DATA_COMMIT, "LICENSE"))
 
 
 def f(x):
@@ -225,14 +255,15 @@ def pebble():
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) != 4:
         print(__doc__, file=sys.stderr)
         return 2
-    bullet3, ur = sys.argv[1], sys.argv[2]
+    bullet3, ur, erd = sys.argv[1], sys.argv[2], sys.argv[3]
     iiwa(bullet3)
     panda(bullet3)
     a1(bullet3)
     ur5e(ur)
+    solo12(erd)
     pebble()
     return 0
 
