@@ -4,7 +4,7 @@
 // The robot built by this adapter from the same URDF, parsed by urdfdom:
 // links held by fixed joints merged into their parent (their masses
 // combined exactly, as rbsim's merge_fixed_links and MuJoCo's fusing), one
-// btMultiBody (fixed base for the arms, floating for the A1) with a
+// btMultiBody (fixed base for the arms, floating for the quadrupeds) with a
 // revolute or prismatic link per moving joint, set up as
 // bullet_multibody_arm.cpp does (each link's frame its centre of mass and
 // principal axes, the joints' zero at the start pose), its links' collision
