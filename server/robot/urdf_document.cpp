@@ -66,11 +66,20 @@ JointLinks linksOf(const tinyxml2::XMLElement& joint) {
 // Each link is the child of at most one joint and no link is its own
 // ancestor. Walking up from each link: a walk longer than there are
 // joints has gone round a loop.
-std::optional<std::string> treeError(const std::vector<JointLinks>& joints, const std::string& sourceName) {
+// Also that each joint's links are links of the robot: urdfdom leaks its
+// half-built tree when it meets a joint whose link it cannot find (found by
+// fuzz_urdf_robot), so such a description never reaches it.
+std::optional<std::string> treeError(const std::vector<JointLinks>& joints,
+                                     const std::map<std::string, int, std::less<>>& links,
+                                     const std::string& sourceName) {
   std::map<std::string_view, const JointLinks*> parentJoint;
   for (const JointLinks& joint : joints) {
     if (joint.parent.empty() || joint.child.empty()) continue;  // urdfdom names it
     const std::string at = sourceName + ":" + std::to_string(joint.line) + ": joint '" + joint.name + "': ";
+    for (const auto& [role, link] : {std::pair{"parent", &joint.parent}, std::pair{"child", &joint.child}}) {
+      if (!links.contains(*link))
+        return at + "its " + role + " link '" + *link + "' is not a link of the robot";
+    }
     if (joint.parent == joint.child) return at + "joins link '" + joint.child + "' to itself";
     auto [it, inserted] = parentJoint.emplace(joint.child, &joint);
     if (!inserted) {
@@ -148,7 +157,7 @@ Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::strin
       if (reason != nullptr) out.unused.push_back({described(*child), child->GetLineNum(), reason});
     }
   }
-  if (auto error = treeError(joints, sourceName)) return Error{*error};
+  if (auto error = treeError(joints, out.linkLine, sourceName)) return Error{*error};
   return out;
 }
 

@@ -141,9 +141,9 @@ TEST(BroadPhase, NeverPairsStaticWithStatic) {
 
 TEST(BroadPhase, PairsAPlaneOnlyWithBodiesThatReachIt) {
   std::vector<BroadPhaseBody> bodies(3);
-  bodies[0] = {1, 0, true, std::nullopt, HalfSpace{Vec3::UnitZ(), 0.0}};
-  bodies[1] = {2, 1, false, Aabb{Vec3(0, 0, 0.004), Vec3(1, 1, 1)}, std::nullopt};  // within 5 mm
-  bodies[2] = {3, 2, false, Aabb{Vec3(0, 0, 0.006), Vec3(1, 1, 1)}, std::nullopt};  // beyond
+  bodies[0] = {1, 0, true, std::nullopt, HalfSpace{Vec3::UnitZ(), 0.0}, CollisionFilter{}};
+  bodies[1] = {2, 1, false, Aabb{Vec3(0, 0, 0.004), Vec3(1, 1, 1)}, std::nullopt, CollisionFilter{}};  // within 5 mm
+  bodies[2] = {3, 2, false, Aabb{Vec3(0, 0, 0.006), Vec3(1, 1, 1)}, std::nullopt, CollisionFilter{}};  // beyond
   BroadPhase broadPhase(0.05, kContactMargin);
   broadPhase.update(bodies);
   // The two boxes overlap each other, and only the first reaches the ground.

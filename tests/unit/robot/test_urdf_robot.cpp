@@ -437,9 +437,13 @@ TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {
       "izz=\"0.1\"/></inertial><collision><geometry><sphere radius=\"-1\"/></geometry></collision></link>\n";
   EXPECT_NE(errorOf(robotXml(flat)).find("link 'a': a collision sphere's radius must be > 0, got -1"), std::string::npos)
       << errorOf(robotXml(flat));
+  // A joint whose link the robot does not have is refused before urdfdom,
+  // which would leak its half-built tree (found by fuzz_urdf_robot).
+  const std::string missing = errorOf(robotXml(boxLink("a") + joint("revolute", "<axis xyz=\"0 0 1\"/>")));
+  EXPECT_NE(missing.find("joint 'j': its child link 'b' is not a link of the robot"), std::string::npos) << missing;
   // urdfdom's own objections come through.
-  EXPECT_NE(errorOf(robotXml(boxLink("a") + joint("revolute", "<axis xyz=\"0 0 1\"/>"))).find("bad.urdf: not a valid URDF"),
-            std::string::npos);
+  const std::string noLimits = errorOf(robotXml(arm + joint("revolute", "<axis xyz=\"0 0 1\"/>")));
+  EXPECT_NE(noLimits.find("bad.urdf: not a valid URDF"), std::string::npos) << noLimits;
 }
 
 // Joints that make no tree are refused before urdfdom builds its links:
