@@ -101,6 +101,45 @@ std::optional<std::string> treeError(const std::vector<JointLinks>& joints,
   return std::nullopt;
 }
 
+// A xacro file is a program that writes a URDF, not a URDF: say how to run
+// it. Known by its name or by the xacro namespace on its root.
+std::optional<std::string> xacroError(const tinyxml2::XMLElement& robot, const std::string& sourceName) {
+  const bool named = sourceName.size() >= 6 && sourceName.compare(sourceName.size() - 6, 6, ".xacro") == 0;
+  bool declared = false;
+  for (const tinyxml2::XMLAttribute* attribute = robot.FirstAttribute(); attribute; attribute = attribute->Next())
+    declared = declared || std::string_view(attribute->Name()) == "xmlns:xacro";
+  if (!named && !declared) return std::nullopt;
+  std::string output = sourceName.substr(sourceName.find_last_of('/') + 1);
+  if (named) output.resize(output.size() - 6);
+  if (output.size() < 5 || output.compare(output.size() - 5, 5, ".urdf") != 0) output += ".urdf";
+  return sourceName + ":" + std::to_string(robot.GetLineNum()) + ": a xacro file (" +
+         (declared ? "its <robot> declares xmlns:xacro" : "by its name") +
+         "), not a URDF: expand it first: `xacro " + sourceName + " > " + output + "`";
+}
+
+// ROS launch substitutions ($(find pkg), $(arg x), $(optenv VAR default))
+// and xacro expressions (${...}) are left for tools rbsim does not run; a
+// value holding one is refused with where it is.
+std::optional<std::string> substitutionError(const tinyxml2::XMLElement& element, const std::string& sourceName) {
+  for (const tinyxml2::XMLAttribute* attribute = element.FirstAttribute(); attribute; attribute = attribute->Next()) {
+    const std::string_view value = attribute->Value();
+    std::size_t at = value.find("$(");
+    if (at == std::string_view::npos) at = value.find("${");
+    if (at == std::string_view::npos) continue;
+    const char close = value[at + 1] == '(' ? ')' : '}';
+    const std::size_t end = value.find(close, at);
+    const std::string_view substitution =
+        value.substr(at, end == std::string_view::npos ? value.size() - at : end - at + 1);
+    return sourceName + ":" + std::to_string(attribute->GetLineNum()) + ": <" + element.Name() + "> " +
+           attribute->Name() + "=\"" + std::string(value) + "\" holds the substitution '" + std::string(substitution) +
+           "', which only roslaunch or xacro expand: write the value out, or expand the description first "
+           "(`xacro model.urdf.xacro > model.urdf`)";
+  }
+  for (const tinyxml2::XMLElement* child = element.FirstChildElement(); child; child = child->NextSiblingElement())
+    if (auto error = substitutionError(*child, sourceName)) return error;
+  return std::nullopt;
+}
+
 std::string nameOf(const tinyxml2::XMLElement& element) {
   const char* name = element.Attribute("name");
   return name ? name : "";
@@ -137,6 +176,8 @@ Expected<UrdfDocument> readUrdfDocument(const std::string& xml, const std::strin
     return Error{sourceName + ":" + std::to_string(line) + ": a URDF's root element is <robot>" +
                  (robot ? std::string(", not <") + robot->Name() + ">" : std::string())};
   }
+  if (auto error = xacroError(*robot, sourceName)) return Error{*error};
+  if (auto error = substitutionError(*robot, sourceName)) return Error{*error};
   UrdfDocument out;
   std::vector<JointLinks> joints;
   for (const tinyxml2::XMLElement* child = robot->FirstChildElement(); child; child = child->NextSiblingElement()) {

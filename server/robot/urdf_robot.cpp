@@ -70,7 +70,24 @@ class CapturedLog : public console_bridge::OutputHandler {
 // console_bridge's handler is process-wide: one parse at a time.
 std::mutex g_parseMutex;
 
-Expected<urdf::ModelInterfaceSharedPtr> parseModel(const std::string& xml, const std::string& sourceName) {
+// The line of the joint or link urdfdom's message names ("Joint [j] is of
+// type REVOLUTE but ...", "... link [a] ..."), when tinyxml2's pass saw it:
+// urdfdom's own messages carry no line.
+std::string lineOfNamed(const std::string& message, const UrdfDocument& document) {
+  for (std::size_t open = message.find('['); open != std::string::npos; open = message.find('[', open + 1)) {
+    const std::size_t close = message.find(']', open);
+    if (close == std::string::npos) break;
+    const std::string name = message.substr(open + 1, close - open - 1);
+    const auto joint = document.jointLine.find(name);
+    if (joint != document.jointLine.end()) return std::to_string(joint->second);
+    const auto link = document.linkLine.find(name);
+    if (link != document.linkLine.end()) return std::to_string(link->second);
+  }
+  return "";
+}
+
+Expected<urdf::ModelInterfaceSharedPtr> parseModel(const std::string& xml, const std::string& sourceName,
+                                                   const UrdfDocument& document) {
   const std::lock_guard<std::mutex> lock(g_parseMutex);
   CapturedLog log;
   console_bridge::useOutputHandler(&log);
@@ -84,7 +101,8 @@ Expected<urdf::ModelInterfaceSharedPtr> parseModel(const std::string& xml, const
   console_bridge::restorePreviousOutputHandler();
   if (model) return model;
   const std::string why = !thrown.empty() ? thrown : !log.first.empty() ? log.first : "urdfdom could not read it";
-  return Error{sourceName + ": not a valid URDF: " + why};
+  const std::string line = lineOfNamed(why, document);
+  return Error{sourceName + (line.empty() ? "" : ":" + line) + ": not a valid URDF: " + why};
 }
 
 const char* jointTypeText(int type) {
@@ -564,7 +582,7 @@ Expected<RobotModel> RobotBuilder::build() {
 Expected<RobotModel> buildRobot(const std::string& xml, const RobotPlacement& placement, const RobotFiles& files) {
   Expected<UrdfDocument> document = readUrdfDocument(xml, files.sourceName);
   if (!document) return document.error();
-  Expected<urdf::ModelInterfaceSharedPtr> model = parseModel(xml, files.sourceName);
+  Expected<urdf::ModelInterfaceSharedPtr> model = parseModel(xml, files.sourceName, *document);
   if (!model) return model.error();
   return RobotBuilder(placement, files, std::move(*document), std::move(*model)).build();
 }

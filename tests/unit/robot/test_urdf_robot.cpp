@@ -441,9 +441,58 @@ TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {
   // which would leak its half-built tree (found by fuzz_urdf_robot).
   const std::string missing = errorOf(robotXml(boxLink("a") + joint("revolute", "<axis xyz=\"0 0 1\"/>")));
   EXPECT_NE(missing.find("joint 'j': its child link 'b' is not a link of the robot"), std::string::npos) << missing;
-  // urdfdom's own objections come through.
+  // urdfdom's own objections come through, with the line of the joint or
+  // link they name.
   const std::string noLimits = errorOf(robotXml(arm + joint("revolute", "<axis xyz=\"0 0 1\"/>")));
-  EXPECT_NE(noLimits.find("bad.urdf: not a valid URDF"), std::string::npos) << noLimits;
+  EXPECT_NE(noLimits.find("bad.urdf:5: not a valid URDF: Joint [j] is of type REVOLUTE but it does not specify limits"),
+            std::string::npos)
+      << noLimits;
+}
+
+// What is not yet a URDF (a xacro program, or values left for roslaunch)
+// is refused with what to do and where, before urdfdom, whose own messages
+// say neither ("No link elements found", "Unable to parse component").
+TEST(UrdfRobot, XacroFilesAndSubstitutionsAreRefusedWithWhatToDo) {
+  RobotPlacement placement;
+  placement.name = "r";
+  RobotFiles xacroFiles = filesFor("robots/arm.urdf.xacro");
+  const std::string xacro =
+      "<?xml version=\"1.0\"?>\n<robot name=\"arm\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+      "  <xacro:include filename=\"$(find arm)/urdf/arm.xacro\"/>\n</robot>\n";
+  Expected<RobotModel> byName = buildRobot(xacro, placement, xacroFiles);
+  ASSERT_FALSE(byName.ok());
+  EXPECT_EQ(byName.error().message,
+            "robots/arm.urdf.xacro:2: a xacro file (its <robot> declares xmlns:xacro), not a URDF: expand it first: "
+            "`xacro robots/arm.urdf.xacro > arm.urdf`");
+  // Named .urdf but declaring the namespace: still a xacro file.
+  const std::string namespaced = errorOf(xacro);
+  EXPECT_NE(namespaced.find("bad.urdf:2: a xacro file (its <robot> declares xmlns:xacro), not a URDF: expand it first"),
+            std::string::npos)
+      << namespaced;
+  // Named .xacro without the namespace.
+  Expected<RobotModel> plainXacro =
+      buildRobot("<robot name=\"a\">\n<link name=\"a\"/>\n</robot>", placement, filesFor("base.xacro"));
+  ASSERT_FALSE(plainXacro.ok());
+  EXPECT_NE(plainXacro.error().message.find("base.xacro:1: a xacro file (by its name), not a URDF: expand it first: "
+                                            "`xacro base.xacro > base.urdf`"),
+            std::string::npos)
+      << plainXacro.error().message;
+
+  // Clearpath Husky's style: a value left for roslaunch.
+  const std::string optenv = errorOf(
+      "<robot name=\"husky\">\n<link name=\"base\"/>\n<link name=\"top\"/>\n"
+      "<joint name=\"mount\" type=\"fixed\"><parent link=\"base\"/><child link=\"top\"/>\n"
+      "  <origin xyz=\"$(optenv HUSKY_TOP_X 0.0) 0 0.2\"/></joint>\n</robot>");
+  EXPECT_NE(optenv.find("bad.urdf:5: <origin> xyz=\"$(optenv HUSKY_TOP_X 0.0) 0 0.2\" holds the substitution "
+                        "'$(optenv HUSKY_TOP_X 0.0)', which only roslaunch or xacro expand"),
+            std::string::npos)
+      << optenv;
+  const std::string expression = errorOf(
+      "<robot name=\"r\">\n<link name=\"a\">\n<collision><geometry><box size=\"${width} 1 1\"/>"
+      "</geometry></collision></link>\n</robot>");
+  EXPECT_NE(expression.find("bad.urdf:3: <box> size=\"${width} 1 1\" holds the substitution '${width}'"),
+            std::string::npos)
+      << expression;
 }
 
 // Joints that make no tree are refused before urdfdom builds its links:
