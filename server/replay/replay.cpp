@@ -258,10 +258,25 @@ Expected<bool> Replay::onState(const LogEvent& event) {
       return true;
     }
     m_report.difference = firstStateDifference(*recorded, pages[index]);
-    if (m_report.difference) return true;
+    if (m_report.difference) return blameLostAck(recorded->step);
   }
   if (m_output && recorded->page >= 0 && index < pages.size())
     m_output(event.channel, encode(pages[index]), event.timestamp);
+  return true;
+}
+
+Expected<bool> Replay::blameLostAck(int64_t step) {
+  // A bus log can lose the ack of a message that changes no world revision
+  // (a wrench, a joint command): the message then waits here unanswered,
+  // not applied, and the states part from the log's for that reason alone.
+  // Then the log, not the simulation, is at fault.
+  for (const auto& [key, queue] : m_pending->byKey) {
+    if (queue.empty()) continue;
+    return Error{"step " + std::to_string(step) + ": the states differ from the log (" + *m_report.difference +
+                 ") while the message of '" + std::get<1>(key) + "' seq " + std::to_string(std::get<2>(key)) +
+                 " on " + queue.front().channel +
+                 " has no ack (lost by the logger?): the session cannot be replayed"};
+  }
   return true;
 }
 
@@ -280,7 +295,7 @@ Expected<bool> Replay::onJoints(const LogEvent& event) {
       return true;
     }
     m_report.difference = firstJointsDifference(*recorded, pages[index]);
-    if (m_report.difference) return true;
+    if (m_report.difference) return blameLostAck(recorded->step);
   }
   if (m_output && recorded->page >= 0 && index < pages.size())
     m_output(event.channel, encode(pages[index]), event.timestamp);

@@ -71,7 +71,10 @@ class Replay {
   Expected<bool> onHandled(const LogEvent& event);
   Expected<bool> onAck(const LogEvent& event);
   Expected<bool> onState(const LogEvent& event);
-  Expected<bool> onJoints(const LogEvent& event);  // compared and re-emitted as the states are
+  Expected<bool> onJoints(const LogEvent& event);
+  // After a difference: an error (the log lost an ack) if a message still
+  // waits for its ack, else true with the difference reported.
+  Expected<bool> blameLostAck(int64_t step);  // compared and re-emitted as the states are
   Expected<bool> advanceTo(int64_t step, const std::string& why);
   void emitWorld(int64_t timestamp);
 

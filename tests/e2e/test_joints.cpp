@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -15,9 +16,12 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <rbsim/ack_t.hpp>
 #include <rbsim/joint_command_t.hpp>
 
 #include "e2e_paths.h"
+#include "event_log.h"
+#include "log_files.h"
 #include "rbsim/client/lookup.h"
 #include "server_test.h"
 
@@ -293,6 +297,28 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
       << replay.output;
   EXPECT_GT(jointPages, 0) << replay.output;
   EXPECT_GE(statePages, jointPages) << replay.output;
+  // A bus log that lost the ack of an accepted joint command: the command
+  // changes no world revision, so only the states parting from the log show
+  // it; the replay must then blame the log (exit 3), not the physics.
+  {
+    std::vector<LoggedEvent> busLike;
+    for (const LoggedEvent& event : readEventLog(record).events)
+      if (event.channel != "RBSIM_HANDLED") busLike.push_back(event);
+    const auto lostAck = std::find_if(busLike.begin(), busLike.end(), [](const LoggedEvent& event) {
+      if (event.channel != "RBSIM_ACK") return false;
+      const auto ack = decodeAs<rbsim::ack_t>(event);
+      return ack && ack->accepted && ack->kind == rbsim::ack_t::KIND_JOINT_COMMAND;
+    });
+    ASSERT_NE(lostAck, busLike.end());
+    busLike.erase(lostAck);
+    const std::string lossy = scratchPath("joints_lost_ack.lcmlog");
+    ASSERT_TRUE(writeEventLog(lossy, busLike));
+    const ProcessResult fromLossy = runProcess({kRbserver, "--config", kJointsWorld, "--replay", lossy, "--verify"},
+                                               scratchPath("verify_lost_ack.log"), 60s);
+    ASSERT_TRUE(fromLossy.status.has_value());
+    EXPECT_EQ(*fromLossy.status, 3) << fromLossy.output;
+    EXPECT_NE(fromLossy.output.find("has no ack (lost by the logger?)"), std::string::npos) << fromLossy.output;
+  }
   if (logger) {
     // UDP may drop a datagram on the way to the logger: the replay must then
     // say so (exit 3) rather than diverge.
