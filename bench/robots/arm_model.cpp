@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <utility>
 #include <vector>
 
+#include "inverse_diagonal.h"
 #include "bench_paths.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
@@ -57,27 +59,7 @@ std::vector<double> inverseMassDiagonal(const ArmScene& s, const std::vector<int
       }
     }
   }
-  // Gauss–Jordan on [M | I] (M is symmetric positive definite: no pivoting needed).
-  std::vector<double> inverse(n * n, 0.0);
-  for (size_t k = 0; k < n; ++k) inverse[k * n + k] = 1;
-  for (size_t c = 0; c < n; ++c) {
-    const double pivot = m[c * n + c];
-    for (size_t j = 0; j < n; ++j) {
-      m[c * n + j] /= pivot;
-      inverse[c * n + j] /= pivot;
-    }
-    for (size_t r = 0; r < n; ++r) {
-      if (r == c) continue;
-      const double factor = m[r * n + c];
-      for (size_t j = 0; j < n; ++j) {
-        m[r * n + j] -= factor * m[c * n + j];
-        inverse[r * n + j] -= factor * inverse[c * n + j];
-      }
-    }
-  }
-  std::vector<double> diagonal(n);
-  for (size_t k = 0; k < n; ++k) diagonal[k] = inverse[k * n + k];
-  return diagonal;
+  return inverseDiagonal(std::move(m), n);
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 #include <cstdlib>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "config/config_loader.h"
+#include "inverse_diagonal.h"
 #include "rbsim/physics/world.h"
 
 namespace rbsim::bench::robots {
@@ -188,28 +190,11 @@ std::vector<JointGains> publicGains(const PublicScene& s) {
   }
   for (size_t k = 0; k < n; ++k)
     if (!(m[k * n + k] > 0)) fail("scene " + s.name + ": joint " + s.joints[k] + " moves nothing");
-  // Gauss–Jordan on [M | I] (M symmetric positive definite).
-  std::vector<double> inverse(n * n, 0.0);
-  for (size_t k = 0; k < n; ++k) inverse[k * n + k] = 1;
-  for (size_t c = 0; c < n; ++c) {
-    const double pivot = m[c * n + c];
-    for (size_t j = 0; j < n; ++j) {
-      m[c * n + j] /= pivot;
-      inverse[c * n + j] /= pivot;
-    }
-    for (size_t r = 0; r < n; ++r) {
-      if (r == c) continue;
-      const double factor = m[r * n + c];
-      for (size_t j = 0; j < n; ++j) {
-        m[r * n + j] -= factor * m[c * n + j];
-        inverse[r * n + j] -= factor * inverse[c * n + j];
-      }
-    }
-  }
+  const std::vector<double> inverse = inverseDiagonal(std::move(m), n);
   const double omega = 2 * kPi * s.naturalFrequency;
   std::vector<JointGains> gains(n);
   for (size_t k = 0; k < n; ++k) {
-    const double inertia = 1 / inverse[k * n + k];
+    const double inertia = 1 / inverse[k];
     gains[k] = {inertia * omega * omega, 2 * s.dampingRatio * inertia * omega};
   }
   return gains;

@@ -101,19 +101,30 @@ std::optional<std::string> treeError(const std::vector<JointLinks>& joints,
   return std::nullopt;
 }
 
+// The first element of the xacro language (<xacro:macro>, <xacro:include>,
+// ...) under `element`, if any.
+const tinyxml2::XMLElement* firstXacroElement(const tinyxml2::XMLElement& element) {
+  for (const tinyxml2::XMLElement* child = element.FirstChildElement(); child; child = child->NextSiblingElement()) {
+    if (std::string_view(child->Name()).starts_with("xacro:")) return child;
+    if (const tinyxml2::XMLElement* found = firstXacroElement(*child)) return found;
+  }
+  return nullptr;
+}
+
 // A xacro file is a program that writes a URDF, not a URDF: say how to run
-// it. Known by its name or by the xacro namespace on its root.
+// it. Known by its name or by xacro elements in it. (The xmlns:xacro
+// declaration alone says nothing: xacro's output keeps it, and published
+// URDFs such as bullet3's iiwa carry it.)
 std::optional<std::string> xacroError(const tinyxml2::XMLElement& robot, const std::string& sourceName) {
   const bool named = sourceName.size() >= 6 && sourceName.compare(sourceName.size() - 6, 6, ".xacro") == 0;
-  bool declared = false;
-  for (const tinyxml2::XMLAttribute* attribute = robot.FirstAttribute(); attribute; attribute = attribute->Next())
-    declared = declared || std::string_view(attribute->Name()) == "xmlns:xacro";
-  if (!named && !declared) return std::nullopt;
+  const tinyxml2::XMLElement* xacroElement = firstXacroElement(robot);
+  if (!named && xacroElement == nullptr) return std::nullopt;
   std::string output = sourceName.substr(sourceName.find_last_of('/') + 1);
   if (named) output.resize(output.size() - 6);
   if (output.size() < 5 || output.compare(output.size() - 5, 5, ".urdf") != 0) output += ".urdf";
-  return sourceName + ":" + std::to_string(robot.GetLineNum()) + ": a xacro file (" +
-         (declared ? "its <robot> declares xmlns:xacro" : "by its name") +
+  const int line = xacroElement ? xacroElement->GetLineNum() : robot.GetLineNum();
+  return sourceName + ":" + std::to_string(line) + ": a xacro file (" +
+         (xacroElement ? "<" + std::string(xacroElement->Name()) + ">" : std::string("by its name")) +
          "), not a URDF: expand it first: `xacro " + sourceName + " > " + output + "`";
 }
 

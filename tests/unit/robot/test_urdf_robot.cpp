@@ -452,7 +452,7 @@ TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {
 // What is not yet a URDF (a xacro program, or values left for roslaunch)
 // is refused with what to do and where, before urdfdom, whose own messages
 // say neither ("No link elements found", "Unable to parse component").
-TEST(UrdfRobot, XacroFilesAndSubstitutionsAreRefusedWithWhatToDo) {
+TEST(UrdfRobot, XacroFilesAndSubstitutionsAreRefusedWithTheCommandThatExpandsThem) {
   RobotPlacement placement;
   placement.name = "r";
   RobotFiles xacroFiles = filesFor("robots/arm.urdf.xacro");
@@ -462,13 +462,18 @@ TEST(UrdfRobot, XacroFilesAndSubstitutionsAreRefusedWithWhatToDo) {
   Expected<RobotModel> byName = buildRobot(xacro, placement, xacroFiles);
   ASSERT_FALSE(byName.ok());
   EXPECT_EQ(byName.error().message,
-            "robots/arm.urdf.xacro:2: a xacro file (its <robot> declares xmlns:xacro), not a URDF: expand it first: "
+            "robots/arm.urdf.xacro:3: a xacro file (<xacro:include>), not a URDF: expand it first: "
             "`xacro robots/arm.urdf.xacro > arm.urdf`");
-  // Named .urdf but declaring the namespace: still a xacro file.
-  const std::string namespaced = errorOf(xacro);
-  EXPECT_NE(namespaced.find("bad.urdf:2: a xacro file (its <robot> declares xmlns:xacro), not a URDF: expand it first"),
+  // Named .urdf but holding xacro elements: still a xacro file.
+  const std::string elements = errorOf(xacro);
+  EXPECT_NE(elements.find("bad.urdf:3: a xacro file (<xacro:include>), not a URDF: expand it first"),
             std::string::npos)
-      << namespaced;
+      << elements;
+  // The namespace alone is no xacro: xacro's output keeps it (bullet3's iiwa).
+  Expected<RobotModel> expanded = buildRobot(
+      "<robot name=\"a\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n<link name=\"a\"/>\n</robot>",
+      placement, filesFor("expanded.urdf"));
+  EXPECT_TRUE(expanded.ok()) << expanded.error().message;
   // Named .xacro without the namespace.
   Expected<RobotModel> plainXacro =
       buildRobot("<robot name=\"a\">\n<link name=\"a\"/>\n</robot>", placement, filesFor("base.xacro"));
