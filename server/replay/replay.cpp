@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <rbsim/ack_t.hpp>
@@ -68,6 +69,10 @@ struct Replay::Pending {
   using Key = std::tuple<int8_t, std::string, int64_t>;
   std::map<Key, std::deque<Input>> byKey;
   Input* latest = nullptr;  // the last message read, for the handled_t after it
+  // Every sequence number each client's messages and acks show: a client
+  // numbers its messages one after another, so a gap is a message the log
+  // lost together with its ack.
+  std::map<std::string, std::set<int64_t>, std::less<>> seqsByClient;
 };
 
 Replay::Replay(Session& session, CommandHandler& handler, std::string channelPrefix, bool verify,
@@ -142,6 +147,7 @@ Expected<bool> Replay::onInput(const LogEvent& event) {
     if (const auto c = decodeWhole<rbsim::command_t>(event.data))
       key = {rbsim::ack_t::KIND_COMMAND, c->client, c->seq};
   }
+  m_pending->seqsByClient[std::get<1>(key)].insert(std::get<2>(key));
   auto& queue = m_pending->byKey[key];
   queue.push_back(std::move(input));
   m_pending->latest = &queue.back();
@@ -162,6 +168,7 @@ Expected<bool> Replay::onAck(const LogEvent& event) {
   const auto ack = decodeWhole<rbsim::ack_t>(event.data);
   if (!ack) return Error{"undecodable ack_t"};
   m_pending->latest = nullptr;
+  m_pending->seqsByClient[ack->client].insert(ack->seq);
   const auto found = m_pending->byKey.find({ack->kind, ack->client, ack->seq});
   if (found == m_pending->byKey.end() || found->second.empty()) {
     if (ack->accepted && changesTheWorld(*ack))
@@ -276,6 +283,17 @@ Expected<bool> Replay::blameLostAck(int64_t step) {
                  ") while the message of '" + std::get<1>(key) + "' seq " + std::to_string(std::get<2>(key)) +
                  " on " + queue.front().channel +
                  " has no ack (lost by the logger?): the session cannot be replayed"};
+  }
+  // Or the log lost a message and its ack both: a gap in a client's numbers.
+  for (const auto& [client, seqs] : m_pending->seqsByClient) {
+    int64_t previous = *seqs.begin();
+    for (const int64_t seq : seqs) {
+      if (seq > previous + 1)
+        return Error{"step " + std::to_string(step) + ": the states differ from the log (" + *m_report.difference +
+                     ") and the log holds no message or ack of '" + client + "' seq " + std::to_string(previous + 1) +
+                     " (lost by the logger?): the session cannot be replayed"};
+      previous = seq;
+    }
   }
   return true;
 }

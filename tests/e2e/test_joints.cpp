@@ -318,6 +318,35 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
     ASSERT_TRUE(fromLossy.status.has_value());
     EXPECT_EQ(*fromLossy.status, 3) << fromLossy.output;
     EXPECT_NE(fromLossy.output.find("has no ack (lost by the logger?)"), std::string::npos) << fromLossy.output;
+
+    // Lose a later joint command with its ack: only the gap in its
+    // client's sequence numbers is left to show it.
+    std::vector<LoggedEvent> bothLost;
+    for (const LoggedEvent& event : readEventLog(record).events)
+      if (event.channel != "RBSIM_HANDLED") bothLost.push_back(event);
+    std::vector<int64_t> jointSeqs;
+    for (const LoggedEvent& event : bothLost)
+      if (event.channel == "RBSIM_JOINT_COMMAND")
+        if (const auto command = decodeAs<rbsim::joint_command_t>(event)) jointSeqs.push_back(command->seq);
+    ASSERT_GE(jointSeqs.size(), 3u);
+    const int64_t lostSeq = jointSeqs[1];
+    std::erase_if(bothLost, [&](const LoggedEvent& event) {
+      if (event.channel == "RBSIM_JOINT_COMMAND") {
+        const auto command = decodeAs<rbsim::joint_command_t>(event);
+        return command && command->seq == lostSeq;
+      }
+      if (event.channel != "RBSIM_ACK") return false;
+      const auto ack = decodeAs<rbsim::ack_t>(event);
+      return ack && ack->kind == rbsim::ack_t::KIND_JOINT_COMMAND && ack->seq == lostSeq;
+    });
+    busLike = bothLost;
+    const std::string lossier = scratchPath("joints_lost_message.lcmlog");
+    ASSERT_TRUE(writeEventLog(lossier, busLike));
+    const ProcessResult fromLossier = runProcess(
+        {kRbserver, "--config", kJointsWorld, "--replay", lossier, "--verify"}, scratchPath("verify_lost_message.log"), 60s);
+    ASSERT_TRUE(fromLossier.status.has_value());
+    EXPECT_EQ(*fromLossier.status, 3) << fromLossier.output;
+    EXPECT_NE(fromLossier.output.find("(lost by the logger?)"), std::string::npos) << fromLossier.output;
   }
   if (logger) {
     // UDP may drop a datagram on the way to the logger: the replay must then
