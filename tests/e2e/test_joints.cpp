@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <thread>
 #include <rbsim/ack_t.hpp>
 #include <rbsim/joint_command_t.hpp>
 
@@ -235,6 +236,14 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
     logger = std::make_unique<ChildProcess>(
         std::vector<std::string>{kLcmLogger, "-f", std::string("--lcm-url=") + kUrl, busLog},
         scratchPath("logger.log"));
+  if (logger) {
+    // lcm-logger opens its file and then joins the bus; a command sent
+    // before it listens is missing from its log with nothing to show it
+    // (seen under a loaded ctest -j2). Wait for the file, then a little.
+    for (int i = 0; i < 200 && access(busLog.c_str(), F_OK) != 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  }
   startServer(kJointsWorld, {"--record", record, "--paused", "--state-rate", "0"});
   client::JointCommand c;
   c.joint = "axle";
