@@ -19,10 +19,13 @@ constexpr double kMaxEffort = 1e12;  // N or N·m
 constexpr double kMaxRate = 1e6;     // rad/s or m/s
 constexpr std::size_t kMaxNameLength = 128;
 
-constexpr std::array<std::string_view, 19> kJointKeys = {
+constexpr std::array<std::string_view, 20> kJointKeys = {
     "name",   "type",  "body_a", "body_b", "anchor",   "axis",     "anchor_b",          "length",
     "limits", "motor", "effort", "drive",  "damping",  "friction", "collide_connected", "cone_limit",
-    "spring", "position", "actuator_limits"};
+    "spring", "position", "actuator_limits", "mimic"};
+// A follower: q = multiplier · q_leader + offset (a gear: multiplier is
+// the ratio with its sign).
+constexpr std::array<std::string_view, 3> kMimicKeys = {"joint", "multiplier", "offset"};
 constexpr std::array<std::string_view, 2> kActuatorLimitKeys = {"effort", "rate"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
@@ -93,7 +96,7 @@ class JointParser {
                               "a distance joint has a length (a rod) or limits (a rope: free between them), not both "
                               "(a spring takes both: its rest length and its stops)");
       if (((key == "axis" && !spherical) || key == "limits" || key == "motor" || key == "effort" || key == "drive" ||
-           key == "damping" || key == "friction" || key == "position" || key == "actuator_limits") &&
+           key == "damping" || key == "friction" || key == "position" || key == "actuator_limits" || key == "mimic") &&
           !axial)
         return m_reader.error(entry.keyMark, entry.value.path,
                               "only revolute and prismatic joints take " + std::string(key) + ", this one is " +
@@ -198,6 +201,27 @@ class JointParser {
         Expected<double> rate = m_reader.number(*limitMap, "rate", NumberRule::positive(kMaxRate), none);
         if (!rate) return rate.error();
         def.actuatorLimits = {*cap, *rate};
+      }
+      if (const YamlMap::Entry* mimic = map->find("mimic")) {
+        Expected<YamlMap> mimicMap = m_reader.map(mimic->value);
+        if (!mimicMap) return mimicMap.error();
+        if (auto error = m_reader.checkKeys(*mimicMap, kMimicKeys, "a mimic")) return *error;
+        Expected<YamlNode> leaderNode = m_reader.required(*mimicMap, "joint");
+        if (!leaderNode) return leaderNode.error();
+        Expected<std::string> leader = m_reader.string(*leaderNode);
+        if (!leader) return leader.error();
+        if (leader->empty() || leader->size() > kMaxNameLength)
+          return m_reader.error(*leaderNode, "the leading joint's name must be 1 to " + std::to_string(kMaxNameLength) +
+                                                 " characters");
+        if (*leader == def.name) return m_reader.error(*leaderNode, "a joint cannot follow itself");
+        Expected<double> multiplier = m_reader.number(*mimicMap, "multiplier", NumberRule::any(kMaxGain), 1.0);
+        if (!multiplier) return multiplier.error();
+        Expected<double> offset = m_reader.number(*mimicMap, "offset", NumberRule::any(kMaxLength), 0.0);
+        if (!offset) return offset.error();
+        if (map->find("motor") || map->find("drive") || map->find("effort"))
+          return m_reader.error(mimic->value, "a joint that follows another (mimic) takes no motor, drive or effort of its "
+                                              "own: its leader's move both");
+        def.mimic = {true, *leader, *multiplier, *offset};
       }
     }
     if (def.type == JointType::Spherical) {

@@ -53,6 +53,10 @@ std::optional<Error> applyJointDrives(const YamlReader& reader, const YamlNode& 
       return reader.error(entry.keyMark, entry.value.path,
                           "joint \"" + entry.key + "\" has no axis for a drive (a drive acts on a revolute or "
                           "prismatic joint's coordinate)");
+    if (def.mimic.enabled)
+      return reader.error(entry.keyMark, entry.value.path,
+                          "joint \"" + entry.key + "\" follows joint '" + def.mimic.leader +
+                              "' (mimic) and takes no drive of its own: drive its leader, which moves both");
     Expected<JointDrive> drive = parseJointDrive(reader, entry.value);
     if (!drive) return drive.error();
     Expected<YamlMap> fields = reader.map(entry.value);

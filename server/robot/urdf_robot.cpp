@@ -153,6 +153,9 @@ class RobotBuilder {
   Expected<std::string> confinedPackageFile(const std::string& uri, const std::string& package,
                                             const std::string& inside, const std::string& link) const;
   std::optional<Error> makeJoint(const urdf::Joint& joint);
+  // Where a joint starts: its joint_positions entry, a follower's
+  // multiplier · leader's + offset, or 0.
+  double initialPosition(const urdf::Joint& joint) const;
 
   const RobotPlacement& m_placement;
   const RobotFiles& m_files;
@@ -171,9 +174,24 @@ std::optional<Error> RobotBuilder::checkJoints() const {
       return Error{jointAt(name) + ": planar joints are not supported (build the plane from two prismatic joints "
                                    "and a revolute one)"};
     if (joint->type == urdf::Joint::UNKNOWN) return Error{jointAt(name) + ": has no known type"};
-    if (joint->mimic)
-      return Error{jointAt(name) + ": mimics joint '" + joint->mimic->joint_name +
-                   "': mimic joints are not supported yet (rbsim refuses them rather than drop the coupling)"};
+    if (joint->mimic) {
+      const urdf::JointMimic& mimic = *joint->mimic;
+      const auto leader = m_model->joints_.find(mimic.joint_name);
+      if (leader == m_model->joints_.end())
+        return Error{jointAt(name) + ": <mimic joint='" + mimic.joint_name + "'>: the robot has no such joint"};
+      if (!moves(joint->type) || !moves(leader->second->type))
+        return Error{jointAt(name) + ": <mimic>: a revolute, continuous or prismatic joint follows another such joint ('" +
+                     mimic.joint_name + "' is " + jointTypeText(leader->second->type) + ", this one " +
+                     jointTypeText(joint->type) + ")"};
+      if (!std::isfinite(mimic.multiplier) || !std::isfinite(mimic.offset))
+        return Error{jointAt(name) + ": <mimic>: multiplier and offset must be finite"};
+      // A chain of followers must end at a joint that leads.
+      std::set<std::string> seen{name};
+      for (auto at = leader->second; at->mimic; at = m_model->joints_.at(at->mimic->joint_name)) {
+        if (!seen.insert(at->name).second || !m_model->joints_.count(at->mimic->joint_name))
+          return Error{jointAt(name) + ": <mimic>: its leaders follow each other in a loop"};
+      }
+    }
     if (moves(joint->type)) {
       const Vec3 axis = vectorOf(joint->axis);
       if (!axis.allFinite() || axis.norm() < 1e-9) return Error{jointAt(name) + ": its <axis> is zero"};
@@ -196,6 +214,9 @@ std::optional<Error> RobotBuilder::checkJoints() const {
       return Error{"joint_positions: joint '" + name + "' is " + jointTypeText(joint.type) +
                    ": only revolute, continuous and prismatic joints take a position"};
     if (!std::isfinite(position)) return Error{"joint_positions: joint '" + name + "': not a finite number"};
+    if (joint.mimic)
+      return Error{"joint_positions: joint '" + name + "' follows joint '" + joint.mimic->joint_name +
+                   "' (<mimic>): give its leader's position, which places both"};
     if (joint.type != urdf::Joint::CONTINUOUS && joint.limits &&
         (position < joint.limits->lower || position > joint.limits->upper))
       return Error{"joint_positions: joint '" + name + "' at " + number(position) + " is outside its limits [" +
@@ -211,8 +232,7 @@ void RobotBuilder::placeLinks(const urdf::Link& link, const Pose& pose) {
   m_linkPose[link.name] = pose;
   for (const urdf::JointSharedPtr& joint : link.child_joints) {
     Pose motion;
-    const auto given = m_placement.jointPositions.find(joint->name);
-    const double q = given != m_placement.jointPositions.end() ? given->second : 0.0;
+    const double q = initialPosition(*joint);
     const Vec3 axis = moves(joint->type) ? Vec3(vectorOf(joint->axis).normalized()) : Vec3::UnitZ();
     if (joint->type == urdf::Joint::PRISMATIC) motion.position = q * axis;
     if (joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::CONTINUOUS)
@@ -475,6 +495,16 @@ Expected<BodyDef> RobotBuilder::makeBody(const std::string& top) {
   return body;
 }
 
+double RobotBuilder::initialPosition(const urdf::Joint& joint) const {
+  const auto given = m_placement.jointPositions.find(joint.name);
+  if (given != m_placement.jointPositions.end()) return given->second;
+  if (joint.mimic) {  // checkJoints saw the leader and that the chain ends
+    const urdf::Joint& leader = *m_model->joints_.at(joint.mimic->joint_name);
+    return joint.mimic->multiplier * initialPosition(leader) + joint.mimic->offset;
+  }
+  return 0.0;
+}
+
 std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {
   const std::string& parent = m_bodyOf.at(joint.parent_link_name);
   const std::string& child = m_bodyOf.at(joint.child_link_name);
@@ -493,8 +523,7 @@ std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {
   const Pose frame = compose(m_linkPose.at(joint.parent_link_name), poseOf(joint.parent_to_joint_origin_transform));
   def.anchor = frame.position;
   if (moves(joint.type)) def.axis = frame.orientation.rotate(vectorOf(joint.axis).normalized());
-  const auto given = m_placement.jointPositions.find(joint.name);
-  if (given != m_placement.jointPositions.end()) def.position = given->second;
+  def.position = initialPosition(joint);
   std::string detail;
   switch (joint.type) {
     case urdf::Joint::FIXED:
@@ -514,6 +543,11 @@ std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {
     default:
       return Error{jointAt(joint.name) + ": type " + jointTypeText(joint.type) + " is not supported"};
   }
+  if (joint.mimic) {
+    def.mimic = {true, prefixed(joint.mimic->joint_name), joint.mimic->multiplier, joint.mimic->offset};
+    detail += ", follows '" + def.mimic.leader + "' (× " + number(def.mimic.multiplier) + " + " +
+              number(def.mimic.offset) + ")";
+  }
   if (joint.dynamics) {
     def.damping = joint.dynamics->damping;
     def.friction = joint.dynamics->friction;
@@ -523,6 +557,17 @@ std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {
   m_out.report.push_back("joint '" + def.name + "': " + jointTypeText(joint.type) + " '" + out.bodyA + "' -> '" +
                          out.bodyB + "'" + (moves(joint.type) ? ", axis " + vectorText(def.axis) : std::string()) +
                          detail);
+  // A zero pose beyond a limit (published legs often have one): the body
+  // starts where the description puts it and the limit brings it back.
+  if (def.limit.enabled && (def.position < def.limit.lower || def.position > def.limit.upper)) {
+    const bool below = def.position < def.limit.lower;
+    const double by = below ? def.limit.lower - def.position : def.position - def.limit.upper;
+    m_out.report.push_back("joint '" + def.name + "' starts at " + number(def.position) + ", " + number(by) +
+                           (joint.type == urdf::Joint::PRISMATIC ? " m" : " rad") + (below ? " below" : " above") +
+                           " its " + (below ? "lower" : "upper") + " limit " +
+                           number(below ? def.limit.lower : def.limit.upper) +
+                           ": the limit brings it back over its first steps (positions only, no velocity)");
+  }
   // <limit effort velocity> bound the joint's actuator, whatever it is
   // commanded. Descriptions of passive joints often write 0 for either,
   // meaning "not given": that leaves it uncapped, and the report says so.
@@ -571,6 +616,21 @@ Expected<RobotModel> RobotBuilder::build() {
     if (l && l->parent_joint)
       if (auto error = makeJoint(*l->parent_joint)) return *error;
   }
+  // A follower after its leader (the world resolves a mimic's leader when
+  // the follower is made): stable, leaders in the order above.
+  std::vector<NamedJointDef> ordered;
+  std::set<std::string> made;
+  while (ordered.size() < m_out.joints.size()) {
+    const std::size_t before = ordered.size();
+    for (NamedJointDef& joint : m_out.joints) {
+      if (made.count(joint.def.name) || (joint.def.mimic.enabled && !made.count(joint.def.mimic.leader))) continue;
+      made.insert(joint.def.name);
+      ordered.push_back(joint);
+    }
+    if (ordered.size() == before)  // checkJoints rules this out; a guard, not a loop forever
+      return Error{m_files.sourceName + ": a <mimic> leader is not a joint rbsim makes"};
+  }
+  m_out.joints = std::move(ordered);
   for (const UnusedUrdfElement& unused : m_document.unused)
     m_out.report.push_back("not used: " + m_files.sourceName + ":" + std::to_string(unused.line) + ": " +
                            unused.element + ": " + unused.reason);

@@ -141,10 +141,17 @@ Expected<JointConstraint> makeJointConstraint(const JointDef& def, const JointSi
       return Error{where + ": only revolute and prismatic joints take a position (their coordinate at creation)"};
     if (!std::isfinite(def.position)) return Error{where + ": the position is not finite"};
   }
-  if (axial && def.limit.enabled && (def.position < def.limit.lower || def.position > def.limit.upper))
-    return Error{where + ": the position " + std::to_string(def.position) + " is outside the limits [" +
-                 std::to_string(def.limit.lower) + ", " + std::to_string(def.limit.upper) +
-                 "]: a joint cannot start beyond its stops"};
+  if (def.mimic.enabled) {
+    if (!axial) return Error{where + ": only revolute and prismatic joints follow another (mimic)"};
+    if (def.mimic.leader.empty()) return Error{where + ": mimic: the leading joint's name is empty"};
+    if (def.mimic.leader == def.name) return Error{where + ": mimic: a joint cannot follow itself"};
+    if (!std::isfinite(def.mimic.multiplier) || !std::isfinite(def.mimic.offset))
+      return Error{where + ": mimic: the multiplier and offset must be finite (got " +
+                   std::to_string(def.mimic.multiplier) + ", " + std::to_string(def.mimic.offset) + ")"};
+    if (def.motor.enabled || def.drive.enabled || def.effort != 0.0)
+      return Error{where + ": follows joint '" + def.mimic.leader +
+                   "' (mimic), so it takes no motor, drive or effort of its own: command its leader"};
+  }
   if (def.motor.enabled) {
     if (!axial) return Error{where + ": only revolute and prismatic joints take a motor"};
     if (!std::isfinite(def.motor.targetRate) || !std::isfinite(def.motor.maxEffort) || def.motor.maxEffort < 0.0)

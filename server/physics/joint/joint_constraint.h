@@ -105,6 +105,13 @@ struct JointConstraint {
   double lastAxisEffort = 0.0;
   int lastAtLimit = 0;
 
+  // A follower (def.mimic): its leader, and the coupling's error (position
+  // − multiplier · leader's − offset) at the end of the last step, which
+  // the next step counts the coordinates' changes from (joint_solver.h's
+  // couplings): a revolute's coordinate wraps, the coupling must not.
+  JointId mimicLeader;
+  double mimicError = 0.0;  // rad or m
+
   // The joint coordinate and its rate (JointState::position, rate) from the
   // poses and the sides' velocities; an axis's coordinate counts from
   // def.position at creation, as its limits and drive target do.
@@ -119,8 +126,11 @@ struct JointConstraint {
 // negative length, a limit, motor or effort on a joint without an axis or
 // with bad numbers (not finite, lower above upper, a negative effort cap),
 // a motor and a drive together, damping or friction on a joint without an
-// axis, or negative, a position on a joint without an axis, not finite or
-// outside the limits.
+// axis, or negative, a position on a joint without an axis or not finite;
+// a mimic on a joint without an axis, without a leader's name, with a
+// multiplier or offset that is not finite, or on a joint that has a motor,
+// a drive or an effort of its own. (A position beyond the limits is
+// accepted: the limit brings the joint back.)
 // Why a drive's numbers are bad (empty: they are not): a target that is not
 // finite, a negative or non-finite stiffness, damping, frequency or damping
 // ratio, a max effort that is not positive.

@@ -25,26 +25,26 @@ JointSidePose poseOf(const Vec3& position, const Quaternion& orientation) {
 // normalise(q + ½h [0, ω] q)) with respect to ω. Not symmetric, so LU.
 class NewtonSystem {
  public:
-  void factor(const std::vector<JointSolverRow>& startRows, const std::vector<JointRow>& currentRows,
+  void factor(const std::vector<JointSolverRow>& startRows, const std::vector<JointSolverRow>& currentRows,
               const std::vector<JointBody>& bodies, const std::vector<Mat3>& turnResponse, double h) {
     const auto count = static_cast<Eigen::Index>(startRows.size());
-    std::vector<std::vector<std::pair<int, bool>>> touching(bodies.size());
-    for (std::size_t r = 0; r < startRows.size(); ++r) {
-      if (startRows[r].bodyA >= 0) touching[static_cast<std::size_t>(startRows[r].bodyA)].push_back({static_cast<int>(r), false});
-      if (startRows[r].bodyB >= 0) touching[static_cast<std::size_t>(startRows[r].bodyB)].push_back({static_cast<int>(r), true});
-    }
+    std::vector<std::vector<std::pair<int, int>>> touching(bodies.size());  // (row, side)
+    for (std::size_t r = 0; r < startRows.size(); ++r)
+      for (int side = 0; side < startRows[r].sideCount(); ++side)
+        if (startRows[r].body(side) >= 0)
+          touching[static_cast<std::size_t>(startRows[r].body(side))].push_back({static_cast<int>(r), side});
     std::vector<Eigen::Triplet<double>> entries;
     for (std::size_t body = 0; body < bodies.size(); ++body) {
       const double linearResponse = h * bodies[body].inverseMass;
       const Mat3 angularResponse = turnResponse[body] * bodies[body].startInverseInertia;
-      for (const auto& [r, rSideB] : touching[body]) {
-        const JointRow& now = currentRows[static_cast<std::size_t>(r)];
-        const Vec3& linNow = rSideB ? now.linearB : now.linearA;
-        const Vec3& angNow = rSideB ? now.angularB : now.angularA;
-        for (const auto& [c, cSideB] : touching[body]) {
-          const JointRow& start = startRows[static_cast<std::size_t>(c)].jacobian;
-          const Vec3& linStart = cSideB ? start.linearB : start.linearA;
-          const Vec3& angStart = cSideB ? start.angularB : start.angularA;
+      for (const auto& [r, rSide] : touching[body]) {
+        const JointSolverRow& now = currentRows[static_cast<std::size_t>(r)];
+        const Vec3& linNow = now.linear(rSide);
+        const Vec3& angNow = now.angular(rSide);
+        for (const auto& [c, cSide] : touching[body]) {
+          const JointSolverRow& start = startRows[static_cast<std::size_t>(c)];
+          const Vec3& linStart = start.linear(cSide);
+          const Vec3& angStart = start.angular(cSide);
           entries.emplace_back(r, c, linearResponse * linNow.dot(linStart) + angNow.dot(angularResponse * angStart));
         }
       }
@@ -83,11 +83,100 @@ std::vector<double> inverseMasses(const std::vector<JointBody>& bodies) {
   return out;
 }
 
-JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB, bool atStart) {
-  const int index = sideB ? link.bodyB : link.bodyA;
-  if (index < 0) return sideB ? link.fixedB : link.fixedA;
+namespace {
+
+JointSidePose poseOfSide(int index, const JointSidePose& fixed, const std::vector<JointBody>& bodies, bool atStart) {
+  if (index < 0) return fixed;
   const JointBody& body = bodies[static_cast<std::size_t>(index)];
   return atStart ? poseOf(body.startPosition, body.startOrientation) : poseOf(body.position, body.orientation);
+}
+
+// A joint coordinate's change from `from` to `now`: a revolute's the short
+// way round (its coordinate wraps; a step turns it by far less than π).
+double coordinateChange(const JointConstraint& joint, double now, double from) {
+  const double change = now - from;
+  return joint.def.type == JointType::Revolute ? std::remainder(change, 2.0 * 3.14159265358979323846) : change;
+}
+
+}  // namespace
+
+JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB, bool atStart) {
+  return sideB ? poseOfSide(link.bodyB, link.fixedB, bodies, atStart) : poseOfSide(link.bodyA, link.fixedA, bodies, atStart);
+}
+
+LinkPoses linkPoses(const JointLink& link, const std::vector<JointBody>& bodies, bool atStart) {
+  LinkPoses poses;
+  poses[0] = poseOfSide(link.bodyA, link.fixedA, bodies, atStart);
+  poses[1] = poseOfSide(link.bodyB, link.fixedB, bodies, atStart);
+  if (link.isCoupling()) {
+    poses[2] = poseOfSide(link.bodyC, link.fixedC, bodies, atStart);
+    poses[3] = poseOfSide(link.bodyD, link.fixedD, bodies, atStart);
+  }
+  return poses;
+}
+
+int linkRowCount(const JointLink& link) { return link.isCoupling() ? 1 : link.joint->rowCount(); }
+
+double couplingError(const JointLink& link, const LinkPoses& poses) {
+  const double follower = link.joint->coordinate(poses[0], poses[1]);
+  const double leader = link.leader->coordinate(poses[2], poses[3]);
+  return link.errorFrom + coordinateChange(*link.joint, follower, link.followerFrom) -
+         link.joint->def.mimic.multiplier * coordinateChange(*link.leader, leader, link.leaderFrom);
+}
+
+void linkErrors(const JointLink& link, const LinkPoses& poses, const JointConstraint::Basis& basis, double* out) {
+  if (link.isCoupling()) {
+    out[0] = couplingError(link, poses);
+    return;
+  }
+  link.joint->errors(poses[0], poses[1], basis, out);
+}
+
+void appendLinkRows(const JointLink& link, int index, const LinkPoses& poses, const JointConstraint::Basis& basis,
+                    std::vector<JointSolverRow>& out) {
+  if (!link.isCoupling()) {
+    JointRow rows[kMaxJointRows];
+    link.joint->rows(poses[0], poses[1], basis, rows);
+    for (int r = 0; r < link.joint->rowCount(); ++r) out.push_back({link.bodyA, link.bodyB, index, rows[r]});
+    return;
+  }
+  // The follower's axis row less `multiplier` times the leader's, with a
+  // body that is a side of both joints (a gripper's palm) given once.
+  JointRow follower, leader;
+  link.joint->axisRow(poses[0], poses[1], follower);
+  link.leader->axisRow(poses[2], poses[3], leader);
+  const double m = link.joint->def.mimic.multiplier;
+  struct Side {
+    int body;
+    Vec3 linear, angular;
+  };
+  const Side given[4] = {{link.bodyA, follower.linearA, follower.angularA},
+                         {link.bodyB, follower.linearB, follower.angularB},
+                         {link.bodyC, -m * leader.linearA, -m * leader.angularA},
+                         {link.bodyD, -m * leader.linearB, -m * leader.angularB}};
+  Side merged[4];
+  int count = 0;
+  for (const Side& side : given) {
+    if (side.body < 0) continue;  // a fixed side takes nothing
+    Side* same = std::find_if(merged, merged + count, [&](const Side& m2) { return m2.body == side.body; });
+    if (same != merged + count) {
+      same->linear += side.linear;
+      same->angular += side.angular;
+    } else {
+      merged[count++] = side;
+    }
+  }
+  JointSolverRow row;
+  row.link = index;
+  int* bodies[4] = {&row.bodyA, &row.bodyB, &row.bodyC, &row.bodyD};
+  Vec3* linear[4] = {&row.jacobian.linearA, &row.jacobian.linearB, &row.second.linearA, &row.second.linearB};
+  Vec3* angular[4] = {&row.jacobian.angularA, &row.jacobian.angularB, &row.second.angularA, &row.second.angularB};
+  for (int k = 0; k < count; ++k) {
+    *bodies[k] = merged[k].body;
+    *linear[k] = merged[k].linear;
+    *angular[k] = merged[k].angular;
+  }
+  out.push_back(row);
 }
 
 Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
@@ -100,11 +189,20 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   // The bodies' current rotations, made once per move (a body is the side
   // of several joints).
   std::vector<Mat3> rotation(bodies.size());
-  const auto currentSide = [&](const JointLink& link, bool sideB) {
-    const int index = sideB ? link.bodyB : link.bodyA;
-    if (index < 0) return sideB ? link.fixedB : link.fixedA;
+  const auto currentSide = [&](int index, const JointSidePose& fixed) {
+    if (index < 0) return fixed;
     const JointBody& body = bodies[static_cast<std::size_t>(index)];
     return JointSidePose{body.position, body.orientation, rotation[static_cast<std::size_t>(index)]};
+  };
+  const auto currentPoses = [&](const JointLink& link) {
+    LinkPoses poses;
+    poses[0] = currentSide(link.bodyA, link.fixedA);
+    poses[1] = currentSide(link.bodyB, link.fixedB);
+    if (link.isCoupling()) {
+      poses[2] = currentSide(link.bodyC, link.fixedC);
+      poses[3] = currentSide(link.bodyD, link.fixedD);
+    }
+    return poses;
   };
   // The errors at the current poses less the targets; returns the largest.
   const auto measure = [&] {
@@ -113,15 +211,17 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
     for (std::size_t l = 0; l < links.size(); ++l) {
       const JointLink& link = links[l];
       double errors[kMaxJointRows];
-      link.joint->errors(currentSide(link, false), currentSide(link, true), bases[l], errors);
-      for (int k = 0; k < link.joint->rowCount(); ++k, ++r) {
+      linkErrors(link, currentPoses(link), bases[l], errors);
+      for (int k = 0; k < linkRowCount(link); ++k, ++r) {
         residual[r] = errors[k] - (targets ? (*targets)[static_cast<std::size_t>(r)] : 0.0);
         worst = std::max(worst, std::abs(residual[r]));
       }
     }
     for (const LimitRow& limit : m_limits) {  // the coordinate at its bound
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
-      residual[r] = link.joint->coordinate(currentSide(link, false), currentSide(link, true)) - limit.bound;
+      const LinkPoses poses = currentPoses(link);
+      residual[r] = link.joint->coordinate(poses[0], poses[1]) - limit.bound -
+                    (targets ? (*targets)[static_cast<std::size_t>(r)] : 0.0);
       worst = std::max(worst, std::abs(residual[r]));
       ++r;
     }
@@ -144,13 +244,11 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
     for (Eigen::Index r = 0; r < count; ++r) {
       const Row& row = m_rows[static_cast<std::size_t>(r)];
       const double lambda = scale * impulse[r];
-      if (row.bodyA >= 0) {
-        drift.linearImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.linearA;
-        drift.angularImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.angularA;
-      }
-      if (row.bodyB >= 0) {
-        drift.linearImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.linearB;
-        drift.angularImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.angularB;
+      for (int side = 0; side < row.sideCount(); ++side) {
+        const int body = row.body(side);
+        if (body < 0) continue;
+        drift.linearImpulse[static_cast<std::size_t>(body)] += lambda * row.linear(side);
+        drift.angularImpulse[static_cast<std::size_t>(body)] += lambda * row.angular(side);
       }
     }
   };
@@ -163,22 +261,20 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   // ones); an iterate that makes the error larger is halved back.
   bool newton = false;
   NewtonSystem exact;
-  std::vector<JointRow> currentRows(m_rows.size());
+  std::vector<JointSolverRow> currentRows;
   std::vector<Mat3> turns(bodies.size());
   for (int iteration = 0; m_system.ok() && iteration < settings.maxIterations; ++iteration) {
     if (largest <= settings.tolerance) break;
     Eigen::VectorXd impulse;
     if (newton) {
-      std::size_t r = 0;
-      for (std::size_t l = 0; l < links.size(); ++l) {
-        const JointLink& link = links[l];
-        link.joint->rows(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l],
-                         currentRows.data() + r);
-        r += static_cast<std::size_t>(link.joint->rowCount());
-      }
+      currentRows.clear();
+      for (std::size_t l = 0; l < links.size(); ++l)
+        appendLinkRows(links[l], static_cast<int>(l), linkPoses(links[l], bodies, false), bases[l], currentRows);
       for (const LimitRow& limit : m_limits) {
         const JointLink& link = links[static_cast<std::size_t>(limit.link)];
-        link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), currentRows[r++]);
+        JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+        link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
+        currentRows.push_back(row);
       }
       for (std::size_t i = 0; i < bodies.size(); ++i) turns[i] = turnResponse(drift.fromOrientation[i], omegaOf(i), h);
       exact.factor(m_rows, currentRows, bodies, turns, h);
@@ -213,15 +309,11 @@ namespace {
 // momenta.
 double rowRate(const JointSolverRow& row, const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) {
   double v = 0.0;
-  if (row.bodyA >= 0) {
-    const auto i = static_cast<std::size_t>(row.bodyA);
-    v += row.jacobian.linearA.dot(bodies[i].inverseMass * bodies[i].linearMomentum) +
-         row.jacobian.angularA.dot(inverseInertia[i] * bodies[i].angularMomentum);
-  }
-  if (row.bodyB >= 0) {
-    const auto i = static_cast<std::size_t>(row.bodyB);
-    v += row.jacobian.linearB.dot(bodies[i].inverseMass * bodies[i].linearMomentum) +
-         row.jacobian.angularB.dot(inverseInertia[i] * bodies[i].angularMomentum);
+  for (int side = 0; side < row.sideCount(); ++side) {
+    if (row.body(side) < 0) continue;
+    const auto i = static_cast<std::size_t>(row.body(side));
+    v += row.linear(side).dot(bodies[i].inverseMass * bodies[i].linearMomentum) +
+         row.angular(side).dot(inverseInertia[i] * bodies[i].angularMomentum);
   }
   return v;
 }
@@ -239,28 +331,21 @@ void rowRates(const std::vector<JointSolverRow>& rows, const std::vector<JointBo
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const JointSolverRow& row = rows[r];
     double v = 0.0;
-    if (row.bodyA >= 0) {
-      const auto i = static_cast<std::size_t>(row.bodyA);
-      v += row.jacobian.linearA.dot(linear[i]) + row.jacobian.angularA.dot(angular[i]);
-    }
-    if (row.bodyB >= 0) {
-      const auto i = static_cast<std::size_t>(row.bodyB);
-      v += row.jacobian.linearB.dot(linear[i]) + row.jacobian.angularB.dot(angular[i]);
+    for (int side = 0; side < row.sideCount(); ++side) {
+      if (row.body(side) < 0) continue;
+      const auto i = static_cast<std::size_t>(row.body(side));
+      v += row.linear(side).dot(linear[i]) + row.angular(side).dot(angular[i]);
     }
     out[static_cast<Eigen::Index>(r)] = v;
   }
 }
 
 void pushAlongRow(const JointSolverRow& row, double lambda, std::vector<JointBody>& bodies) {
-  if (row.bodyA >= 0) {
-    JointBody& body = bodies[static_cast<std::size_t>(row.bodyA)];
-    body.linearMomentum += lambda * row.jacobian.linearA;
-    body.angularMomentum += lambda * row.jacobian.angularA;
-  }
-  if (row.bodyB >= 0) {
-    JointBody& body = bodies[static_cast<std::size_t>(row.bodyB)];
-    body.linearMomentum += lambda * row.jacobian.linearB;
-    body.angularMomentum += lambda * row.jacobian.angularB;
+  for (int side = 0; side < row.sideCount(); ++side) {
+    if (row.body(side) < 0) continue;
+    JointBody& body = bodies[static_cast<std::size_t>(row.body(side))];
+    body.linearMomentum += lambda * row.linear(side);
+    body.angularMomentum += lambda * row.angular(side);
   }
 }
 
@@ -322,7 +407,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     const JointConstraint& joint = *link.joint;
-    if (!axisActs(joint)) continue;
+    if (link.isCoupling() || !axisActs(joint)) continue;
     const JointDef& def = joint.def;
     AxisLaw law;
     law.h = half;
@@ -443,28 +528,36 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   std::vector<JointConstraint::Basis> bases(links.size());
   std::vector<double> targets;
   bool outsideError = false;
+  // A joint that starts beyond a limit (created there, or set there) is
+  // held where it is by the momentum projection and brought back by the
+  // positions-only one, at most kLimitReturn a step: no velocity comes of
+  // it, and a body is not thrown through what it touches.
+  m_startBeyond.assign(links.size(), 0.0);
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
-    const JointSidePose a = sidePose(link, bodies, false, true);
-    const JointSidePose b = sidePose(link, bodies, true, true);
-    bases[l] = link.joint->basisAt(a);
-    JointRow rows[kMaxJointRows];
+    const LinkPoses poses = linkPoses(link, bodies, true);
+    bases[l] = link.joint->basisAt(poses[0]);
     double errors[kMaxJointRows];
-    link.joint->rows(a, b, bases[l], rows);
-    link.joint->errors(a, b, bases[l], errors);
-    for (int r = 0; r < link.joint->rowCount(); ++r) {
-      m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
+    appendLinkRows(link, static_cast<int>(l), poses, bases[l], m_rows);
+    linkErrors(link, poses, bases[l], errors);
+    for (int r = 0; r < linkRowCount(link); ++r) {
       const bool outside = std::abs(errors[r]) > kOutsideError;
       targets.push_back(outside ? errors[r] : 0.0);
       outsideError = outsideError || outside;
+    }
+    if (!link.isCoupling() && link.joint->hasLimit()) {
+      const double q = link.joint->coordinate(poses[0], poses[1]);
+      if (q < link.joint->limitLower() - kOutsideError) m_startBeyond[l] = q - link.joint->limitLower();
+      if (q > link.joint->limitUpper() + kOutsideError) m_startBeyond[l] = q - link.joint->limitUpper();
+      outsideError = outsideError || m_startBeyond[l] != 0.0;
     }
   }
   for (JointBody& body : bodies) {
     body.position = body.startPosition;
     body.orientation = body.startOrientation;
   }
-  const bool anyLimit = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return l.joint->hasLimit(); });
-  const bool anyAxis = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return axisActs(*l.joint); });
+  const bool anyLimit = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && l.joint->hasLimit(); });
+  const bool anyAxis = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && axisActs(*l.joint); });
   if (m_rows.empty() && !anyLimit && !anyAxis) return true;
   const std::size_t jointRows = m_rows.size();
   std::vector<Mat3> startInverseInertia;
@@ -505,8 +598,10 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     }
     momenta.linearImpulse.assign(bodies.size(), Vec3::Zero());
     momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
+    // A limit held where its joint started beyond it (offset from its
+    // bound by the start's excess); every other at its bound.
     std::vector<double> allTargets = targets;
-    allTargets.resize(m_rows.size(), 0.0);
+    for (const LimitRow& limit : m_limits) allTargets.push_back(heldBeyond(limit));
     total = project(links, bodies, bases, &allTargets, momenta, h, settings, left);
     // Which limits the end poses break, and which active ones pull.
     bool changed = false;
@@ -523,15 +618,17 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     for (std::size_t l = 0; l < links.size(); ++l) {
       const JointLink& link = links[l];
       const JointConstraint& joint = *link.joint;
-      if (!joint.hasLimit()) continue;
+      if (link.isCoupling() || !joint.hasLimit()) continue;
       const bool active = std::any_of(kept.begin(), kept.end(), [&](const LimitRow& r) { return r.link == static_cast<int>(l); });
       if (active) continue;
       const double q = joint.coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
-      if (q < joint.limitLower() - settings.tolerance) {
-        kept.push_back({static_cast<int>(l), joint.limitLower(), -1});
+      const LimitRow lower{static_cast<int>(l), joint.limitLower(), -1};
+      const LimitRow upper{static_cast<int>(l), joint.limitUpper(), +1};
+      if (q < lower.bound + heldBeyond(lower) - settings.tolerance) {
+        kept.push_back(lower);
         changed = true;
-      } else if (q > joint.limitUpper() + settings.tolerance) {
-        kept.push_back({static_cast<int>(l), joint.limitUpper(), +1});
+      } else if (q > upper.bound + heldBeyond(upper) + settings.tolerance) {
+        kept.push_back(upper);
         changed = true;
       }
     }
@@ -555,6 +652,41 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
 
   // Step 3: the contacts' pseudo-velocities and the outside errors, by
   // moving positions along the same rows (velocities only positions see).
+  // A joint that started beyond a limit and is still beyond it comes back
+  // by at most kLimitReturn (its limit row is added for this pass if the
+  // momentum projection did not hold it).
+  std::vector<double> positionTargets(jointRows, 0.0);
+  {
+    bool added = false;
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      if (m_startBeyond[l] == 0.0) continue;
+      const bool held = std::any_of(m_limits.begin(), m_limits.end(), [&](const LimitRow& r) { return r.link == static_cast<int>(l); });
+      if (held) continue;
+      const JointLink& link = links[l];
+      const double q = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
+      LimitRow limit{static_cast<int>(l), m_startBeyond[l] < 0.0 ? link.joint->limitLower() : link.joint->limitUpper(),
+                     m_startBeyond[l] < 0.0 ? -1 : +1};
+      if ((q - limit.bound) * limit.side <= 0.0) continue;  // back within by itself
+      m_limits.push_back(limit);
+      JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+      link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row.jacobian);
+      m_rows.push_back(row);
+      added = true;
+    }
+    if (added) {
+      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
+    }
+    for (const LimitRow& limit : m_limits) {
+      const JointLink& link = links[static_cast<std::size_t>(limit.link)];
+      const double q = link.joint->coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
+      const double excess = (q - limit.bound) * limit.side;  // > 0: beyond
+      const double step = limitReturn(*link.joint);
+      positionTargets.push_back(m_startBeyond[static_cast<std::size_t>(limit.link)] != 0.0 && excess > step
+                                    ? limit.side * (excess - step)
+                                    : 0.0);
+    }
+  }
   const bool anyPseudo = std::any_of(bodies.begin(), bodies.end(), [](const JointBody& b) {
     return !b.pseudoLinear.isZero(0.0) || !b.pseudoAngular.isZero(0.0);
   });
@@ -569,7 +701,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     pseudo.linearImpulse.assign(bodies.size(), Vec3::Zero());
     pseudo.angularImpulse.assign(bodies.size(), Vec3::Zero());
     double pseudoLeft = 0.0;
-    project(links, bodies, bases, nullptr, pseudo, h, settings, pseudoLeft);
+    project(links, bodies, bases, &positionTargets, pseudo, h, settings, pseudoLeft);
   }
 
   // What each joint did to B, and the error it leaves.
@@ -577,6 +709,10 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   for (Eigen::Index r = 0; r < count; ++r) {
     const Row& row = m_rows[static_cast<std::size_t>(r)];
     JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
+    if (links[static_cast<std::size_t>(row.link)].isCoupling()) {
+      result.axisImpulse += total[r];  // along the follower's axis
+      continue;
+    }
     result.linearImpulse += total[r] * row.jacobian.linearB;
     result.angularImpulse += total[r] * row.jacobian.angularB;
   }
@@ -588,8 +724,9 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     const Vec3 arm = b.rotation * link.joint->anchorB;
     results[l].angularImpulse -= arm.cross(results[l].linearImpulse);
     double errors[kMaxJointRows];
-    link.joint->errors(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), bases[l], errors);
-    for (int k = 0; k < link.joint->rowCount(); ++k) results[l].error = std::max(results[l].error, std::abs(errors[k]));
+    linkErrors(link, linkPoses(link, bodies, false), bases[l], errors);
+    for (int k = 0; k < linkRowCount(link); ++k) results[l].error = std::max(results[l].error, std::abs(errors[k]));
+    if (link.isCoupling()) results[l].couplingError = errors[0];
   }
   return left <= settings.tolerance;
 }
@@ -600,12 +737,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   m_rows.clear();
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
-    const JointSidePose a = sidePose(link, bodies, false, false);
-    const JointSidePose b = sidePose(link, bodies, true, false);
-    JointRow rows[kMaxJointRows];
-    link.joint->rows(a, b, link.joint->basisAt(a), rows);
-    for (int r = 0; r < link.joint->rowCount(); ++r)
-      m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
+    const LinkPoses poses = linkPoses(link, bodies, false);
+    appendLinkRows(link, static_cast<int>(l), poses, link.joint->basisAt(poses[0]), m_rows);
   }
   const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
   // A joint held at a limit leaves with no rate into it. Which limits are
@@ -631,7 +764,7 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     return added;
   };
   // The axes' second half needs the end's K itself (its projection exact).
-  const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return axisActs(*l.joint); });
+  const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && axisActs(*l.joint); });
   addLimitsMovedInto();
   for (int round = 0; round < 2; ++round) {
     if (round == 1 && !addLimitsMovedInto()) break;
@@ -660,6 +793,10 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
       const Row& row = m_rows[static_cast<std::size_t>(r)];
       const double lambda = impulse[r];
       JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
+      if (links[static_cast<std::size_t>(row.link)].isCoupling()) {
+        result.axisImpulse += lambda;
+        continue;
+      }
       const JointSidePose b = sidePose(links[static_cast<std::size_t>(row.link)], bodies, true, false);
       const Vec3 arm = b.rotation * links[static_cast<std::size_t>(row.link)].joint->anchorB;
       result.linearImpulse += lambda * row.jacobian.linearB;
@@ -697,11 +834,19 @@ std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::si
     }
     return i;
   };
-  for (const JointLink& link : links)
-    if (link.bodyA >= 0 && link.bodyB >= 0) {
-      const int a = root(link.bodyA), b = root(link.bodyB);
+  for (const JointLink& link : links) {
+    const int sides[4] = {link.bodyA, link.bodyB, link.bodyC, link.bodyD};
+    int first = -1;
+    for (const int side : sides) {
+      if (side < 0) continue;
+      if (first < 0) {
+        first = side;
+        continue;
+      }
+      const int a = root(first), b = root(side);
       if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
     }
+  }
   std::vector<int> groupOfRoot(bodyCount, -1);
   std::vector<JointGroup> groups;
   localIndex.assign(bodyCount, -1);
@@ -716,8 +861,9 @@ std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::si
     members.push_back(static_cast<int>(i));
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
-    const int any = links[l].bodyA >= 0 ? links[l].bodyA : links[l].bodyB;
-    if (any < 0) continue;  // between two fixed sides: nothing to move
+    const JointLink& link = links[l];
+    const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB >= 0 ? link.bodyB : link.bodyC >= 0 ? link.bodyC : link.bodyD;
+    if (any < 0) continue;  // between fixed sides only: nothing to move
     groups[static_cast<std::size_t>(groupOfRoot[static_cast<std::size_t>(root(any))])].links.push_back(static_cast<int>(l));
   }
   return groups;
@@ -726,6 +872,8 @@ std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::si
 JointLink inGroup(JointLink link, const std::vector<int>& localIndex) {
   if (link.bodyA >= 0) link.bodyA = localIndex[static_cast<std::size_t>(link.bodyA)];
   if (link.bodyB >= 0) link.bodyB = localIndex[static_cast<std::size_t>(link.bodyB)];
+  if (link.bodyC >= 0) link.bodyC = localIndex[static_cast<std::size_t>(link.bodyC)];
+  if (link.bodyD >= 0) link.bodyD = localIndex[static_cast<std::size_t>(link.bodyD)];
   return link;
 }
 

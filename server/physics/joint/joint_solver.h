@@ -25,6 +25,7 @@
 // right to O(h²).
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
@@ -54,13 +55,47 @@ struct JointBody {
 
 // One joint of the step: its constraint and its sides, each a JointBody
 // (index) or a fixed pose (-1: the world or a static body).
+//
+// Or a mimic coupling (`leader` set): `joint` is the follower and A, B its
+// sides, C and D the leader's. Its one row holds
+//   C = errorFrom + Δq_follower − multiplier · Δq_leader = 0,
+// Δq each joint's coordinate change since `followerFrom`, `leaderFrom` (the
+// coordinates at the world step's start, where the coupling's error was
+// `errorFrom`): counting changes rather than coordinates keeps a gear of
+// continuous joints exact past the ±2π where a revolute's coordinate wraps.
+// Its Jacobian is the follower's axis row less `multiplier` times the
+// leader's.
 struct JointLink {
   const JointConstraint* joint = nullptr;
   int bodyA = -1;
   int bodyB = -1;
   JointSidePose fixedA;
   JointSidePose fixedB;
+
+  const JointConstraint* leader = nullptr;
+  int bodyC = -1;
+  int bodyD = -1;
+  JointSidePose fixedC;
+  JointSidePose fixedD;
+  double followerFrom = 0.0, leaderFrom = 0.0, errorFrom = 0.0;  // rad or m
+
+  bool isCoupling() const { return leader != nullptr; }
 };
+
+// The poses of a link's sides (A, B, and a coupling's C, D).
+using LinkPoses = std::array<JointSidePose, 4>;
+
+// A link's rows: a joint's rowCount(), a coupling's one.
+int linkRowCount(const JointLink& link);
+// Its errors C(x) at the poses (linkRowCount values); `basis` as the
+// joint's (a coupling ignores it).
+void linkErrors(const JointLink& link, const LinkPoses& poses, const JointConstraint::Basis& basis, double* out);
+// Its rows of J at the poses, appended to `out` as rows of link `index`
+// with the link's sides (a coupling's sides merged where two are one body).
+void appendLinkRows(const JointLink& link, int index, const LinkPoses& poses, const JointConstraint::Basis& basis,
+                    std::vector<JointSolverRow>& out);
+// A coupling's error: errorFrom + Δq_follower − multiplier · Δq_leader.
+double couplingError(const JointLink& link, const LinkPoses& poses);
 
 struct JointSolverSettings {
   double tolerance = 1e-12;  // m and rad: largest |C| left
@@ -73,8 +108,9 @@ struct JointLinkResult {
   Vec3 linearImpulse = Vec3::Zero();   // N·s, on B
   Vec3 angularImpulse = Vec3::Zero();  // N·m·s, on B about its anchor
   double error = 0.0;                  // largest |C| at the end poses
-  double axisImpulse = 0.0;            // the motor's or drive's, along the axis (N·s or N·m·s)
+  double axisImpulse = 0.0;            // the motor's or drive's, along the axis (N·s or N·m·s); a coupling's along the follower's
   int atLimit = 0;                     // -1, +1: held at the lower or upper limit
+  double couplingError = 0.0;          // a coupling's signed error at the end poses
 };
 
 // The step of one group of joints (bodies joined to each other, directly
@@ -133,8 +169,21 @@ class JointGroupSolver {
     double bound = 0.0;  // rad or m
     int side = 0;        // -1 lower, +1 upper
   };
+  // How far a limit is held beyond its bound this step (0, or the excess a
+  // joint started with: the momentum projection holds it there).
+  double heldBeyond(const LimitRow& limit) const {
+    const double beyond = m_startBeyond[static_cast<std::size_t>(limit.link)];
+    return beyond * limit.side > 0.0 ? beyond : 0.0;
+  }
+  // The most a joint that started beyond a limit is brought back in a step:
+  // a few steps for the published descriptions' zero poses (a leg's calf
+  // 0.9 rad beyond), little enough for what its links touch to follow.
+  static double limitReturn(const JointConstraint& joint) {
+    return joint.def.type == JointType::Revolute || joint.def.type == JointType::Spherical ? 0.1 : 0.01;  // rad, m
+  }
   std::vector<Row> m_rows;
   std::vector<LimitRow> m_limits;
+  std::vector<double> m_startBeyond;  // by link: the coordinate's excess over a bound at the start, signed
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
 };
 
@@ -186,5 +235,7 @@ std::vector<double> inverseMasses(const std::vector<JointBody>& bodies);
 // The side poses of a link from the bodies' current poses (or start poses).
 JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB,
                        bool atStart);
+// All of a link's side poses so (C and D only for a coupling).
+LinkPoses linkPoses(const JointLink& link, const std::vector<JointBody>& bodies, bool atStart);
 
 }  // namespace rbsim

@@ -21,13 +21,11 @@ JointGroupProjection::JointGroupProjection(const std::vector<JointLink>& links,
     : m_solverIndex(std::move(solverIndex)) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
-    const JointSidePose a = sidePose(link, bodies, false, true);
-    const JointSidePose b = sidePose(link, bodies, true, true);
-    JointRow rows[kMaxJointRows];
-    link.joint->rows(a, b, link.joint->basisAt(a), rows);
-    for (int r = 0; r < link.joint->rowCount(); ++r)
-      m_rows.push_back({link.bodyA, link.bodyB, static_cast<int>(l), rows[r]});
-    if (!link.joint->hasLimit()) continue;
+    const LinkPoses poses = linkPoses(link, bodies, true);
+    const JointSidePose& a = poses[0];
+    const JointSidePose& b = poses[1];
+    appendLinkRows(link, static_cast<int>(l), poses, link.joint->basisAt(a), m_rows);
+    if (link.isCoupling() || !link.joint->hasLimit()) continue;
     const double q = link.joint->coordinate(a, b);
     const int side = q <= link.joint->limitLower() + kAtBound ? -1 : q >= link.joint->limitUpper() - kAtBound ? +1 : 0;
     if (side == 0) continue;
@@ -81,28 +79,21 @@ Eigen::VectorXd JointGroupProjection::responseColumn(std::size_t j) const {
 double JointGroupProjection::rate(const JointSolverRow& row, const std::vector<SolverBody>& bodies,
                                   const std::vector<std::size_t>& index) const {
   double v = 0.0;
-  if (row.bodyA >= 0) {
-    const SolverBody& a = bodies[index[static_cast<std::size_t>(row.bodyA)]];
-    v += row.jacobian.linearA.dot(a.linearVelocity) + row.jacobian.angularA.dot(a.angularVelocity);
-  }
-  if (row.bodyB >= 0) {
-    const SolverBody& b = bodies[index[static_cast<std::size_t>(row.bodyB)]];
-    v += row.jacobian.linearB.dot(b.linearVelocity) + row.jacobian.angularB.dot(b.angularVelocity);
+  for (int side = 0; side < row.sideCount(); ++side) {
+    if (row.body(side) < 0) continue;
+    const SolverBody& body = bodies[index[static_cast<std::size_t>(row.body(side))]];
+    v += row.linear(side).dot(body.linearVelocity) + row.angular(side).dot(body.angularVelocity);
   }
   return v;
 }
 
 void JointGroupProjection::push(const JointSolverRow& row, double lambda, std::vector<SolverBody>& bodies,
                                 const std::vector<std::size_t>& index) const {
-  if (row.bodyA >= 0) {
-    SolverBody& a = bodies[index[static_cast<std::size_t>(row.bodyA)]];
-    a.linearVelocity += (lambda * a.inverseMass) * row.jacobian.linearA;
-    a.angularVelocity += a.inverseInertia * (lambda * row.jacobian.angularA);
-  }
-  if (row.bodyB >= 0) {
-    SolverBody& b = bodies[index[static_cast<std::size_t>(row.bodyB)]];
-    b.linearVelocity += (lambda * b.inverseMass) * row.jacobian.linearB;
-    b.angularVelocity += b.inverseInertia * (lambda * row.jacobian.angularB);
+  for (int side = 0; side < row.sideCount(); ++side) {
+    if (row.body(side) < 0) continue;
+    SolverBody& body = bodies[index[static_cast<std::size_t>(row.body(side))]];
+    body.linearVelocity += (lambda * body.inverseMass) * row.linear(side);
+    body.angularVelocity += body.inverseInertia * (lambda * row.angular(side));
   }
 }
 
@@ -120,13 +111,10 @@ void JointGroupProjection::projectJoints(std::vector<SolverBody>& bodies,
   for (Eigen::Index r = 0; r < count; ++r) {
     const JointSolverRow& row = m_rows[static_cast<std::size_t>(r)];
     const double lambda = m_impulse[r];
-    if (row.bodyA >= 0) {
-      m_linearImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.linearA;
-      m_angularImpulse[static_cast<std::size_t>(row.bodyA)] += lambda * row.jacobian.angularA;
-    }
-    if (row.bodyB >= 0) {
-      m_linearImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.linearB;
-      m_angularImpulse[static_cast<std::size_t>(row.bodyB)] += lambda * row.jacobian.angularB;
+    for (int side = 0; side < row.sideCount(); ++side) {
+      if (row.body(side) < 0) continue;
+      m_linearImpulse[static_cast<std::size_t>(row.body(side))] += lambda * row.linear(side);
+      m_angularImpulse[static_cast<std::size_t>(row.body(side))] += lambda * row.angular(side);
     }
   }
   for (std::size_t local = 0; local < m_solverIndex.size(); ++local) {

@@ -91,12 +91,14 @@ void RowSystem::analyse() {
   const int blocks = static_cast<int>(m_keys.size());
   // The blocks touching each body.
   int bodies = 0;
-  for (const BlockKey& key : m_keys) bodies = std::max({bodies, key.bodyA + 1, key.bodyB + 1});
+  for (const BlockKey& key : m_keys)
+    for (const int body : key.bodies) bodies = std::max(bodies, body + 1);
   std::vector<std::vector<Touch>> touching(static_cast<std::size_t>(bodies));
   for (int b = 0; b < blocks; ++b) {
     const BlockKey& key = m_keys[static_cast<std::size_t>(b)];
-    if (key.bodyA >= 0) touching[static_cast<std::size_t>(key.bodyA)].push_back({b, false});
-    if (key.bodyB >= 0) touching[static_cast<std::size_t>(key.bodyB)].push_back({b, true});
+    for (int side = 0; side < JointSolverRow::kMaxSides; ++side)
+      if (key.bodies[static_cast<std::size_t>(side)] >= 0)
+        touching[static_cast<std::size_t>(key.bodies[static_cast<std::size_t>(side)])].push_back({b, side});
   }
 
   // The elimination order: approximate minimum degree on the block graph.
@@ -190,7 +192,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
   for (int l = 0; l < links; ++l) {
     if (blockOfLink[static_cast<std::size_t>(l)] < 0) continue;
     blockOfLink[static_cast<std::size_t>(l)] = static_cast<int>(keys.size());
-    keys.push_back({l, 0, 0});
+    keys.push_back({l, {-1, -1, -1, -1}});
   }
   m_sizeOf.assign(keys.size(), 0);
   m_rowsOf.resize(keys.size());
@@ -199,8 +201,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
     int& size = m_sizeOf[block];
     if (size == kMaxBlock) return;  // more rows than a joint has: not a joint step's system
     m_rowsOf[block][static_cast<std::size_t>(size++)] = static_cast<int>(r);
-    keys[block].bodyA = rows[r].bodyA;
-    keys[block].bodyB = rows[r].bodyB;
+    keys[block].bodies = {rows[r].bodyA, rows[r].bodyB, rows[r].bodyC, rows[r].bodyD};
   }
   if (keys != m_keys) {
     m_keys = std::move(keys);
@@ -258,10 +259,10 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
   };
 
   // K = Σ over bodies of J_body M_body⁻¹ J_bodyᵀ, block by block.
-  const auto side = [&](int row, bool sideB, Vec3& linear, Vec3& angular) {
-    const JointRow& j = rows[static_cast<std::size_t>(row)].jacobian;
-    linear = sideB ? j.linearB : j.linearA;
-    angular = sideB ? j.angularB : j.angularA;
+  const auto side = [&](int row, int which, Vec3& linear, Vec3& angular) {
+    const JointSolverRow& r = rows[static_cast<std::size_t>(row)];
+    linear = r.linear(which);
+    angular = r.angular(which);
   };
   std::size_t target = 0;
   for (std::size_t body = 0; body + 1 < m_touchStart.size(); ++body) {
@@ -275,7 +276,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
       Vec3 linearI[kMaxBlock], responseI[kMaxBlock];
       for (int r = 0; r < m_sizeOf[bi]; ++r) {
         Vec3 angular;
-        side(m_rowsOf[bi][static_cast<std::size_t>(r)], ti.sideB, linearI[r], angular);
+        side(m_rowsOf[bi][static_cast<std::size_t>(r)], ti.side, linearI[r], angular);
         responseI[r] = inverseI * angular;
       }
       for (int j = first; j <= i; ++j) {
@@ -285,7 +286,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
         double* out = m_values.data() + targetAt(m_assemblyTarget[target++], leading);
         for (int c = 0; c < m_sizeOf[bj]; ++c) {
           Vec3 linearJ, angularJ;
-          side(m_rowsOf[bj][static_cast<std::size_t>(c)], tj.sideB, linearJ, angularJ);
+          side(m_rowsOf[bj][static_cast<std::size_t>(c)], tj.side, linearJ, angularJ);
           for (int r = i == j ? c : 0; r < m_sizeOf[bi]; ++r)
             out[r + leading * c] += m * linearI[r].dot(linearJ) + angularJ.dot(responseI[r]);
         }

@@ -27,11 +27,27 @@
 namespace rbsim {
 
 // One scalar row of the joint step's system: the link (joint) it belongs to
-// and its sides.
+// and its sides. A joint's rows have two sides (A and B); a mimic
+// coupling's row (joint_solver.h) spans the bodies of two joints, up to
+// four, each at most once: its third and fourth sides are C and D, whose
+// parts are `second`'s A and B parts.
 struct JointSolverRow {
   int bodyA = -1, bodyB = -1;  // body indices, -1: a fixed side
   int link = 0;
   JointRow jacobian;
+  int bodyC = -1, bodyD = -1;  // a coupling's further sides, -1: none
+  JointRow second;
+
+  static constexpr int kMaxSides = 4;
+  // The sides this row may have: 2 for a joint's row, 4 for a coupling's.
+  int sideCount() const { return bodyC < 0 && bodyD < 0 ? 2 : 4; }
+  int body(int side) const { return side == 0 ? bodyA : side == 1 ? bodyB : side == 2 ? bodyC : bodyD; }
+  const Vec3& linear(int side) const {
+    return side == 0 ? jacobian.linearA : side == 1 ? jacobian.linearB : side == 2 ? second.linearA : second.linearB;
+  }
+  const Vec3& angular(int side) const {
+    return side == 0 ? jacobian.angularA : side == 1 ? jacobian.angularB : side == 2 ? second.angularA : second.angularB;
+  }
 };
 
 class RowSystem {
@@ -63,8 +79,9 @@ class RowSystem {
 
   // The block graph the analysis is of: per block, its link and bodies.
   struct BlockKey {
-    int link, bodyA, bodyB;
-    bool operator==(const BlockKey& o) const { return link == o.link && bodyA == o.bodyA && bodyB == o.bodyB; }
+    int link;
+    std::array<int, JointSolverRow::kMaxSides> bodies;
+    bool operator==(const BlockKey& o) const { return link == o.link && bodies == o.bodies; }
   };
   void analyse();
 
@@ -80,10 +97,11 @@ class RowSystem {
   // Column c's updates: for each pair (a, b), a > b, of its off-diagonal
   // blocks, the off-diagonal block L_a L_bᵀ goes to (by b, then a).
   std::vector<int> m_updateTarget;
-  // K's contributions: per body, the blocks touching it (block, side B?).
+  // K's contributions: per body, the blocks touching it (block, and which
+  // side of its rows the body is: 0 A, 1 B, 2 C, 3 D).
   struct Touch {
     int block;
-    bool sideB;
+    int side;
   };
   std::vector<int> m_touchStart;
   std::vector<Touch> m_touches;

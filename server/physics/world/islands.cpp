@@ -62,6 +62,20 @@ std::vector<int> findIslands(const WorldData& world, const std::vector<BodyConta
     if (!world.bodies[ia].isStatic() && !world.bodies[ib].isStatic())
       islands.unite(static_cast<int>(ia), static_cast<int>(ib));
   }
+  // A mimic coupling joins the follower's bodies to the leader's.
+  for (const JointConstraint& follower : world.joints) {
+    if (!follower.def.mimic.enabled || !invalidJointReason(world, follower.mimicLeader).empty()) continue;
+    const JointConstraint& leader = world.joints[static_cast<std::size_t>(
+        world.jointSlots[static_cast<std::size_t>(follower.mimicLeader.index - 1)].denseIndex)];
+    int first = -1;
+    for (const BodyId id : {follower.def.bodyA, follower.def.bodyB, leader.def.bodyA, leader.def.bodyB}) {
+      if (id.isNull()) continue;
+      const std::size_t i = denseIndexOf(world, id);
+      if (world.bodies[i].isStatic()) continue;
+      if (first < 0) first = static_cast<int>(i);
+      else islands.unite(first, static_cast<int>(i));
+    }
+  }
   for (std::size_t i = 0; i < n; ++i) islandOf[i] = islands.find(static_cast<int>(i));
   return islandOf;
 }

@@ -28,8 +28,38 @@ double appliedEffort(const JointDef& def) {
   return std::clamp(def.effort, -def.actuatorLimits.effort, def.actuatorLimits.effort);
 }
 
-// The enforced joints with a moving side as the joint solver takes them:
-// sides by `local` index (-1: a fixed pose), with the joint's index.
+// A joint's sides as the joint solver takes them: by `local` index, or a
+// fixed pose (-1: the world, a static body, a body outside the step);
+// whether one of them moves.
+bool placeSides(const WorldData& world, const JointConstraint& joint, const std::vector<int>& local, int& indexA,
+                int& indexB, JointSidePose& fixedA, JointSidePose& fixedB) {
+  bool anyMoving = false;
+  for (const bool sideB : {false, true}) {
+    const BodyId id = sideB ? joint.def.bodyB : joint.def.bodyA;
+    int& index = sideB ? indexB : indexA;
+    JointSidePose& fixed = sideB ? fixedB : fixedA;
+    index = -1;
+    if (id.isNull()) continue;
+    const std::size_t i = denseIndexOf(world, id);
+    index = local[i];
+    if (index < 0) fixed = jointSidePose(world.bodies[i]);  // static
+    anyMoving = anyMoving || index >= 0;
+  }
+  return anyMoving;
+}
+
+// A joint's coordinate at its bodies' poses now.
+double coordinateNow(const WorldData& world, const JointConstraint& joint) {
+  JointSidePose poses[2];
+  const BodyId ids[2] = {joint.def.bodyA, joint.def.bodyB};
+  for (int side = 0; side < 2; ++side)
+    if (!ids[side].isNull()) poses[side] = jointSidePose(world.bodies[denseIndexOf(world, ids[side])]);
+  return joint.coordinate(poses[0], poses[1]);
+}
+
+// The enforced joints with a moving side as the joint solver takes them,
+// with the joint's index; then the mimic couplings of followers whose
+// leader is enforced too (linkJoint: the follower's index).
 void collectJointLinks(const WorldData& world, const std::vector<int>& local, std::vector<JointLink>& links,
                        std::vector<std::size_t>& linkJoint) {
   for (std::size_t j = 0; j < world.joints.size(); ++j) {
@@ -37,18 +67,25 @@ void collectJointLinks(const WorldData& world, const std::vector<int>& local, st
     if (!jointIsEnforced(world, joint)) continue;
     JointLink link;
     link.joint = &joint;
-    bool anyMoving = false;
-    for (const bool sideB : {false, true}) {
-      const BodyId id = sideB ? joint.def.bodyB : joint.def.bodyA;
-      int& index = sideB ? link.bodyB : link.bodyA;
-      JointSidePose& fixed = sideB ? link.fixedB : link.fixedA;
-      if (id.isNull()) continue;
-      const std::size_t i = denseIndexOf(world, id);
-      index = local[i];
-      if (index < 0) fixed = jointSidePose(world.bodies[i]);  // static
-      anyMoving = anyMoving || index >= 0;
-    }
-    if (!anyMoving) continue;
+    if (!placeSides(world, joint, local, link.bodyA, link.bodyB, link.fixedA, link.fixedB)) continue;
+    links.push_back(link);
+    linkJoint.push_back(j);
+  }
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    const JointConstraint& follower = world.joints[j];
+    if (!follower.def.mimic.enabled || !jointIsEnforced(world, follower)) continue;
+    const int leaderIndex = enforcedLeaderOf(world, follower);
+    if (leaderIndex < 0) continue;
+    const JointConstraint& leader = world.joints[static_cast<std::size_t>(leaderIndex)];
+    JointLink link;
+    link.joint = &follower;
+    link.leader = &leader;
+    const bool followerMoves = placeSides(world, follower, local, link.bodyA, link.bodyB, link.fixedA, link.fixedB);
+    const bool leaderMoves = placeSides(world, leader, local, link.bodyC, link.bodyD, link.fixedC, link.fixedD);
+    if (!followerMoves && !leaderMoves) continue;
+    link.followerFrom = coordinateNow(world, follower);
+    link.leaderFrom = coordinateNow(world, leader);
+    link.errorFrom = follower.mimicError;
     links.push_back(link);
     linkJoint.push_back(j);
   }
@@ -126,7 +163,7 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
   // Joints of islands that touch nothing have no side here: leave them out.
   std::vector<JointLink> inContact;
   for (const JointLink& link : links)
-    if (link.bodyA >= 0 || link.bodyB >= 0) inContact.push_back(link);
+    if (link.bodyA >= 0 || link.bodyB >= 0 || link.bodyC >= 0 || link.bodyD >= 0) inContact.push_back(link);
   return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
 }
 
@@ -187,7 +224,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
     for (const JointLink& link : links) {
       const double effort = appliedEffort(link.joint->def);
-      if (effort == 0.0 || !link.joint->hasAxis()) continue;
+      if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
       const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
       if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
       JointRow row;
@@ -207,6 +244,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   };
   std::vector<double> axisImpulse(links.size(), 0.0);
   std::vector<int> atLimit(links.size(), 0);
+  std::vector<double> couplingError(links.size(), 0.0);
   const auto attempt = [&](int parts) {
     const double s = h / parts;
     std::fill(axisImpulse.begin(), axisImpulse.end(), 0.0);
@@ -268,6 +306,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
         reactionAngular[l] += results[l].angularImpulse;
         axisImpulse[l] += results[l].axisImpulse;
         atLimit[l] = results[l].atLimit;
+        couplingError[l] = results[l].couplingError;
       }
     }
     return converged;
@@ -285,10 +324,19 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
     JointConstraint& joint = world.joints[linkJoint[l]];
+    if (links[l].isCoupling()) continue;
     joint.lastForce = reactionLinear[l] / h;
     joint.lastTorque = reactionAngular[l] / h;
     joint.lastAxisEffort = axisImpulse[l] / h + appliedEffort(joint.def);
     joint.lastAtLimit = atLimit[l];
+  }
+  // A coupling's push along its follower's axis is the follower's effort
+  // (what drives it: the mimic's transmission); its error carries on.
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    if (!links[l].isCoupling()) continue;
+    JointConstraint& follower = world.joints[linkJoint[l]];
+    follower.lastAxisEffort += axisImpulse[l] / h;
+    follower.mimicError = couplingError[l];
   }
 }
 

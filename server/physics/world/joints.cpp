@@ -21,6 +21,12 @@ void wakeJointBodies(WorldData& world, const JointDef& def) {
   world.maybeAsleep = true;
 }
 
+// What a follower's commands are refused with.
+std::string followerRefusal(const JointConstraint& joint) {
+  return "joint '" + joint.def.name + "' follows joint '" + joint.def.mimic.leader +
+         "' (mimic): command its leader, which moves both";
+}
+
 }  // namespace
 
 JointSidePose jointSidePose(const Body& body) {
@@ -48,6 +54,14 @@ Expected<JointId> createJoint(WorldData& world, const JointDef& def) {
   if (!moves[0] && !moves[1]) return Error{where + ": neither side moves (both are the world or static)"};
   Expected<JointConstraint> made = makeJointConstraint(def, poses[0], poses[1]);
   if (!made.ok()) return made.error();
+  if (def.mimic.enabled) {
+    if (auto leader = resolveMimicLeader(world, made.value()); !leader) return Error{where + ": " + leader.error().message};
+    // The coupling's error as created: the follower reads def.position.
+    const JointConstraint& leader = world.joints[static_cast<std::size_t>(
+        world.jointSlots[static_cast<std::size_t>(made.value().mimicLeader.index - 1)].denseIndex)];
+    const double leaderPosition = jointStateAt(world, static_cast<int>(&leader - world.joints.data())).position;
+    made.value().mimicError = def.position - def.mimic.multiplier * leaderPosition - def.mimic.offset;
+  }
 
   int32_t slot;
   if (!world.freeJointSlots.empty()) {
@@ -74,6 +88,12 @@ Expected<bool> removeJoint(WorldData& world, JointId id) {
   const auto dense = static_cast<std::size_t>(slot.denseIndex);
   for (const BodyId body : {world.joints[dense].def.bodyA, world.joints[dense].def.bodyB})
     if (!body.isNull() && invalidIdReason(world, body).empty()) bodyRef(world, body).wake();
+  // Its followers are free from now on.
+  for (JointConstraint& other : world.joints)
+    if (other.def.mimic.enabled && other.mimicLeader == id) {
+      other.def.mimic.enabled = false;
+      other.mimicLeader = JointId{};
+    }
   world.joints.erase(world.joints.begin() + static_cast<std::ptrdiff_t>(dense));
   world.jointIds.erase(world.jointIds.begin() + static_cast<std::ptrdiff_t>(dense));
   for (std::size_t i = dense; i < world.jointIds.size(); ++i)
@@ -88,6 +108,7 @@ Expected<bool> setJointMotor(WorldData& world, JointId id, const JointMotor& mot
   if (const std::string why = invalidJointReason(world, id); !why.empty()) return Error{"cannot set the motor: " + why};
   JointConstraint& joint = world.joints[static_cast<std::size_t>(world.jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
   if (motor.enabled && !joint.hasAxis()) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take a motor"};
+  if (motor.enabled && joint.def.mimic.enabled) return Error{followerRefusal(joint)};
   if (motor.enabled && (!std::isfinite(motor.targetRate) || !std::isfinite(motor.maxEffort) || motor.maxEffort < 0.0))
     return Error{"joint '" + joint.def.name + "': the motor needs a finite target rate and a finite, non-negative max effort"};
   joint.def.motor = motor;
@@ -101,6 +122,7 @@ Expected<bool> setJointDrive(WorldData& world, JointId id, const JointDrive& dri
   JointConstraint& joint = world.joints[static_cast<std::size_t>(world.jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
   // A distance joint made with a spring takes a new rest length (the
   // drive's target) and gains; its drive is what it is, so it stays on.
+  if (drive.enabled && joint.def.mimic.enabled) return Error{followerRefusal(joint)};
   const bool spring = joint.hasSpring();
   if (spring && !drive.enabled)
     return Error{"joint '" + joint.def.name + "': a spring cannot be turned off (its drive is the spring)"};
@@ -125,6 +147,7 @@ Expected<bool> setJointEffort(WorldData& world, JointId id, double effort) {
   JointConstraint& joint = world.joints[static_cast<std::size_t>(world.jointSlots[static_cast<std::size_t>(id.index - 1)].denseIndex)];
   if (!joint.hasAxis() && effort != 0.0) return Error{"joint '" + joint.def.name + "': only revolute and prismatic joints take an effort"};
   if (!std::isfinite(effort)) return Error{"joint '" + joint.def.name + "': the effort is not finite"};
+  if (effort != 0.0 && joint.def.mimic.enabled) return Error{followerRefusal(joint)};
   joint.def.effort = effort;
   wakeJointBodies(world, joint.def);
   return true;
@@ -143,6 +166,26 @@ std::vector<std::string> removeJointsOf(WorldData& world, BodyId body) {
     (void)removeJoint(world, world.jointIds[i]);
   }
   return removed;
+}
+
+Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follower) {
+  const JointMimic& mimic = follower.def.mimic;
+  const JointId leader = findJointByName(world, mimic.leader);
+  if (leader.isNull())
+    return Error{"mimic: no joint '" + mimic.leader + "' to follow (a leader is created before its followers)"};
+  const JointConstraint& joint =
+      world.joints[static_cast<std::size_t>(world.jointSlots[static_cast<std::size_t>(leader.index - 1)].denseIndex)];
+  if (!joint.hasAxis())
+    return Error{"mimic: joint '" + mimic.leader + "' is " + jointTypeName(joint.def.type) +
+                 ": only a revolute or prismatic joint leads"};
+  follower.mimicLeader = leader;
+  return true;
+}
+
+int enforcedLeaderOf(const WorldData& world, const JointConstraint& follower) {
+  if (!follower.def.mimic.enabled || !invalidJointReason(world, follower.mimicLeader).empty()) return -1;
+  const int dense = world.jointSlots[static_cast<std::size_t>(follower.mimicLeader.index - 1)].denseIndex;
+  return jointIsEnforced(world, world.joints[static_cast<std::size_t>(dense)]) ? dense : -1;
 }
 
 JointId findJointByName(const WorldData& world, std::string_view name) {

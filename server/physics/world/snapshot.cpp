@@ -304,6 +304,11 @@ void writeJoint(const JointConstraint& joint, ByteWriter& out) {
   out.vec3(joint.lastTorque);
   out.f64(joint.lastAxisEffort);
   out.i32(joint.lastAtLimit);
+  out.boolean(def.mimic.enabled);
+  out.string(def.mimic.leader);
+  out.f64(def.mimic.multiplier);
+  out.f64(def.mimic.offset);
+  out.f64(joint.mimicError);
 }
 
 // Reads what writeJoint wrote; the bodies' ids get `worldTag`. Checks only
@@ -357,6 +362,11 @@ JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
   joint.lastTorque = in.vec3("joint last torque");
   joint.lastAxisEffort = in.f64("joint last effort");
   joint.lastAtLimit = in.i32("joint last limit side");
+  def.mimic.enabled = in.boolean("joint mimic flag");
+  def.mimic.leader = in.string("joint mimic leader", kMaxNameLength);
+  def.mimic.multiplier = in.f64("joint mimic multiplier");
+  def.mimic.offset = in.f64("joint mimic offset");
+  joint.mimicError = in.f64("joint mimic error");
   return joint;
 }
 
@@ -483,8 +493,13 @@ Expected<bool> readJointsSnapshot(WorldData& world, ByteReader& in) {
         !unit(joint.normalA1) || !unit(joint.normalA2) || !joint.restRelative.isFinite() ||
         std::abs(joint.restRelative.norm() - 1.0) > 1e-9 || !std::isfinite(joint.length) || joint.length < 0.0 ||
         !joint.lastForce.allFinite() || !joint.lastTorque.allFinite() || !std::isfinite(joint.lastAxisEffort) ||
-        joint.lastAtLimit < -1 || joint.lastAtLimit > 1)
+        joint.lastAtLimit < -1 || joint.lastAtLimit > 1 || !std::isfinite(joint.mimicError))
       return Error{"world snapshot: " + where + " has non-finite or non-unit frame data"};
+    // A follower's leader: saved before it (a leader is made first).
+    if (joint.def.mimic.enabled) {
+      if (auto leader = resolveMimicLeader(world, joint); !leader)
+        return Error{"world snapshot: " + where + ": " + leader.error().message};
+    }
     world.jointIds.push_back(JointId{slotIndex, world.jointSlots[static_cast<std::size_t>(slotIndex - 1)].generation, world.tag});
     world.joints.push_back(std::move(joint));
   }

@@ -97,6 +97,12 @@ JointSidePose jointSidePose(const Body& body);
 bool jointIsEnforced(const WorldData& world, const JointConstraint& joint);
 JointId findJointByName(const WorldData& world, std::string_view name);  // null id when absent
 JointState jointStateAt(const WorldData& world, int denseIndex);
+// A follower's leader (def.mimic.leader, by name) into follower.mimicLeader:
+// an existing revolute or prismatic joint.
+Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follower);
+// The dense index of a follower's leader, -1 when it has none or the
+// leader is not enforced (a frozen body): the coupling is then not held.
+int enforcedLeaderOf(const WorldData& world, const JointConstraint& follower);
 // Removes the joints of a body (about to be removed or frozen); returns
 // their names, in creation order.
 std::vector<std::string> removeJointsOf(WorldData& world, BodyId body);

@@ -148,7 +148,7 @@ TEST(JointPositions, ADrivesTargetIsInTheJointsOwnTerms) {
   }
 }
 
-TEST(JointPositions, OnlyAnAxisTakesAPositionAndItMustBeWithinTheLimits) {
+TEST(JointPositions, OnlyAnAxisTakesAFinitePosition) {
   World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, 1e-3));
   const BodyId box = addBody(world, "box", BoxShape{Vec3(0.1, 0.1, 0.1)}, 1.0, Vec3(0, 0, 1));
   for (const JointType type : {JointType::Fixed, JointType::Spherical, JointType::Distance}) {
@@ -166,13 +166,6 @@ TEST(JointPositions, OnlyAnAxisTakesAPositionAndItMustBeWithinTheLimits) {
   }
   JointDef def = hinge("elbow", BodyId{}, box, Vec3(0, 0, 1), Vec3::UnitY());
   def.limit = {true, -0.5, 0.5};
-  def.position = 0.6;
-  EXPECT_NE(creationError(world, def).find("joint 'elbow': the position 0.600000 is outside the limits [-0.500000, "
-                                           "0.500000]: a joint cannot start beyond its stops"),
-            std::string::npos)
-      << creationError(world, def);
-  def.position = -0.5000001;
-  EXPECT_NE(creationError(world, def).find("outside the limits"), std::string::npos);
   def.position = NAN;
   EXPECT_NE(creationError(world, def).find("the position is not finite"), std::string::npos);
   def.limit.enabled = false;

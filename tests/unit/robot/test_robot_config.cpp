@@ -266,9 +266,12 @@ TEST(RobotConfig, MistakesPointAtTheWorldFilesLineAndKey) {
   EXPECT_NE(errorOf("robots:\n  - {name: p, urdf: missing.urdf}\n").find("w.yaml:2:21: robots[0].urdf: missing.urdf: cannot read"),
             std::string::npos)
       << errorOf("robots:\n  - {name: p, urdf: missing.urdf}\n");
-  EXPECT_NE(errorOf("robots:\n  - {name: g, urdf: gripper_mimic.urdf}\n")
-                .find("robots[0].urdf: gripper_mimic.urdf:22: joint 'right_slide': mimics"),
-            std::string::npos);
+  const std::string follower =
+      errorOf("robots:\n  - name: g\n    urdf: gripper_mimic.urdf\n    joint_drives: {right_slide: {stiffness: 10}}\n");
+  EXPECT_NE(follower.find("w.yaml:4:20: robots[0].joint_drives.right_slide: joint \"right_slide\" follows joint "
+                          "'g/left_slide' (mimic) and takes no drive of its own"),
+            std::string::npos)
+      << follower;
   const std::string outside = errorOf("robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n"
                                       "    joint_positions: {elbow: 9}\n");
   EXPECT_NE(outside.find("w.yaml:4:22: robots[0].joint_positions: joint 'elbow' at 9 is outside its limits"),

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
 #include "support/test_data_dir.h"
 
@@ -395,14 +396,90 @@ TEST(UrdfRobot, WhatIsNotUsedIsReportedByElementAndLine) {
       << text;
 }
 
-TEST(UrdfRobot, AMimicJointIsRefusedNotDropped) {
+TEST(UrdfRobot, AMimicJointFollowsItsLeaderInTheWorld) {
+  // The right finger mimics the left (multiplier 1): its joint follows
+  // 'g/left_slide', is made after it, starts where the coupling puts it,
+  // and in a world a drive on the leader moves both fingers together.
   RobotPlacement placement;
   placement.name = "g";
-  Expected<RobotModel> robot = loadRobot(kUrdfDir + "/gripper_mimic.urdf", placement, filesFor("gripper_mimic.urdf"));
-  ASSERT_FALSE(robot.ok());
-  EXPECT_NE(robot.error().message.find("gripper_mimic.urdf:22: joint 'right_slide': mimics joint 'left_slide'"),
-            std::string::npos)
-      << robot.error().message;
+  placement.fixedBase = true;
+  placement.jointPositions = {{"left_slide", 0.01}};
+  const RobotModel robot = load("gripper_mimic.urdf", placement);
+  const NamedJointDef* right = jointNamed(robot, "g/right_slide");
+  ASSERT_NE(right, nullptr);
+  EXPECT_TRUE(right->def.mimic.enabled);
+  EXPECT_EQ(right->def.mimic.leader, "g/left_slide");
+  EXPECT_EQ(right->def.mimic.multiplier, 1.0);
+  EXPECT_EQ(right->def.mimic.offset, 0.0);
+  EXPECT_EQ(right->def.position, 0.01) << "placed by its leader's position";
+  EXPECT_LT(jointNamed(robot, "g/left_slide") - robot.joints.data(), right - robot.joints.data()) << "leader first";
+  EXPECT_TRUE(reportHas(robot, "follows 'g/left_slide' (× 1 + 0)")) << reportText(robot);
+  const BodyDef* finger = bodyNamed(robot, "g/finger_right");
+  ASSERT_NE(finger, nullptr);
+  EXPECT_NEAR(finger->position.x(), 0.03 - 0.01, 1e-15) << "moved 0.01 m along its axis, -x";
+
+  WorldDef world;
+  world.settings.gravity = Vec3(0, 0, -9.81);
+  world.bodies = robot.bodies;
+  world.joints = robot.joints;
+  Expected<World> made = World::fromDef(world);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const JointId left = made->findJoint("g/left_slide"), rightJoint = made->findJoint("g/right_slide");
+  JointDrive drive;
+  drive.enabled = true;
+  drive.target = -0.015;
+  drive.stiffness = 100.0;
+  drive.damping = 2.0;
+  ASSERT_TRUE(made->setJointDrive(left, drive).ok());
+  const Expected<bool> refused = made->setJointDrive(rightJoint, drive);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("follows joint 'g/left_slide' (mimic)"), std::string::npos);
+  double worst = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    made->step();
+    worst = std::max(worst, std::abs(made->jointState(rightJoint).position - made->jointState(left).position));
+  }
+  EXPECT_LT(worst, 1e-9) << "m";
+  EXPECT_NEAR(made->jointState(left).position, -0.015, 1e-3);
+}
+
+TEST(UrdfRobot, AMimicMustFollowAMovingJointThatExists) {
+  const std::string links = boxLink("base") + boxLink("a") + boxLink("b");
+  const auto joints = [](const std::string& mimic, const std::string& typeA = "revolute") {
+    return "<joint name=\"ja\" type=\"" + typeA +
+           "\"><parent link=\"base\"/><child link=\"a\"/><axis xyz=\"0 0 1\"/>"
+           "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n"
+           "<joint name=\"jb\" type=\"revolute\"><parent link=\"base\"/><child link=\"b\"/><axis xyz=\"0 0 1\"/>"
+           "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>" +
+           mimic + "</joint>\n";
+  };
+  EXPECT_NE(errorOf(robotXml(links + joints("<mimic joint=\"nobody\"/>"))).find("joint 'jb': <mimic joint='nobody'>: the robot has no such joint"),
+            std::string::npos);
+  EXPECT_NE(errorOf(robotXml(links + joints("<mimic joint=\"ja\"/>", "fixed")))
+                .find("<mimic>: a revolute, continuous or prismatic joint follows another such joint ('ja' is fixed"),
+            std::string::npos);
+  RobotPlacement placement;
+  placement.jointPositions = {{"jb", 0.2}};
+  EXPECT_NE(errorOf(robotXml(links + joints("<mimic joint=\"ja\" multiplier=\"2\"/>")), placement)
+                .find("joint_positions: joint 'jb' follows joint 'ja' (<mimic>): give its leader's position"),
+            std::string::npos);
+}
+
+TEST(UrdfRobot, AZeroPoseBeyondALimitIsKeptAndReported) {
+  // As Unitree A1's calves: limits [-2.696534, -0.916298], zero pose at 0.
+  const std::string xml = robotXml(boxLink("thigh") + boxLink("calf") +
+                                   "<joint name=\"calf_joint\" type=\"revolute\"><parent link=\"thigh\"/>"
+                                   "<child link=\"calf\"/><axis xyz=\"0 1 0\"/>"
+                                   "<limit lower=\"-2.696534\" upper=\"-0.916298\" effort=\"33.5\" velocity=\"21\"/>"
+                                   "</joint>\n");
+  RobotPlacement placement;
+  placement.name = "a1";
+  Expected<RobotModel> robot = buildRobot(xml, placement, filesFor("a1.urdf"));
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  EXPECT_EQ(jointNamed(*robot, "a1/calf_joint")->def.position, 0.0);
+  EXPECT_TRUE(reportHas(*robot, "joint 'a1/calf_joint' starts at 0, 0.916298 rad above its upper limit -0.916298: "
+                                "the limit brings it back over its first steps"))
+      << reportText(*robot);
 }
 
 TEST(UrdfRobot, BrokenDescriptionsAreRefusedWithTheFileAndLine) {

@@ -85,6 +85,21 @@ struct JointActuatorLimits {
   double rate = std::numeric_limits<double>::infinity();    // rad/s or m/s, > 0
 };
 
+// Revolute and prismatic joints: a joint that follows another's coordinate
+// (URDF's <mimic>, a gear pair, a gripper's second finger):
+//   position = multiplier · leader's position + offset,
+// held exactly as one more constraint row of the joint solver, between the
+// bodies of both joints. The leader is any revolute or prismatic joint
+// created before the follower; commanding the leader moves both, and the
+// follower takes no motor, drive or effort of its own (its damping and
+// friction still act). Removing the leader frees the follower.
+struct JointMimic {
+  bool enabled = false;
+  std::string leader;       // the leading joint's name
+  double multiplier = 1.0;  // (rad or m) per (rad or m); a gear's ratio with its sign
+  double offset = 0.0;      // rad or m
+};
+
 struct JointDef {
   std::string name;  // unique among the world's joints
   JointType type = JointType::Revolute;
@@ -103,8 +118,11 @@ struct JointDef {
   // position) in the configuration the joint is created in. A robot
   // description (URDF) measures its joints from its own zero pose and places
   // the bodies at their positions: created so, the joint reads `position`
-  // there, and its limits and drive target count from the same zero. It
-  // must lie within the limits (a joint cannot start beyond its stops).
+  // there, and its limits and drive target count from the same zero. A
+  // position beyond the limits is where the bodies are: the limit then
+  // pushes the joint back to its bound over a few steps by moving the
+  // positions only (no velocity, so no energy, comes of it), as descriptions
+  // whose zero pose lies outside a limit expect (PyBullet, MuJoCo).
   double position = 0.0;  // rad or m
   // Revolute, prismatic and distance joints (a distance joint with a limit
   // has no `length`: it is free between the bounds, or its spring pulls).
@@ -125,6 +143,7 @@ struct JointDef {
   // torque-controlled actuator commands it: N·m or N, until changed.
   double effort = 0.0;
   JointActuatorLimits actuatorLimits;
+  JointMimic mimic;
 };
 
 // A joint as a world file gives it: its bodies by name. World::fromDef

@@ -227,8 +227,9 @@ class World {
   // whether a body collides at all (BodyDef::collides); 7: a joint's
   // actuator limits (JointDef::actuatorLimits); 8: a body's collision
   // group and mask (BodyDef::collisionFilter) and the excluded pairs
-  // (setPairCollision).
-  static constexpr uint32_t kSnapshotVersion = 8;
+  // (setPairCollision); 9: a joint's mimic (JointDef::mimic) and its
+  // coupling's error.
+  static constexpr uint32_t kSnapshotVersion = 9;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
