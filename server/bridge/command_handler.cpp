@@ -260,6 +260,9 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
                       std::to_string(spawn->joints.size()) + " more would exceed limits.max_joints (" +
                       std::to_string(m_settings.maxJoints) + ")");
       if (auto refusal = addSpawn(world, *spawn)) return reject(std::move(*refusal));
+      std::vector<std::string> names;
+      for (const BodyDef& def : spawn->bodies) names.push_back(def.name);
+      m_session.addSpawnedVisuals(names, spawn->visuals);
       m_session.noteWorldChanged();
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.publishWorld = true;

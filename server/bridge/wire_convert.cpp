@@ -120,6 +120,7 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   out.num_vertices = 0;
   out.num_triangles = 0;
   out.num_parts = 0;
+  out.num_visuals = 0;
   if (const auto* plane = std::get_if<PlaneShape>(&d.shape)) {
     copyTo(out.plane_normal, plane->normal);
     out.plane_offset = plane->offset;
@@ -131,6 +132,26 @@ rbsim::body_description_t bodyDescription(BodyView body) {
   } else if (auto solid = toPartShape(d.shape)) {
     copyDimensions(out, *solid);
   }
+  return out;
+}
+
+rbsim::visual_t visualMessage(const Visual& visual) {
+  rbsim::visual_t out;
+  switch (visual.kind) {
+    case Visual::Kind::Box: out.kind = "box"; break;
+    case Visual::Kind::Sphere: out.kind = "sphere"; break;
+    case Visual::Kind::Cylinder: out.kind = "cylinder"; break;
+    case Visual::Kind::Mesh: out.kind = "mesh"; break;
+  }
+  copyTo(out.position, visual.position);
+  copyTo(out.orientation, visual.orientation.normalized());
+  copyTo(out.half_extents, visual.halfExtents);
+  out.radius = visual.radius;
+  out.half_length = visual.halfLength;
+  out.mesh_url = visual.meshUrl;
+  copyTo(out.scale, visual.kind == Visual::Kind::Mesh ? visual.scale : Vec3::Zero());
+  out.has_color = visual.hasColor;
+  for (std::size_t k = 0; k < 4; ++k) out.rgba[k] = visual.hasColor ? visual.rgba[k] : 0.0;
   return out;
 }
 
@@ -276,7 +297,7 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
 }
 
 std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
-                                                  int64_t revision) {
+                                                  int64_t revision, const BodyVisuals* visuals) {
   rbsim::world_t header;
   header.utime = utime;
   header.step = world.stepCount();
@@ -292,7 +313,14 @@ std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t ut
   header.num_joints = 0;
   std::vector<rbsim::body_description_t> bodies;
   bodies.reserve(world.bodies().size());
-  for (const BodyView body : world.bodies()) bodies.push_back(bodyDescription(body));
+  for (const BodyView body : world.bodies()) {
+    bodies.push_back(bodyDescription(body));
+    if (visuals == nullptr) continue;
+    const auto looks = visuals->find(body.name());
+    if (looks == visuals->end()) continue;
+    for (const Visual& visual : looks->second) bodies.back().visuals.push_back(visualMessage(visual));
+    bodies.back().num_visuals = static_cast<int32_t>(bodies.back().visuals.size());
+  }
   std::vector<rbsim::world_t> pages = paginate<BodyFields>(header, std::move(bodies));
 
   // The joints after the bodies: into the last page while it has room, then

@@ -18,6 +18,7 @@
 #include "config/server_settings.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world.h"
+#include "robot/visual.h"
 #include "session/joint_command_scheduler.h"
 #include "session/wrench_scheduler.h"
 
@@ -36,9 +37,10 @@ std::vector<rbsim::world_state_t> worldStatePages(const World& world, int64_t ut
                                                   int64_t revision);
 
 // The world's description, paged the same way (meshes make bodies large),
-// with the joints after the bodies (world_t).
+// with the joints after the bodies (world_t); each body with the visuals of
+// its name in `visuals` (null: none).
 std::vector<rbsim::world_t> worldDescriptionPages(const World& world, int64_t utime,
-                                                  int64_t revision);
+                                                  int64_t revision, const BodyVisuals* visuals = nullptr);
 
 // The last step's contact points (positions, normals A→B, depths, solved
 // impulses, classification by relative normal velocity), paged like the

@@ -84,7 +84,9 @@ class ConfigParser {
       : m_reader(std::move(sourceName)), m_baseDirectory(baseDirectory), m_meshPaths(meshPaths) {}
 
   // `robotReport` (null: not wanted) gets the robots' load reports.
-  Expected<WorldDef> parseWorld(const YamlNode& root, std::vector<std::string>* robotReport = nullptr) const;
+  // `visuals` (null: not wanted) gets how the robots' bodies look.
+  Expected<WorldDef> parseWorld(const YamlNode& root, std::vector<std::string>* robotReport = nullptr,
+                                BodyVisuals* visuals = nullptr) const;
   // The world, then the server's sections, of one document.
   Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
@@ -117,7 +119,8 @@ class ConfigParser {
   MeshPaths m_meshPaths;
 };
 
-Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<std::string>* robotReport) const {
+Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<std::string>* robotReport,
+                                            BodyVisuals* visuals) const {
   Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   if (auto error = m_reader.checkKeys(*top, kTopLevelKeys, "the top level")) return *error;
@@ -147,9 +150,11 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<st
   if (robots != nullptr) {
     std::vector<std::string> report;
     const BodyNameTaken taken = [&](const std::string& name) { return indexByName.count(name) > 0; };
+    BodyVisuals looks;
     if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, RobotFilePaths::Anywhere, taken, world,
-                                 report))
+                                 report, kWorldMeshRoute, looks))
       return *error;
+    if (visuals != nullptr) visuals->merge(looks);
     for (std::size_t i = 0; i < world.bodies.size(); ++i) indexByName.emplace(world.bodies[i].name, i);
     if (robotReport != nullptr) robotReport->insert(robotReport->end(), report.begin(), report.end());
   }
@@ -215,7 +220,9 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
     };
     WorldDef made;
     std::vector<std::string> report;
-    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, paths, taken, made, report)) return *error;
+    if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, paths, taken, made, report,
+                                 kSpawnMeshRoute, spawn.visuals))
+      return *error;
     for (BodyDef& body : made.bodies) {
       indexByName.emplace(body.name, spawn.bodies.size());
       spawn.bodies.push_back(std::move(body));
@@ -237,9 +244,10 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
 
 Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
   std::vector<std::string> robotReport;
-  Expected<WorldDef> world = parseWorld(root, &robotReport);
+  BodyVisuals visuals;
+  Expected<WorldDef> world = parseWorld(root, &robotReport, &visuals);
   if (!world) return world.error();
-  Config config{std::move(*world), ServerSettings{}, std::move(robotReport)};
+  Config config{std::move(*world), ServerSettings{}, std::move(robotReport), std::move(visuals)};
   // parseWorld has checked that the root is a mapping.
   const Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();

@@ -15,6 +15,7 @@
 #include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world_settings.h"
+#include "robot/visual.h"
 
 namespace rbsim {
 
@@ -28,6 +29,9 @@ struct Config {
   // used, one line each (robot/urdf_robot.h), for rbserver --describe and
   // its start-up log.
   std::vector<std::string> robotReport;
+  // How the robots' bodies look (robot/visual.h), by body name: drawing
+  // only, published in world_t beside the bodies.
+  BodyVisuals visuals;
 };
 
 // Reads and parses the file at `path`, the world and the server's sections
@@ -67,6 +71,7 @@ struct SpawnDef {
   std::vector<NamedJointDef> joints;  // its robots' joints, then the spawn's own
   std::vector<ExcludedPair> excludedPairs;  // pairs of its robots' bodies that never collide
   std::vector<std::string> robotReport;  // what the robots were made into (robot/urdf_robot.h)
+  BodyVisuals visuals;  // how its robots' bodies look, by body name (robot/visual.h)
 };
 
 // Parses a spawn: either one body (a mapping in the schema of a `bodies:`

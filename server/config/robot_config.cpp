@@ -82,7 +82,8 @@ std::optional<Error> applyJointDrives(const YamlReader& reader, const YamlNode& 
 
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
-                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report) {
+                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
+                                 const std::string& meshRoute, BodyVisuals& visuals) {
   const bool confined = paths == RobotFilePaths::InsideBaseDirectory;
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();
@@ -144,6 +145,8 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     }
     RobotFiles files;
     files.sourceName = *urdf;
+    files.meshRoute = meshRoute;
+    files.meshRouteDirectory = baseDirectory.string();
     std::string urdfPath = resolved(baseDirectory, *urdf).string();
     if (confined) {
       Expected<std::string> inside = resolveContainedFile(*urdf, baseDirectory.string());
@@ -192,6 +195,7 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                            "\", which the world already has");
     for (BodyDef& body : robot->bodies) world.bodies.push_back(std::move(body));
     for (NamedJointDef& joint : robot->joints) world.joints.push_back(std::move(joint));
+    for (auto& [body, looks] : robot->visuals) visuals[body] = std::move(looks);
     report.insert(report.end(), robot->report.begin(), robot->report.end());
   }
   return std::nullopt;

@@ -29,6 +29,7 @@
 
 #include "config/yaml_reader.h"
 #include "rbsim/physics/world_settings.h"
+#include "robot/visual.h"
 
 namespace rbsim {
 
@@ -41,10 +42,13 @@ using BodyNameTaken = std::function<bool(const std::string& name)>;
 enum class RobotFilePaths { Anywhere, InsideBaseDirectory };
 
 // Reads the list `node`, appends each robot's bodies, joints and pairs of
-// bodies excluded from collision to `world` and its load report (robot/urdf_robot.h) to `report`. Relative paths are
-// relative to `baseDirectory`.
+// bodies excluded from collision to `world`, their visuals to `visuals` and
+// its load report (robot/urdf_robot.h) to `report`. Relative paths are
+// relative to `baseDirectory`, which the viewer's bridge serves visual meshes
+// from under `meshRoute` (robot/visual.h).
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
-                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report);
+                                 const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
+                                 const std::string& meshRoute, BodyVisuals& visuals);
 
 }  // namespace rbsim

@@ -15,13 +15,15 @@
 namespace rbsim {
 
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed) {
+              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed,
+              BodyVisuals visuals) {
   // The log says which messages were accepted: admission rules that depend
   // on the moment (read-only mode, rate limits) must not second-guess it.
   ServerSettings replaySettings = settings;
   replaySettings.readOnly = false;
   replaySettings.clientRate = 0.0;
   Session session(std::move(initialWorld), settings.startPaused);
+  session.setVisuals(std::move(visuals));
   if (resumed)
     session.resumeFrom(std::move(resumed->world), std::move(resumed->wrenches), resumed->worldRevision,
                        resumed->paused, resumed->stepsRequested, std::move(resumed->jointCommands));

@@ -11,11 +11,13 @@
 #include "daemon/options.h"
 #include "persist/session_checkpoint.h"
 #include "rbsim/physics/world.h"
+#include "robot/visual.h"
 
 namespace rbsim {
 
 // `resumed`: the checkpoint the recorded server started from (--resume).
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
-              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed);
+              const std::string& spawnMeshDirectory, std::optional<SessionState> resumed,
+              BodyVisuals visuals = {});
 
 }  // namespace rbsim

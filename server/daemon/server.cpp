@@ -37,12 +37,13 @@ Nanoseconds periodOf(double hertz) {
 
 }  // namespace
 
-Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory)
+Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals)
     : m_settings(std::move(settings)),
       m_session(std::move(initialWorld), m_settings.startPaused),
       m_commands(m_session, m_settings, std::move(spawnMeshDirectory)),
       m_clock(m_session.world().settings().dt, m_settings.realTimeFactor, m_settings.catchUp,
               m_settings.maxBurst) {
+  m_session.setVisuals(std::move(visuals));
   const double dt = world().settings().dt;
   m_stateEverySteps =
       m_settings.stateRate <= 0.0
@@ -325,7 +326,8 @@ void Server::publishContacts() {
 }
 
 void Server::publishWorld() {
-  for (const auto& page : worldDescriptionPages(world(), wallMicroseconds(), m_session.worldRevision()))
+  for (const auto& page :
+       worldDescriptionPages(world(), wallMicroseconds(), m_session.worldRevision(), &m_session.visuals()))
     publish(channel("WORLD"), page);
 }
 

@@ -29,8 +29,9 @@ namespace rbsim {
 class Server {
  public:
   // `initialWorld` is what RESET returns to; mesh files of spawned bodies
-  // must lie under `spawnMeshDirectory`.
-  Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory);
+  // must lie under `spawnMeshDirectory`; `visuals` is how the world
+  // file's robots look (published in world_t, session/session.h).
+  Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals = {});
 
   // Connects to LCM, subscribes, opens the record file. A bad URL or an
   // unwritable record file is an error, before any stepping.

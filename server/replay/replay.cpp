@@ -322,7 +322,8 @@ Expected<bool> Replay::onJoints(const LogEvent& event) {
 
 void Replay::emitWorld(int64_t timestamp) {
   if (!m_output) return;
-  for (const auto& page : worldDescriptionPages(m_session.world(), timestamp, m_session.worldRevision()))
+  for (const auto& page :
+       worldDescriptionPages(m_session.world(), timestamp, m_session.worldRevision(), &m_session.visuals()))
     m_output(m_prefix + "WORLD", encode(page), timestamp);
 }
 

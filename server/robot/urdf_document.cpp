@@ -21,7 +21,7 @@ struct KnownChild {
 constexpr std::array<KnownChild, 3> kLinkChildren = {{
     {"inertial", nullptr},
     {"collision", nullptr},
-    {"visual", "drawing only: rbsim's bodies are drawn from their collision shapes"},
+    {"visual", nullptr},
 }};
 constexpr std::array<KnownChild, 9> kJointChildren = {{
     {"parent", nullptr},
@@ -37,7 +37,7 @@ constexpr std::array<KnownChild, 9> kJointChildren = {{
 constexpr std::array<KnownChild, 6> kRobotChildren = {{
     {"link", nullptr},
     {"joint", nullptr},
-    {"material", "colour only: rbsim draws no materials"},
+    {"material", nullptr},
     {"transmission", "maps actuators for ros_control: rbsim commands joints directly (joint_command_t)"},
     {"gazebo", "Gazebo's own settings"},
     {"sensor", "rbsim simulates no sensors"},

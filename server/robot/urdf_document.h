@@ -3,7 +3,7 @@
 // link and joint is written (urdfdom keeps no line numbers), the order the
 // links are written in, and every element rbsim does not use, so that a
 // load report can name each one by line instead of dropping it in silence
-// (visuals, materials, transmissions, gazebo and sensor tags, a joint's
+// (transmissions, gazebo and sensor tags, a joint's
 // safety controller and calibration, anything unknown).
 //
 // Read with tinyxml2, which records each element's line; the model itself is

@@ -156,6 +156,8 @@ class RobotBuilder {
   // Where a joint starts: its joint_positions entry, a follower's
   // multiplier · leader's + offset, or 0.
   double initialPosition(const urdf::Joint& joint) const;
+  std::optional<Visual> makeVisual(const urdf::Visual& visual, const std::string& link, const Pose& inBody);
+  std::string meshUrl(const std::string& path) const;
 
   const RobotPlacement& m_placement;
   const RobotFiles& m_files;
@@ -448,6 +450,11 @@ Expected<BodyDef> RobotBuilder::makeBody(const std::string& top) {
       const Pose placed = compose(inBody, poseOf(collision->origin));
       parts.push_back(CompoundPart{std::move(*shape), placed.position, placed.orientation, std::nullopt});
     }
+    for (const urdf::VisualSharedPtr& visual : link.visual_array) {
+      if (!visual || !visual->geometry) continue;
+      if (std::optional<Visual> made = makeVisual(*visual, name, inBody))
+        m_out.visuals[body.name].push_back(std::move(*made));
+    }
     if (!body.isStatic && hasMass(link)) {
       const urdf::Inertial& inertial = *link.inertial;
       Mat3 tensor;
@@ -503,6 +510,115 @@ double RobotBuilder::initialPosition(const urdf::Joint& joint) const {
     return joint.mimic->multiplier * initialPosition(leader) + joint.mimic->offset;
   }
   return 0.0;
+}
+
+// Where the viewer fetches a visual mesh: its path relative to the
+// directory the bridge serves under the robot's mesh route, when it lies
+// there by the rules spawned files follow (contained_path.h: no link
+// leading out, a regular file); "" otherwise.
+std::string RobotBuilder::meshUrl(const std::string& path) const {
+  namespace fs = std::filesystem;
+  if (m_files.meshRoute.empty()) return "";
+  std::error_code error;
+  const fs::path root = fs::canonical(m_files.meshRouteDirectory.empty() ? "." : m_files.meshRouteDirectory, error);
+  if (error) return "";
+  const fs::path file = fs::canonical(path, error);
+  if (error) return "";
+  const fs::path relative = file.lexically_relative(root);
+  if (relative.empty() || *relative.begin() == ".." || relative.is_absolute()) return "";
+  if (!resolveContainedFile(relative.string(), root.string())) return "";
+  return m_files.meshRoute + "/" + relative.generic_string();
+}
+
+// A <visual> as the viewer draws it, in the body's shape frame; nullopt
+// (and a line in the report) when it cannot be drawn: drawing is no reason
+// to refuse a robot.
+std::optional<Visual> RobotBuilder::makeVisual(const urdf::Visual& visual, const std::string& link,
+                                               const Pose& inBody) {
+  const auto size = [](double v) { return std::isfinite(v) && v > 0.0 && v <= kMaxLength; };
+  const auto skip = [&](const std::string& why) {
+    m_out.report.push_back("link '" + link + "': a <visual> is not drawn: " + why);
+    return std::nullopt;
+  };
+  Visual out;
+  const Pose placed = compose(inBody, poseOf(visual.origin));
+  if (!placed.position.allFinite() || placed.position.cwiseAbs().maxCoeff() > kMaxLength)
+    return skip("its origin is not finite or lies beyond 1e6 m");
+  out.position = placed.position;
+  out.orientation = placed.orientation;
+  std::string what;
+  const urdf::Geometry& geometry = *visual.geometry;
+  switch (geometry.type) {
+    case urdf::Geometry::SPHERE:
+      out.kind = Visual::Kind::Sphere;
+      out.radius = static_cast<const urdf::Sphere&>(geometry).radius;
+      if (!size(out.radius)) return skip("a sphere's radius must be > 0");
+      what = "sphere";
+      break;
+    case urdf::Geometry::BOX: {
+      out.kind = Visual::Kind::Box;
+      const Vec3 dimensions = vectorOf(static_cast<const urdf::Box&>(geometry).dim);
+      if (!size(dimensions.x()) || !size(dimensions.y()) || !size(dimensions.z()))
+        return skip("a box's size must be > 0 on each axis");
+      out.halfExtents = 0.5 * dimensions;
+      what = "box";
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+      out.kind = Visual::Kind::Cylinder;
+      out.radius = cylinder.radius;
+      out.halfLength = 0.5 * cylinder.length;
+      if (!size(cylinder.radius) || !size(cylinder.length)) return skip("a cylinder's radius and length must be > 0");
+      what = "cylinder";
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+      out.kind = Visual::Kind::Mesh;
+      out.meshFile = mesh.filename;
+      std::string extension = std::filesystem::path(mesh.filename).extension().string();
+      std::transform(extension.begin(), extension.end(), extension.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
+      if (extension != ".stl" && extension != ".obj" && extension != ".dae")
+        return skip("mesh '" + mesh.filename + "': the viewer draws STL, OBJ and COLLADA (.dae) files");
+      out.scale = vectorOf(mesh.scale);
+      if (!out.scale.allFinite() || out.scale.cwiseAbs().minCoeff() <= 0.0 || out.scale.cwiseAbs().maxCoeff() > kMaxLength)
+        return skip("mesh '" + mesh.filename + "': each scale factor must be nonzero and finite");
+      Expected<std::string> path = meshFile(mesh.filename, link);
+      if (!path) return skip(path.error().message);
+      out.meshUrl = meshUrl(*path);
+      what = "mesh '" + mesh.filename + "' " +
+             (out.meshUrl.empty() ? "(outside the directory the viewer serves (" +
+                                        (m_files.meshRoute.empty() ? std::string("none") : m_files.meshRoute) +
+                                        "): drawn from the collision shape)"
+                                  : "(served as " + out.meshUrl + ")");
+      break;
+    }
+    default:
+      return skip("a geometry of unknown type");
+  }
+  // URDF's materials: inline, or by the name of a robot-level <material>
+  // (urdfdom resolves the name for a link's first visual only).
+  urdf::MaterialSharedPtr material = visual.material;
+  if (!visual.material_name.empty())
+    if (urdf::MaterialSharedPtr named = m_model->getMaterial(visual.material_name)) material = named;
+  if (material) {
+    const urdf::Color& c = material->color;
+    const bool defaultColor = c.r == 0.0f && c.g == 0.0f && c.b == 0.0f && c.a == 1.0f;
+    // urdfdom leaves (0, 0, 0, 1) where a material gave a texture or only a
+    // name: no colour of its own then.
+    const bool unresolvedName = !material->name.empty() && !m_model->getMaterial(material->name) && defaultColor;
+    if (!(defaultColor && !material->texture_filename.empty()) && !unresolvedName) {
+      out.hasColor = true;
+      const auto unit = [](float v) { return std::isfinite(v) ? std::clamp(static_cast<double>(v), 0.0, 1.0) : 0.0; };
+      out.rgba = {unit(c.r), unit(c.g), unit(c.b), unit(c.a)};
+      what += ", colour (" + number(out.rgba[0]) + ", " + number(out.rgba[1]) + ", " + number(out.rgba[2]) + ", " +
+              number(out.rgba[3]) + ")";
+    }
+  }
+  m_out.report.push_back("link '" + link + "': drawn as " + what);
+  return out;
 }
 
 std::optional<Error> RobotBuilder::makeJoint(const urdf::Joint& joint) {

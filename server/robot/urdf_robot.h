@@ -21,6 +21,13 @@
 //    collisions join the parent's shape); anywhere else it is an error.
 //    Links held by fixed joints are merged into one body with their masses
 //    combined exactly when the robot asks for it (merge_fixed_links).
+//  - a link's <visual> elements (box, sphere, cylinder, and meshes: STL,
+//    OBJ, COLLADA) are how its body is drawn, with the colour of their
+//    <material> (inline or by the name of a robot's <material>); they
+//    change nothing in the simulation and go beside the bodies
+//    (RobotModel::visuals), not into them. A visual that cannot be drawn
+//    (a mesh not found, a size that is not one) is left out and reported,
+//    never an error.
 // Errors name the file and the line of the element at fault.
 
 #include <cstddef>
@@ -33,6 +40,7 @@
 #include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/joint_definition.h"
 #include "rbsim/physics/types.h"
+#include "robot/visual.h"
 
 namespace rbsim {
 
@@ -72,6 +80,13 @@ struct RobotFiles {
   std::string directory;
   std::vector<std::string> packagePaths;
   std::optional<std::string> confinedTo;
+  // The viewer bridge's mesh route that visual meshes are published under
+  // (kWorldMeshRoute, kSpawnMeshRoute) and the directory it serves there
+  // (the world file's directory, the spawn directory): a visual mesh inside
+  // it is published as ROUTE/RELATIVE/PATH (Visual::meshUrl), one outside
+  // it without a URL. Empty: no URLs.
+  std::string meshRoute;
+  std::string meshRouteDirectory;
 };
 
 // What a robot adds to a world, and the report of what was made of its
@@ -85,6 +100,9 @@ struct RobotModel {
   // world file's per-link settings (collision filters, excluded pairs)
   // apply to.
   std::vector<std::pair<std::string, std::string>> linkBodies;
+  // How the bodies look (their links' <visual> elements, placed in the
+  // body's shape frame), for the bodies that have any, by body name.
+  BodyVisuals visuals;
 };
 
 // Builds the robot of the URDF text `xml`. Errors: XML that is not a URDF

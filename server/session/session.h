@@ -6,9 +6,12 @@
 // through the same code, so what a recorded session did can be done again.
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "rbsim/physics/world.h"
+#include "robot/visual.h"
 #include "session/joint_command_scheduler.h"
 #include "session/wrench_scheduler.h"
 
@@ -52,6 +55,18 @@ class Session {
   void resumeFrom(World world, WrenchScheduler wrenches, int64_t worldRevision, bool paused,
                   int64_t stepsRequested, std::vector<JointCommandRequest> jointCommands = {});
 
+  // How bodies look (robot/visual.h), by body name: the world file's
+  // robots' and those of every SPAWN since. Kept by name beside the world,
+  // not in it (drawing is no physics): RESET, a checkpoint restored and
+  // REMOVE leave it as it is, and a body is drawn with the visuals of its
+  // name, if any; a spawn replaces those of the names it creates.
+  const BodyVisuals& visuals() const { return m_visuals; }
+  void setVisuals(BodyVisuals visuals) { m_visuals = std::move(visuals); }
+  void addSpawnedVisuals(const std::vector<std::string>& bodyNames, BodyVisuals visuals) {
+    for (const std::string& name : bodyNames) m_visuals.erase(name);
+    m_visuals.merge(visuals);
+  }
+
   // world_t revision: bumped at every change of the set of bodies.
   int64_t worldRevision() const { return m_worldRevision; }
   void noteWorldChanged() { ++m_worldRevision; }
@@ -64,6 +79,7 @@ class Session {
   bool m_paused = false;
   int64_t m_stepsRequested = 0;
   int64_t m_worldRevision = 1;
+  BodyVisuals m_visuals;
 };
 
 }  // namespace rbsim

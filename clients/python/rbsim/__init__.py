@@ -39,6 +39,7 @@ _GENERATED_TYPES = (
     "joint_state_t",
     "joints_t",
     "status_t",
+    "visual_t",
     "world_state_t",
     "world_t",
     "wrench_t",

@@ -251,7 +251,8 @@ class WorldDescription:
     (s), ``gravity`` (m/s^2, world; numpy (3,)), ``integrator``,
     ``linear_damping``/``angular_damping`` (1/s), ``bodies`` (list of
     ``body_description_t``: mass in kg, principal ``inertia`` in kg*m^2 about
-    the body axes, shape fields in m). ``world["name"]`` gives a body.
+    the body axes, shape fields in m; ``visuals``, list of ``visual_t``, how a
+    robot's link looks: drawing only). ``world["name"]`` gives a body.
     ``joints`` (list of ``joint_description_t``: name, type, body_a, body_b
     ("world" for the world), anchors and axis in the world frame, limits in
     rad or m); ``world.joint("name")`` gives a joint.

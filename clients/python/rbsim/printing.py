@@ -88,6 +88,8 @@ def world_lines(world) -> List[str]:
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)
         if not b.collides:
             line += " collides false"
+        if b.num_visuals > 0:  # how it is drawn (a robot link's URDF visuals), when it says
+            line += " visuals %d" % b.num_visuals + "".join(" " + v.kind for v in b.visuals)
         if b.collision_group != 1 or b.collision_mask != 0xFFFFFFFF:  # the defaults go unsaid
             line += " collision_group %d collision_mask %d" % (b.collision_group, b.collision_mask)
         if b.frozen:

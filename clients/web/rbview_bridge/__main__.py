@@ -31,6 +31,13 @@ def parse_args(argv):
                         help="the built page (default BUILD/clients/web/dist, BUILD being $RBSIM_BUILD_DIR, "
                              "else the build tree rbview is started in, else build/ of the source tree)")
     parser.add_argument("--port-file", default=None, help="write the listening port to this file (for tests)")
+    parser.add_argument("--meshes", metavar="DIR", default=None,
+                        help="serve the robots' visual meshes from DIR, the directory of the world file rbserver "
+                             "runs (the 'world/' mesh URLs of world_t; without it robots are drawn from their "
+                             "collision shapes)")
+    parser.add_argument("--spawn-meshes", metavar="DIR", default=None,
+                        help="serve spawned robots' visual meshes from DIR, rbserver's spawn directory (the "
+                             "'spawn/' mesh URLs; default: the --meshes directory, as rbserver's default)")
     args = parser.parse_args(argv)
     try:
         ipaddress.ip_address(args.bind)
@@ -69,7 +76,9 @@ def main(argv=None):
             args.bind, "" if args.read_only else " and drive the simulation; consider --read-only")
     page = args.page or os.path.join(build, locate.PAGE_SUBDIR)
     try:
-        static = server.StaticFiles(page)
+        from .meshes import MeshFiles
+        mesh_files = MeshFiles({"world": args.meshes, "spawn": args.spawn_meshes or args.meshes})
+        static = server.StaticFiles(page, mesh_files)
     except OSError as error:
         print("rbview: %s" % error, file=sys.stderr)
         return 2

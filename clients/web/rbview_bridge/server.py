@@ -23,7 +23,7 @@ from collections import deque
 
 import websockets
 
-from . import browser
+from . import browser, meshes
 from .wire import sanitize
 
 log = logging.getLogger("rbview")
@@ -219,7 +219,8 @@ class StaticFiles:
     """The built page (vite's dist/): a fixed table of files read at start, so no
     request path ever reaches the file system."""
 
-    def __init__(self, root):
+    def __init__(self, root, mesh_files=None):
+        self.mesh_files = mesh_files  # meshes.MeshFiles, or None: no meshes served
         self.files = {}
         for directory, _dirs, names in os.walk(root):
             for name in names:
@@ -253,6 +254,8 @@ class StaticFiles:
                 return (http.HTTPStatus.FORBIDDEN, [("Content-Type", "text/plain")],
                         b"WebSocket from another origin refused\n")
             return None
+        if path.startswith(meshes.PREFIX) and self.mesh_files is not None:
+            return self.mesh_files.answer(path)
         entry = self.files.get(path)
         if entry is None:
             return (http.HTTPStatus.NOT_FOUND, [("Content-Type", "text/plain")], b"not found\n")

@@ -356,6 +356,19 @@ def _shape_fields(thing):
     }
 
 
+def _visual(v):
+    """A visual_t -> the page's visual; a mesh URL the page could not fetch is dropped."""
+    url = v.mesh_url if isinstance(v.mesh_url, str) else ""
+    if len(url) > 1024 or not url.isprintable():
+        url = ""
+    return {
+        "kind": v.kind, "position": _finite_list(v.position), "orientation": _finite_list(v.orientation),
+        "half_extents": _finite_list(v.half_extents), "radius": float(v.radius),
+        "half_length": float(v.half_length), "mesh_url": url, "scale": _finite_list(v.scale),
+        "has_color": bool(v.has_color), "rgba": _finite_list(v.rgba),
+    }
+
+
 def world_to_dict(pages):
     """Complete world_t pages -> the page's 'world' message."""
     first = pages[0]
@@ -369,7 +382,7 @@ def world_to_dict(pages):
                 "shape_position": _finite_list(b.shape_position),
                 "shape_orientation": _finite_list(b.shape_orientation),
                 "plane_normal": _finite_list(b.plane_normal), "plane_offset": float(b.plane_offset),
-                "parts": [],
+                "parts": [], "visuals": [_visual(v) for v in b.visuals],
             })
             for part in b.parts:
                 p = _shape_fields(part)

@@ -14,6 +14,10 @@ import * as THREE from "three";
 import { bodySize } from "./shapes.js";
 
 const MARKER_PX = 10;
+// Subdued (a world of robots drawn as themselves, nothing selected): smaller
+// and see-through, so that the markers do not hide the links.
+const SUBDUED_MARKER_PX = 6;
+const SUBDUED_OPACITY = 0.35;
 const SPRING_ZIGZAGS = 12; // corners of a spring's zigzag
 const COLORS = {
   revolute: new THREE.Color(0x4dabf7), prismatic: new THREE.Color(0x51cf66), spherical: new THREE.Color(0xcc5de8),
@@ -36,10 +40,11 @@ const markerVertexShader = /* glsl */ `
 // A disc with a dark rim, so that a marker reads on any body's colour.
 const markerFragmentShader = /* glsl */ `
   varying vec3 vColor;
+  uniform float opacity;
   void main() {
     float r = length(gl_PointCoord * 2.0 - 1.0);
     if (r > 1.0) discard;
-    gl_FragColor = vec4(r > 0.7 ? vec3(0.08) : vColor, 1.0);
+    gl_FragColor = vec4(r > 0.7 ? vec3(0.08) : vColor, opacity);
   }`;
 
 // How a joint is drawn: "axis" (revolute, prismatic: an arrow), "cone" (a ball
@@ -67,10 +72,11 @@ export class JointsView {
     this.drawnCount = 0;
     this.markers = new THREE.Points(new THREE.BufferGeometry(), new THREE.ShaderMaterial({
       vertexShader: markerVertexShader, fragmentShader: markerFragmentShader,
-      uniforms: { size: { value: MARKER_PX } }, depthTest: false, depthWrite: false,
+      uniforms: { size: { value: MARKER_PX }, opacity: { value: 1 } }, depthTest: false, depthWrite: false,
+      transparent: true,
     }));
     this.lines = new THREE.LineSegments(new THREE.BufferGeometry(),
-      new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, depthWrite: false }));
+      new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, depthWrite: false, transparent: true }));
     for (const o of [this.markers, this.lines]) {
       o.frustumCulled = false;
       o.renderOrder = 10; // after the bodies
@@ -122,6 +128,14 @@ export class JointsView {
       object.visible = false; // until update: a world without joints costs no draw call
     }
     this.drawnCount = 0;
+  }
+
+  // Smaller, see-through markers and axes (true), or as they are drawn alone.
+  setSubdued(subdued) {
+    this.subdued = subdued;
+    this.markers.material.uniforms.size.value = subdued ? SUBDUED_MARKER_PX : MARKER_PX;
+    this.markers.material.uniforms.opacity.value = subdued ? SUBDUED_OPACITY : 1;
+    this.lines.material.opacity = subdued ? SUBDUED_OPACITY : 1;
   }
 
   // The newest joints frame; kept only if it is of this world.

@@ -121,6 +121,11 @@ $("btn-rtf").onclick = () => {
   act(`real-time factor ${f}`, { type: "command", command: "set_real_time_factor", real_time_factor: f });
 };
 $("toggle-contacts").onchange = (e) => { viewer.showContacts = e.target.checked; viewer.frameDrawn = null; };
+function showCollision(on) {
+  viewer.setShowCollision(on);
+  $("toggle-collision").checked = on;
+}
+$("toggle-collision").onchange = (e) => showCollision(e.target.checked);
 $("toggle-joints").onchange = (e) => { viewer.joints.visible = e.target.checked; viewer.frameDrawn = null; };
 $("toggle-follow").onchange = (e) => {
   viewer.follow = e.target.checked;
@@ -159,6 +164,7 @@ window.addEventListener("keydown", (event) => {
   const key = event.key.toLowerCase();
   if (key === "a") frameAll();
   else if (key === "f") frameSelected();
+  else if (key === "c") showCollision(!viewer.showCollision);
   else return;
   event.preventDefault();
 });
@@ -304,6 +310,10 @@ window.rbview = {
   },
   // How many joints are drawn now (0 with the joints toggle off).
   jointsDrawn: () => viewer.joints.drawnCount,
+  // Visual meshes still being fetched, and those that failed (visuals.js).
+  visualsPending: () => viewer.visualsPending.count,
+  visualsFailed: () => [...viewer.visualsPending.failed],
+  visualsDrawn: () => viewer.visuals.length,
   // Where joint `name`'s marker is drawn (world), or null.
   jointMarker(name) {
     const p = viewer.frameDrawn ? viewer.joints.markerOf(viewer.frameDrawn, name) : null;

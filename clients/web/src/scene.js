@@ -1,8 +1,16 @@
 // The 3D view: bodies as instanced pieces, the ground, contacts, joints, the
 // push arrow; orbit/pan/zoom, picking and following a body. World frame z up.
+//
+// A body with visuals (a robot's link, visuals.js) is drawn as itself: its
+// visuals, lit by a sun that casts soft shadows (PCFSoftShadowMap) onto them
+// and the ground; its collision shape is drawn instead while showCollision is
+// on. A world with visuals and no plane gets a ground with a grid at z = 0,
+// and its joint markers are subdued until a body is selected. Worlds without
+// visuals are drawn as before (no shadow pass).
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { bodyPieces, planeOf, bodySize } from "./shapes.js";
+import { bodyPieces, planeOf, bodySize, shapeFrame } from "./shapes.js";
+import { bodyVisuals, drawsVisuals, tintVisuals } from "./visuals.js";
 import { SphereImpostors } from "./sphere_impostors.js";
 import { JointsView } from "./joints.js";
 
@@ -62,6 +70,8 @@ export class Viewer {
     this.container = container;
     this.renderer = new THREE.WebGLRenderer({ antialias: false, alpha: false, preserveDrawingBuffer: false });
     this.renderer.setPixelRatio(1);
+    this.renderer.shadowMap.enabled = true;
+    this.renderer.shadowMap.type = THREE.PCFSoftShadowMap;
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0x1d2230);
@@ -74,7 +84,17 @@ export class Viewer {
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
     const sun = new THREE.DirectionalLight(0xffffff, 1.6);
     sun.position.set(5, -3, 10);
-    this.scene.add(sun);
+    sun.shadow.mapSize.set(2048, 2048);
+    sun.shadow.bias = -0.0005;
+    sun.shadow.normalBias = 0.01;
+    sun.shadow.radius = 4;
+    this.scene.add(sun, sun.target);
+    this.sun = sun;
+    this.showCollision = false;
+    this.visuals = []; // {body, object}: bodies drawn from their visuals
+    this.visualsPending = { count: 0, failed: [], failedBodies: new Set(), changed: false };
+    this.shadowsFitted = false;
+    this.noVisuals = new Set(); // bodies of this world whose visuals failed: drawn from their collision shapes
 
     this.bodies = [];
     this.groups = []; // {mesh: InstancedMesh, pieces: [{body, local}]}
@@ -124,11 +144,19 @@ export class Viewer {
     }
   }
 
-  setWorld(world) {
+  // `rebuild`: the same world again, the bodies in noVisuals now drawn from
+  // their collision shapes (a mesh that could not be fetched or read).
+  setWorld(world, rebuild = false) {
+    if (!rebuild) this.noVisuals = new Set();
+    this.world = world;
     for (const group of this.groups) group.mesh.dispose();
     this.worldObjects.clear();
     this.groups = [];
     this.planes = [];
+    this.visuals = [];
+    const failed = rebuild ? this.visualsPending.failed : [];
+    this.visualsPending = { count: 0, failed, failedBodies: new Set(), changed: false };
+    this.shadowsFitted = false;
     this.bodies = world.bodies;
     this.revision = world.revision;
     this.bodyBounds = [];
@@ -140,16 +168,25 @@ export class Viewer {
         this.addPlane(index, plane);
         return;
       }
+      const looks = drawsVisuals(body) && !this.noVisuals.has(index);
+      if (looks) {
+        const object = bodyVisuals(body, index, shapeFrame(body), this.visualsPending);
+        object.visible = false; // until a pose arrives
+        this.worldObjects.add(object);
+        this.visuals.push({ body: index, object });
+      }
       for (const piece of bodyPieces(body, world.bodies.length)) {
-        if (!byKey.has(piece.key)) byKey.set(piece.key, { geometry: piece.geometry(), pieces: [] });
-        const { geometry, pieces } = byKey.get(piece.key);
+        // A drawn body's collision shape: its own groups, shown by the toggle.
+        const key = looks ? `collision|${piece.key}` : piece.key;
+        if (!byKey.has(key)) byKey.set(key, { geometry: piece.geometry(), pieces: [], collision: looks });
+        const { geometry, pieces } = byKey.get(key);
         pieces.push({ body: index, local: piece.local });
         if (!geometry.boundingBox) geometry.computeBoundingBox();
         const box = geometry.boundingBox.clone().applyMatrix4(piece.local);
         this.bodyBounds[index] = this.bodyBounds[index] ? this.bodyBounds[index].union(box) : box;
       }
     });
-    for (const [key, { geometry, pieces }] of byKey) {
+    for (const [key, { geometry, pieces, collision }] of byKey) {
       const mesh = key === "sphere" && pieces.length > IMPOSTOR_SPHERES
         ? new SphereImpostors(pieces.length)
         : new THREE.InstancedMesh(geometry, new THREE.MeshLambertMaterial(), pieces.length);
@@ -160,11 +197,65 @@ export class Viewer {
         mesh.setMatrixAt(i, new THREE.Matrix4().makeScale(0, 0, 0)); // hidden until a pose arrives
       });
       this.worldObjects.add(mesh);
-      this.groups.push({ mesh, pieces });
+      this.groups.push({ mesh, pieces, collision });
     }
+    const hasPlane = world.bodies.some((body) => planeOf(body));
+    this.hasVisuals = this.visuals.length > 0;
+    this.sun.castShadow = this.hasVisuals;
+    if (this.hasVisuals && !hasPlane) this.addGround();
+    const selected = rebuild ? this.selected : -1;
     this.joints.setWorld(world);
+    this.joints.setSubdued(this.hasVisuals && selected < 0);
+    this.applyCollisionToggle();
     this.selected = -1;
     this.frameDrawn = null;
+    if (selected >= 0) this.setSelected(selected);
+  }
+
+  // The ground under robots in a world without a plane: a patch at z = 0
+  // with a 1 m grid, that takes their shadows (no body: not picked).
+  addGround() {
+    const ground = new THREE.Group();
+    const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshStandardMaterial({ color: 0x3b4252,
+      roughness: 1, metalness: 0, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 }));
+    surface.receiveShadow = true;
+    const grid = cellGrid(40, 40, 0x6b7385, 0x4c566a);
+    grid.position.z = 0.001;
+    ground.add(surface, grid);
+    this.worldObjects.add(ground);
+  }
+
+  // Visuals, or collision shapes instead (the "collision" toggle).
+  setShowCollision(on) {
+    this.showCollision = on;
+    this.applyCollisionToggle();
+    this.frameDrawn = null;
+  }
+
+  applyCollisionToggle() {
+    for (const group of this.groups) if (group.collision) group.mesh.visible = this.showCollision;
+    for (const { object } of this.visuals) object.userData.hidden = this.showCollision;
+  }
+
+  // The sun's shadow camera around the drawn bodies (once a world's poses are
+  // known): a box a little larger than theirs, so that the shadow map's
+  // texels are spent where the robots are.
+  fitShadows() {
+    const box = this.bodiesBox(this.visuals.map((v) => v.body));
+    if (!box) return;
+    const centre = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(0.5, box.getSize(new THREE.Vector3()).length() * 0.75);
+    const direction = new THREE.Vector3(5, -3, 10).normalize();
+    this.sun.target.position.copy(centre);
+    this.sun.position.copy(centre).addScaledVector(direction, 4 * radius);
+    const camera = this.sun.shadow.camera;
+    camera.left = camera.bottom = -1.5 * radius;
+    camera.right = camera.top = 1.5 * radius;
+    camera.near = 0.1 * radius;
+    camera.far = 8 * radius;
+    camera.updateProjectionMatrix();
+    this.sun.target.updateMatrixWorld();
+    this.shadowsFitted = true;
   }
 
   addPlane(index, { point, normal }) {
@@ -172,6 +263,7 @@ export class Viewer {
     // A finite patch of the half-space's surface, with a 1 m grid near the origin.
     const surface = new THREE.Mesh(new THREE.PlaneGeometry(400, 400), new THREE.MeshLambertMaterial({ color: 0x3b4252,
       polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })); // behind its grid lines
+    surface.receiveShadow = true;
     const grid = cellGrid(40, 40, 0x6b7385, 0x4c566a);
     grid.position.z = 0.001;
     group.add(surface, grid);
@@ -207,6 +299,12 @@ export class Viewer {
   }
 
   updatePoses() {
+    if (this.visualsPending.failedBodies.size > 0) {
+      for (const body of this.visualsPending.failedBodies) this.noVisuals.add(body);
+      const camera = this.camera.position.clone();
+      this.setWorld(this.world, true);
+      this.camera.position.copy(camera);
+    }
     const frame = this.frame;
     if (!this.frameMatchesWorld() || frame === this.frameDrawn) return false;
     const pose = this.tmpPose;
@@ -222,6 +320,12 @@ export class Viewer {
     for (const plane of this.planes) {
       plane.object.matrix.multiplyMatrices(this.poseMatrix(plane.body, pose), plane.local);
     }
+    for (const { body, object } of this.visuals) {
+      this.poseMatrix(body, object.matrix);
+      object.matrixWorldNeedsUpdate = true;
+      object.visible = !object.userData.hidden;
+    }
+    if (this.hasVisuals && !this.shadowsFitted) this.fitShadows();
     this.updateContacts();
     this.joints.update(frame);
     this.frameDrawn = frame;
@@ -258,6 +362,12 @@ export class Viewer {
       if (group.mesh.instanceColor) group.mesh.instanceColor.needsUpdate = true;
       if (group.mesh.colorsChanged) group.mesh.colorsChanged();
     }
+    for (const { body, object } of this.visuals) {
+      if (body === index) tintVisuals(object, true);
+      else if (body === previous) tintVisuals(object, false);
+    }
+    // Joint markers come forward while a body is selected.
+    this.joints.setSubdued(this.hasVisuals && index < 0);
   }
 
   // The body under a point of the canvas (CSS pixels), with the world point hit.

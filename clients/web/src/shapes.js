@@ -107,6 +107,11 @@ export function bodyPieces(body, bodyCount) {
   }));
 }
 
+// The shape frame in the body frame (a robot body's link frame).
+export function shapeFrame(body) {
+  return placement(body.shape_position, body.shape_orientation);
+}
+
 // A plane body -> {normal, offset} in the body frame, or null.
 export function planeOf(body) {
   if (body.shape_type !== "plane") return null;

@@ -11,6 +11,7 @@
 #include "bridge/command_handler.h"
 #include "bridge/wire_convert.h"
 #include "handler_test_messages.h"
+#include "support/test_data_dir.h"
 
 namespace rbsim {
 namespace {
@@ -249,6 +250,44 @@ TEST(SpawnJoints, RemovingABodyTakesItsJointsAndTheirCommands) {
   EXPECT_EQ(f.session.jointCommands().pendingCount(), 0);
   ASSERT_TRUE(f.remove("bob", "").ack.accepted);
   EXPECT_EQ(f.world().jointCount(), 0);
+}
+
+// A spawned robot's visuals come with it, their meshes under the spawn
+// route (relative to the spawn directory), in the world's description; a
+// plain body spawned later under one of its names is drawn as itself again.
+TEST(SpawnJoints, ASpawnedRobotsVisualsAreInTheDescription) {
+  Session session(postWorld());
+  CommandHandler handler(session, ServerSettings{}, std::string(rbsim::test_support::kTestDataDir) + "/urdf");
+  auto message = commandMessage("c", 1, rbsim::command_t::SPAWN);
+  message.spawn_yaml =
+      "robots:\n  - {name: v, urdf: visual_arm.urdf, fixed_base: true, package_paths: [packages]}\n";
+  const CommandOutcome outcome = send(handler, message);
+  ASSERT_TRUE(outcome.ack.accepted) << outcome.ack.reason;
+  const auto pages = worldDescriptionPages(session.world(), 0, session.worldRevision(), &session.visuals());
+  const rbsim::body_description_t* arm = nullptr;
+  for (const auto& page : pages)
+    for (const auto& body : page.bodies)
+      if (body.name == "v/arm") arm = &body;
+  ASSERT_NE(arm, nullptr);
+  ASSERT_EQ(arm->num_visuals, 3);
+  EXPECT_EQ(arm->visuals[0].kind, "mesh");
+  EXPECT_EQ(arm->visuals[0].mesh_url, "spawn/packages/rbsim_test_parts/meshes/tetrahedron.stl");
+  EXPECT_TRUE(arm->visuals[0].has_color);
+  EXPECT_DOUBLE_EQ(arm->visuals[0].scale[2], 0.5);
+  EXPECT_EQ(arm->visuals[1].kind, "cylinder");
+  EXPECT_EQ(arm->visuals[2].kind, "sphere");
+  EXPECT_EQ(arm->visuals[2].scale[0], 0.0);  // not a mesh's
+  // The world's own bodies have none.
+  EXPECT_EQ(pages[0].bodies[0].num_visuals, 0);
+
+  auto remove = commandMessage("c", 2, rbsim::command_t::REMOVE);
+  remove.body = "v/arm";
+  ASSERT_TRUE(send(handler, remove).ack.accepted);
+  auto plain = commandMessage("c", 3, rbsim::command_t::SPAWN);
+  plain.spawn_yaml = "{name: v/arm, shape: {type: sphere, radius: 0.1}, position: [3, 0, 1]}";
+  ASSERT_TRUE(send(handler, plain).ack.accepted);
+  EXPECT_EQ(session.visuals().count("v/arm"), 0u);
+  EXPECT_EQ(session.visuals().count("v/base"), 1u);
 }
 
 }  // namespace

@@ -386,14 +386,107 @@ TEST(UrdfRobot, APackageIsFoundThroughRosPackagePathOrNamedWhenItIsNot) {
 TEST(UrdfRobot, WhatIsNotUsedIsReportedByElementAndLine) {
   const RobotModel robot = load("two_link_arm.urdf");
   const std::string text = reportText(robot);
-  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:8: material 'orange': colour only")) << text;
-  EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:24: link 'upper'/visual: drawing only")) << text;
+  // Visuals and materials are how the links are drawn (RobotModel::visuals).
+  EXPECT_FALSE(reportHas(robot, "material 'orange'")) << text;
+  EXPECT_FALSE(reportHas(robot, "'upper'/visual")) << text;
+  EXPECT_TRUE(reportHas(robot, "link 'upper': drawn as box, colour (1, 0.5, 0, 1)")) << text;
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:58: joint 'elbow'/safety_controller")) << text;
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:60: transmission 'shoulder_transmission'")) << text;
   EXPECT_TRUE(reportHas(robot, "two_link_arm.urdf:64: gazebo")) << text;
   EXPECT_TRUE(reportHas(robot, "joint 'r/shoulder': actuator limits effort 50 N·m, rate 3 rad/s")) << text;
   EXPECT_TRUE(reportHas(robot, "joint 'r/elbow': revolute 'r/upper' -> 'r/fore', axis (0, 1, 0), limits [-2.5, 2.5]"))
       << text;
+}
+
+// How links look: each <visual> beside its body, in the body's shape frame
+// (the top link's frame), with its size, mesh (by URL under the viewer's
+// mesh route), scale and colour; visuals that cannot be drawn are reported.
+TEST(UrdfRobot, VisualsComeWithTheirShapesMeshesAndColours) {
+  RobotPlacement placement;
+  placement.name = "v";
+  RobotFiles files = filesFor("visual_arm.urdf");
+  files.meshRoute = kWorldMeshRoute;
+  files.meshRouteDirectory = kUrdfDir;
+  Expected<RobotModel> loaded = loadRobot(kUrdfDir + "/visual_arm.urdf", placement, files);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  const RobotModel& robot = *loaded;
+  const std::string text = reportText(robot);
+  ASSERT_EQ(robot.bodies.size(), 2u) << text;
+  ASSERT_EQ(robot.visuals.size(), 2u) << text;
+
+  const std::vector<Visual>& base = robot.visuals.at("v/base");
+  ASSERT_EQ(base.size(), 1u);
+  EXPECT_EQ(base[0].kind, Visual::Kind::Box);
+  EXPECT_TRUE(base[0].halfExtents.isApprox(Vec3(0.2, 0.1, 0.05)));
+  EXPECT_TRUE(base[0].position.isApprox(Vec3(0, 0, 0.05)));
+  EXPECT_TRUE(base[0].hasColor);  // the robot's material "teal", by name
+  EXPECT_NEAR(base[0].rgba[0], 0.0, 1e-6);
+  EXPECT_NEAR(base[0].rgba[1], 0.5, 1e-6);
+  EXPECT_NEAR(base[0].rgba[2], 0.5, 1e-6);
+  EXPECT_NEAR(base[0].rgba[3], 1.0, 1e-6);
+
+  // The arm's own two drawable visuals, then the merged tip's sphere; the
+  // .ply and the missing mesh are left out and reported.
+  const std::vector<Visual>& arm = robot.visuals.at("v/arm");
+  ASSERT_EQ(arm.size(), 3u) << text;
+  const Visual& mesh = arm[0];
+  EXPECT_EQ(mesh.kind, Visual::Kind::Mesh);
+  EXPECT_EQ(mesh.meshFile, "package://rbsim_test_parts/meshes/tetrahedron.stl");
+  EXPECT_EQ(mesh.meshUrl, "world/packages/rbsim_test_parts/meshes/tetrahedron.stl");
+  EXPECT_TRUE(mesh.scale.isApprox(Vec3(2, 2, 0.5)));
+  EXPECT_TRUE(mesh.position.isApprox(Vec3(0.1, 0, 0.2)));
+  // rpy (0, 0, pi/2): x of the visual along y of the link.
+  EXPECT_TRUE(mesh.orientation.rotate(Vec3::UnitX()).isApprox(Vec3::UnitY(), 1e-9));
+  EXPECT_TRUE(mesh.hasColor);  // inline
+  EXPECT_NEAR(mesh.rgba[0], 1.0, 1e-6);
+  EXPECT_NEAR(mesh.rgba[1], 0.0, 1e-6);
+  EXPECT_NEAR(mesh.rgba[2], 1.0, 1e-6);
+  EXPECT_NEAR(mesh.rgba[3], 0.8, 1e-6);
+  const Visual& cylinder = arm[1];
+  EXPECT_EQ(cylinder.kind, Visual::Kind::Cylinder);
+  EXPECT_DOUBLE_EQ(cylinder.radius, 0.03);
+  EXPECT_DOUBLE_EQ(cylinder.halfLength, 0.2);
+  EXPECT_TRUE(cylinder.hasColor);  // "teal" by name in a link's second visual
+  EXPECT_NEAR(cylinder.rgba[1], 0.5, 1e-6);
+  const Visual& tip = arm[2];
+  EXPECT_EQ(tip.kind, Visual::Kind::Sphere);
+  EXPECT_DOUBLE_EQ(tip.radius, 0.05);
+  EXPECT_TRUE(tip.position.isApprox(Vec3(0, 0, 0.4)));  // the tip's frame in the arm's
+  EXPECT_FALSE(tip.hasColor);
+
+  EXPECT_TRUE(reportHas(robot, "link 'arm': drawn as mesh 'package://rbsim_test_parts/meshes/tetrahedron.stl' "
+                               "(served as world/packages/rbsim_test_parts/meshes/tetrahedron.stl), colour (1, 0, 1, 0.8)"))
+      << text;
+  EXPECT_TRUE(reportHas(robot, "link 'arm': a <visual> is not drawn: mesh 'package://rbsim_test_parts/meshes/arm.ply'"))
+      << text;
+  EXPECT_TRUE(reportHas(robot, "link 'arm': a <visual> is not drawn:")) << text;
+  EXPECT_TRUE(reportHas(robot, "missing.stl")) << text;
+  EXPECT_FALSE(reportHas(robot, "not used")) << text;
+  // Drawing is not physics: the bodies are what they are without visuals.
+  EXPECT_EQ(shapeTypeName(robot.bodies[1].shape), std::string("cylinder"));
+}
+
+// A visual mesh outside the directory the viewer serves gets no URL (the
+// viewer then draws the collision shape), and says so.
+TEST(UrdfRobot, AVisualMeshOutsideTheServedDirectoryHasNoUrl) {
+  RobotPlacement placement;
+  placement.name = "v";
+  RobotFiles files = filesFor("visual_arm.urdf");
+  files.meshRoute = kWorldMeshRoute;
+  files.meshRouteDirectory = kUrdfDir + "/packages/rbsim_test_parts/elsewhere";
+  Expected<RobotModel> robot = loadRobot(kUrdfDir + "/visual_arm.urdf", placement, files);
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  EXPECT_EQ(robot->visuals.at("v/arm")[0].kind, Visual::Kind::Mesh);
+  EXPECT_EQ(robot->visuals.at("v/arm")[0].meshUrl, "");
+  files.meshRouteDirectory = kUrdfDir + "/packages/rbsim_test_parts";
+  robot = loadRobot(kUrdfDir + "/visual_arm.urdf", placement, files);
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  EXPECT_EQ(robot->visuals.at("v/arm")[0].meshUrl, "world/meshes/tetrahedron.stl");
+  // Without a route (a tool that draws nothing): no URLs at all.
+  robot = loadRobot(kUrdfDir + "/visual_arm.urdf", placement, filesFor("visual_arm.urdf"));
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  EXPECT_EQ(robot->visuals.at("v/arm")[0].meshUrl, "");
+  EXPECT_TRUE(reportHas(*robot, "outside the directory the viewer serves")) << reportText(*robot);
 }
 
 TEST(UrdfRobot, AMimicJointFollowsItsLeaderInTheWorld) {

@@ -117,6 +117,11 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       for (const auto& part : b.parts) std::fprintf(out, " %s", part.shape_type.c_str());
     }
     if (!b.collides) std::fprintf(out, " collides false");
+    // How it is drawn (a robot link's URDF visuals), when it says.
+    if (b.num_visuals > 0) {
+      std::fprintf(out, " visuals %d", b.num_visuals);
+      for (const auto& visual : b.visuals) std::fprintf(out, " %s", visual.kind.c_str());
+    }
     // The defaults (group 1, every bit of the mask) go unsaid.
     if (b.collision_group != 1 || b.collision_mask != 0xFFFFFFFFLL)
       std::fprintf(out, " collision_group %lld collision_mask %lld", static_cast<long long>(b.collision_group),

@@ -1,0 +1,185 @@
+// Robots drawn as themselves, in Debian's headless chromium: rbserver on
+// tests/web/worlds/robot_visuals/visual_robot.yaml (a pillar holding a block
+// whose <visual> is an STL mesh in magenta), rbview serving that directory's
+// meshes (--meshes). The block is drawn from its mesh, in its colour, where
+// its link is; with the collision toggle on, from its collision box instead
+// (no magenta); the page draws a ground under it. Then the KUKA iiwa of
+// bench/robots/data with <visual> elements put back (its STL meshes, the
+// original's Grey and Orange materials), for a look.
+// Screenshots: BUILD/tests/web/artifacts/visuals-*.png.
+import { test, before, after } from "node:test";
+import assert from "node:assert/strict";
+import { copyFileSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
+import path from "node:path";
+import {
+  repo, build, startProcess, rbview, launchBrowser, openPage, screenshot, hidePanels, sleep, stopAll, logs,
+} from "./browser_support.mjs";
+
+const worldDir = path.join(repo, "tests", "web", "worlds", "robot_visuals");
+const VIEW = { width: 1000, height: 700 };
+const work = process.env.RBVIEW_WORK || path.join(build, "tests", "web", "work", "browser_visuals");
+
+let browser;
+
+before(async () => {
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  stopAll();
+});
+
+// Pixels of a screenshot in `region` whose colour is magenta-like however lit
+// (red and blue well above green, and close to each other): {count, cx, cy}.
+async function magenta(page, png, region) {
+  return page.evaluate(async ({ data, region: r }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const x0 = Math.max(0, Math.round(r.x)), y0 = Math.max(0, Math.round(r.y));
+    const w = Math.min(image.width - x0, Math.round(r.width)), h = Math.min(image.height - y0, Math.round(r.height));
+    const pixels = context.getImageData(x0, y0, w, h).data;
+    let count = 0, sx = 0, sy = 0;
+    for (let y = 0; y < h; y++) {
+      for (let x = 0; x < w; x++) {
+        const o = 4 * (y * w + x);
+        const red = pixels[o], green = pixels[o + 1], blue = pixels[o + 2];
+        if (red > green + 70 && blue > green + 70 && Math.abs(red - blue) < 50) {
+          count++; sx += x0 + x; sy += y0 + y;
+        }
+      }
+    }
+    return { count, cx: count ? sx / count : NaN, cy: count ? sy / count : NaN };
+  }, { data: png.toString("base64"), region });
+}
+
+async function waitForVisuals(page) {
+  await page.waitForFunction(() => rbview.visualsDrawn() > 0 && rbview.visualsPending() === 0, null,
+    { timeout: 20000 });
+  await sleep(300); // a few frames with the meshes in
+}
+
+test("a link's visual mesh is drawn in its colour where the link is", async () => {
+  startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
+    ["--config", path.join(worldDir, "visual_robot.yaml"), "--log-level", "info"]);
+  const url = await rbview("--meshes", worldDir);
+  const page = await openPage(browser, url, VIEW);
+  try {
+    await waitForVisuals(page);
+    assert.deepEqual(await page.evaluate(() => rbview.visualsFailed()), []);
+    const world = await page.evaluate(() => rbview.state.world.bodies.map((b) => ({ name: b.name, visuals: b.visuals })));
+    const block = world.find((b) => b.name === "arm/block");
+    assert.equal(block.visuals.length, 1, JSON.stringify(world));
+    assert.equal(block.visuals[0].mesh_url, "world/meshes/block.stl");
+    assert.deepEqual(block.visuals[0].rgba, [1, 0, 1, 1]);
+
+    await hidePanels(page);
+    await screenshot(page, "visuals-robot-page");
+    const { png } = await screenshot(page, "visuals-robot");
+    // Where the block's link is on screen, and the size of its 0.3 m cube there.
+    const where = await page.evaluate(() => {
+      const centre = rbview.screenOf("arm/block");
+      const i = rbview.bodyIndex("arm/block");
+      const p = rbview.viewer.bodyPosition(i);
+      const edge = rbview.viewer.screenPoint(p.clone().setZ(p.z + 0.15));
+      return { centre, half: Math.hypot(edge.x - centre.x, edge.y - centre.y) };
+    });
+    const r = Math.max(20, 2 * where.half);
+    const near = await magenta(page, png, { x: where.centre.x - r, y: where.centre.y - r, width: 2 * r, height: 2 * r });
+    const all = await magenta(page, png, { x: 0, y: 0, width: VIEW.width, height: VIEW.height });
+    assert.ok(near.count > 0.3 * where.half * where.half,
+      `only ${near.count} magenta pixels around the block at ${JSON.stringify(where)}`);
+    assert.ok(near.count >= 0.95 * all.count, `magenta away from the block: ${near.count} near it of ${all.count}`);
+    assert.ok(Math.hypot(near.cx - where.centre.x, near.cy - where.centre.y) < where.half,
+      `the magenta is centred at (${near.cx}, ${near.cy}), the block at ${JSON.stringify(where.centre)}`);
+
+    // Collision shapes instead (key C): the block is drawn as its box in the
+    // viewer's own colours, not magenta.
+    await page.keyboard.press("c");
+    await sleep(300);
+    const { png: collision } = await screenshot(page, "visuals-robot-collision");
+    const none = await magenta(page, collision, { x: 0, y: 0, width: VIEW.width, height: VIEW.height });
+    assert.ok(none.count < 0.05 * all.count, `${none.count} magenta pixels with the collision shapes shown`);
+    assert.equal(await page.evaluate(() => document.getElementById("toggle-collision").checked), true);
+    await page.keyboard.press("c");
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});
+
+// bench/robots/data/kuka_iiwa has its meshes but not its <visual> elements
+// (SOURCE.md): put them back (each link drawn from its own mesh, link_0 and
+// link_7 in Grey, the others in Orange, as bullet3's model.urdf has them),
+// copied into the test's work directory (a link out of the served directory
+// would be refused).
+function iiwaWithVisuals() {
+  const source = path.join(repo, "bench", "robots", "data", "kuka_iiwa");
+  const dir = path.join(work, "iiwa");
+  mkdirSync(path.join(dir, "meshes"), { recursive: true });
+  for (const name of readdirSync(path.join(source, "meshes"))) {
+    copyFileSync(path.join(source, "meshes", name), path.join(dir, "meshes", name));
+  }
+  const urdf = readFileSync(path.join(source, "model.urdf"), "utf8").replace(
+    /<collision>\s*<origin([^>]*)\/>\s*<geometry>\s*<mesh filename="meshes\/link_(\d)\.stl"\/>\s*<\/geometry>\s*<\/collision>/g,
+    (whole, origin, n) => `<visual><origin${origin}/><geometry><mesh filename="meshes/link_${n}.stl"/></geometry>`
+      + `<material name="${n === "0" || n === "7" ? "Grey" : "Orange"}"/></visual>\n    ${whole}`);
+  assert.equal((urdf.match(/<visual><origin/g) || []).length, 8,
+    "each collision mesh of the iiwa gets its visual");
+  writeFileSync(path.join(dir, "model.urdf"), urdf);
+  writeFileSync(path.join(dir, "iiwa.yaml"), [
+    "world: {dt: 0.001, gravity: [0, 0, -9.81]}",
+    "lcm: {state_rate: 60, status_rate: 10}",
+    "robots:",
+    "  - name: iiwa",
+    "    urdf: model.urdf",
+    "    fixed_base: true",
+    "    joint_positions: {lbr_iiwa_joint_2: 0.6, lbr_iiwa_joint_4: -1.2, lbr_iiwa_joint_6: 0.8}",
+    "",
+  ].join("\n"));
+  return dir;
+}
+
+test("the KUKA iiwa is drawn from its meshes in its colours", async () => {
+  const dir = iiwaWithVisuals();
+  startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
+    ["--config", path.join(dir, "iiwa.yaml"), "--paused", "--log-level", "info"]);
+  const url = await rbview("--meshes", dir);
+  const page = await openPage(browser, url, VIEW);
+  try {
+    await waitForVisuals(page);
+    assert.deepEqual(await page.evaluate(() => rbview.visualsFailed()), []);
+    assert.ok(await page.evaluate(() => rbview.visualsDrawn()) >= 8, "the iiwa's links drawn from their visuals");
+    await hidePanels(page);
+    const { png } = await screenshot(page, "visuals-iiwa");
+    // Orange (1, 0.42, 0.04) however lit: red well above green, green above blue.
+    const orange = await page.evaluate(async (data) => {
+      const image = new Image();
+      image.src = `data:image/png;base64,${data}`;
+      await image.decode();
+      const canvas = new OffscreenCanvas(image.width, image.height);
+      const context = canvas.getContext("2d");
+      context.drawImage(image, 0, 0);
+      const pixels = context.getImageData(0, 0, image.width, image.height).data;
+      let count = 0;
+      for (let o = 0; o < pixels.length; o += 4) {
+        if (pixels[o] > pixels[o + 1] + 50 && pixels[o + 1] > pixels[o + 2] + 20) count++;
+      }
+      return count;
+    }, png.toString("base64"));
+    assert.ok(orange > 5000, `only ${orange} orange pixels of the iiwa`);
+    // Selected: the joint markers come forward.
+    await page.evaluate(() => rbview.viewer.setSelected(rbview.bodyIndex("iiwa/lbr_iiwa_link_3")));
+    await sleep(200);
+    await screenshot(page, "visuals-iiwa-selected");
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});
