@@ -450,6 +450,9 @@ Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command
     return Error{"joint: '" + message.joint + "' is a " + jointTypeName(def.type) +
                  " joint, which has no axis to actuate (only revolute and prismatic joints take joint commands, "
                  "and distance joints made with a spring MODE_POSITION)"};
+  if (def.mimic.enabled && request.mode != JointCommandMode::Off)
+    return Error{"joint: '" + message.joint + "' follows joint '" + def.mimic.leader +
+                 "' (mimic): command its leader, which moves both"};
   if (spring && request.mode != JointCommandMode::Position)
     return Error{"mode: '" + message.joint +
                  "' is a distance spring, which takes only MODE_POSITION (target: its rest length in m; stiffness, "

@@ -70,9 +70,9 @@ class Joints : public ServerTest {
 TEST_F(Joints, EveryJointIsPublishedConsistentWithTheBodiesPoses) {
   stepAndWait(50);
   const rbsim::joints_t& joints = jointsAt(50);
-  const std::vector<std::string> names = {"door_hinge", "shoulder", "elbow", "axle", "lift",
-                                          "weld",       "servo",    "lamp_rope", "hip"};
-  ASSERT_EQ(joints.total_joints, 9);
+  const std::vector<std::string> names = {"door_hinge", "shoulder",  "elbow", "axle",        "lift",     "weld",
+                                          "servo",      "lamp_rope", "hip",   "pinion_axle", "gear_axle"};
+  ASSERT_EQ(joints.total_joints, 11);
   ASSERT_EQ(joints.joints.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(joints.joints[i].name, names[i]);
   EXPECT_EQ(joints.world_revision, client().latestState()->world_revision);
@@ -155,8 +155,8 @@ TEST_F(Joints, AnEffortOnAFreeHingeAcceleratesItAtTauOverI) {
 
 TEST_F(Joints, TheWorldDescriptionListsTheJoints) {
   const rbsim::world_t& world = *client().world();
-  ASSERT_EQ(world.total_joints, 9);
-  ASSERT_EQ(world.joints.size(), 9u);
+  ASSERT_EQ(world.total_joints, 11);
+  ASSERT_EQ(world.joints.size(), 11u);
   const auto* hinge = client().jointDescription("door_hinge");
   ASSERT_NE(hinge, nullptr);
   EXPECT_EQ(hinge->type, "revolute");
@@ -188,6 +188,8 @@ TEST_F(Joints, BadJointCommandsAreRejectedWithReasons) {
   EXPECT_EQ(reason(command("nosuch", client::JointMode::Effort, 1.0)), "joint: unknown joint 'nosuch'");
   EXPECT_NE(reason(command("weld", client::JointMode::Velocity, 1.0)).find("'weld' is a fixed joint"),
             std::string::npos);
+  EXPECT_EQ(reason(command("gear_axle", client::JointMode::Velocity, 1.0)),
+            "joint: 'gear_axle' follows joint 'pinion_axle' (mimic): command its leader, which moves both");
   EXPECT_EQ(reason(command("axle", client::JointMode::Effort, std::nan(""))), "target must be finite");
   EXPECT_EQ(reason(command("axle", static_cast<client::JointMode>(7), 1.0)).rfind("mode: unknown mode 7", 0), 0u);
   client::JointCommand past = command("axle", client::JointMode::Effort, 1.0);
@@ -197,6 +199,21 @@ TEST_F(Joints, BadJointCommandsAreRejectedWithReasons) {
   // Nothing changed: the wheel still spins up under the world file's motor.
   stepAndWait(1);
   EXPECT_NEAR(joint(jointsAt(4), "axle").effort, 0.5, 1e-9);
+}
+
+// The gear pair of joints.yaml: the gear follows the pinion × −0.5 (a
+// mimic), so a velocity command to the pinion turns both, the gear half as
+// fast the other way, at every published step.
+TEST_F(Joints, AGearFollowsItsPinion) {
+  client::JointCommand spin = command("pinion_axle", client::JointMode::Velocity, 4.0);
+  spin.maxEffort = 0.2;
+  expectAccepted(client().commandJoint(spin));
+  stepAndWait(300);
+  const auto& pinion = joint(jointsAt(300), "pinion_axle");
+  const auto& gear = joint(jointsAt(300), "gear_axle");
+  EXPECT_GT(pinion.rate, 1.0) << "spun up";
+  EXPECT_NEAR(gear.rate, -0.5 * pinion.rate, 1e-9);
+  EXPECT_NEAR(gear.position, -0.5 * pinion.position, 1e-9);
 }
 
 using BallJoint = ServerTest;
@@ -272,6 +289,12 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
   c.target = 0.5;
   c.stiffness = 50.0;
   c.maxEffort = 2.0;
+  expectAccepted(client().commandJoint(c));
+  c = {};
+  c.joint = "pinion_axle";  // the gear follows it (a mimic row in the replay)
+  c.mode = client::JointMode::Velocity;
+  c.target = 4.0;
+  c.maxEffort = 0.2;
   expectAccepted(client().commandJoint(c));
   c = {};
   c.joint = "nosuch";

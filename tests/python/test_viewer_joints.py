@@ -48,7 +48,7 @@ def joints_log(tmp_path_factory):
                     states[group[0].step] = wire.merge_state(group)[3]
             elif event.channel == "RBSIM_JOINTS":
                 joints.append(event.data)
-    assert world is not None and world["step"] == 0 and len(world["joints"]) == 9
+    assert world is not None and world["step"] == 0 and len(world["joints"]) == 11
     assert len(states) > 40 and joints
     return world, states, joints
 
@@ -93,7 +93,7 @@ def test_joints_frame_holds_the_numbers_in_float32(joints_log):
     frame = frames.joints_frame(header, records)
     magic, kind, step, _sim_time, _utime, revision, count, _ = frames.JOINTS_HEADER.unpack_from(frame)
     assert (magic, kind, step, revision, count) == (frames.MAGIC, frames.KIND_JOINTS, header.step,
-                                                    header.world_revision, 9)
+                                                    header.world_revision, 11)
     numbers = np.frombuffer(frame, "<f4", 9 * count, 48).reshape(count, 9)
     at_limit = np.frombuffer(frame, "i1", count, 48 + 36 * count)
     active = np.frombuffer(frame, "u1", count, 48 + 37 * count)

@@ -16,7 +16,7 @@ import {
 const world = path.join(repo, "config", "worlds", "joints.yaml");
 const rbserverPath = path.join(build, "server", "daemon", "rbserver");
 const record = path.join(artifacts, "..", "joints-session.lcmlog");
-const JOINTS = 9;
+const JOINTS = 11;
 // float32 poses, and anchors placed from a state up to half a state period
 // away from the description's step (rbview_bridge/joint_anchors.py).
 const CLOSE = 2e-3; // m
@@ -162,7 +162,8 @@ test("joints spawned while the world runs are drawn where they hold their bodies
     [path.join(path.dirname(fileURLToPath(import.meta.url)), "worlds", "bob_on_a_rod.yaml")]);
   const { code, stdout } = await spawn.done;
   assert.equal(code, 0, `SPAWN refused: ${stdout}`);
-  await page.waitForFunction((r) => rbview.state.world.revision > r && rbview.jointsDrawn() === 11, revision,
+  await page.waitForFunction(({ r, n }) => rbview.state.world.revision > r && rbview.jointsDrawn() === n,
+    { r: revision, n: JOINTS + 2 },
     { timeout: 10000 });
   await sleep(700);
   const { joints, bodies } = await drawn(page);

@@ -25,7 +25,8 @@ def wheel(workdir):
         sim.wait_state()
         world = sim.request_world()
         assert [j.name for j in world.joints] == [
-        "door_hinge", "shoulder", "elbow", "axle", "lift", "weld", "servo", "lamp_rope", "hip"]
+        "door_hinge", "shoulder", "elbow", "axle", "lift", "weld", "servo", "lamp_rope", "hip", "pinion_axle",
+        "gear_axle"]
         assert (world.joint("lift").type, world.joint("lift").body_b) == ("prismatic", "carriage")
         assert (world.joint("weld").body_a, world.joint("door_hinge").body_a) == ("left_half", "world")
         assert world.joint("door_hinge").limit_enabled and world.joint("door_hinge").upper_limit == 1.57

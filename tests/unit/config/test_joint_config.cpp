@@ -128,7 +128,7 @@ TEST(JointConfig, TheExampleWorldLoadsAndItsJointsHold) {
   ASSERT_TRUE(def.ok()) << def.error().message;
   Expected<World> world = World::fromDef(*def);
   ASSERT_TRUE(world.ok()) << world.error().message;
-  EXPECT_EQ(world->jointCount(), 9);
+  EXPECT_EQ(world->jointCount(), 11);
   for (int k = 0; k < 2000; ++k) world->step();
   for (int j = 0; j < world->jointCount(); ++j) EXPECT_LT(world->jointStateAt(j).error, 1e-6) << world->jointStateAt(j).name;
   EXPECT_NEAR(world->jointState(world->findJoint("axle")).rate, 5.0, 1e-9) << "the motor reached its target";
