@@ -3,7 +3,7 @@
 // fans), STL, ASCII and binary (told apart by content, not by name), and
 // COLLADA through assimp (collada_mesh.h). OBJ and STL keep their own
 // readers: they are faster than assimp's and report line numbers
-// (docs/world_file.md, "Mesh files", has the measurement).
+// (docs/world_file.md, "Meshes", has the measurement).
 // Load-time I/O only; nothing here runs in the stepping path.
 
 #include <string>
