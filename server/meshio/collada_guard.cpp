@@ -162,27 +162,69 @@ class NodeGraph {
   std::unordered_map<std::string, std::vector<const XMLElement*>> m_byName;
 };
 
-// Every count and stride attribute (float_array, accessor, triangles, ...):
-// assimp reserves memory by them before it reads what they count.
-Expected<bool> checkCounts(const XMLElement* element, std::size_t fileBytes,
-                           const std::string& path) {
+// The index lists (<p>, <vcount>, <v>, <h>, <int_array>): assimp 5.2.5
+// reads them without checking what it reads, and a single character that is
+// not a digit ("0 2x1", "0.5") makes it append indices until it has
+// allocated gigabytes; a minus sign gives an index it does not check.
+bool isIndexList(const XMLElement* element) {
+  for (const char* name : {"p", "vcount", "v", "h", "int_array"}) {
+    if (isNamed(element, name)) return true;
+  }
+  return false;
+}
+
+// Every count and stride attribute (float_array, accessor, triangles, ...)
+// and the <vcount> lists: assimp reserves memory by them before it reads
+// what they count. Each counted value takes at least two bytes of the file
+// (a digit and a separator), a triangle three values.
+Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
+                            const std::string& path) {
   for (const XMLElement* child = element->FirstChildElement(); child;
        child = child->NextSiblingElement()) {
     for (const char* attribute : {"count", "stride"}) {
       const char* value = child->Attribute(attribute);
       if (!value) continue;
       const std::string_view text(value);
+      const std::size_t largest = isNamed(child, "triangles") ? fileBytes / 6 : fileBytes / 2;
       unsigned long long number = 0;
       const auto result = std::from_chars(text.data(), text.data() + text.size(), number);
       if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
-          number > fileBytes) {
+          number > largest) {
         return lineError(path, child->GetLineNum(),
                          std::string("<") + child->Name() + "> has " + attribute + "=" +
-                             quoted(text) + ": not a whole number no larger than the file (" +
-                             std::to_string(fileBytes) + " bytes)");
+                             quoted(text) + ": not a whole number small enough for a file of " +
+                             std::to_string(fileBytes) + " bytes");
       }
     }
-    Expected<bool> inner = checkCounts(child, fileBytes, path);
+    if (isIndexList(child)) {
+      const std::string_view text = child->GetText() ? child->GetText() : "";
+      unsigned long long total = 0;
+      for (size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (std::isspace(c)) {
+          ++i;
+          continue;
+        }
+        unsigned long long number = 0;
+        const auto result = std::from_chars(text.data() + i, text.data() + text.size(), number);
+        const size_t end = static_cast<size_t>(result.ptr - text.data());
+        if (result.ec != std::errc() ||
+            (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])))) {
+          return lineError(path, child->GetLineNum(),
+                           std::string("<") + child->Name() + "> holds " +
+                               quoted(text.substr(i, std::min<size_t>(text.size() - i, 12))) +
+                               ": it must hold whole numbers (indices) only");
+        }
+        total += std::min<unsigned long long>(number, fileBytes);
+        i = end;
+      }
+      if (isNamed(child, "vcount") && total > fileBytes / 2) {
+        return lineError(path, child->GetLineNum(),
+                         "<vcount> adds up to more vertices than a file of " +
+                             std::to_string(fileBytes) + " bytes can index");
+      }
+    }
+    Expected<bool> inner = checkNumbers(child, fileBytes, path);
     if (!inner) return inner;
   }
   return true;
@@ -254,7 +296,7 @@ Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::st
     return Error{path + ": not a COLLADA document (its root element is " +
                  (root ? quoted(root->Name()) : std::string("missing")) + ", not COLLADA)"};
   }
-  Expected<bool> counts = checkCounts(root, text.size(), path);
+  Expected<bool> counts = checkNumbers(root, text.size(), path);
   if (!counts) return counts.error();
 
   NodeGraph graph(root, path);

@@ -9,8 +9,10 @@
 // value. So the text is parsed here first (tinyxml2, which also gives line
 // numbers for malformed XML) and refused when:
 //  - it is not a <COLLADA> document,
-//  - a count or stride attribute exceeds the file's size in bytes (every
-//    counted value takes at least one byte of the file),
+//  - a count or stride attribute, or the sum of a <vcount>, is more than
+//    the file could hold (every counted value takes at least two bytes),
+//  - an index list (<p>, <vcount>, ...) holds anything but whole numbers
+//    (assimp 5.2.5 loops, appending, on a stray character),
 //  - the nodes nest, directly or through <instance_node>, deeper than
 //    kMaxColladaNodeDepth, or form a cycle,
 //  - the visual scenes, with every instance expanded, have more than

@@ -272,6 +272,19 @@ TEST_F(ColladaMesh, CountsBeyondTheFileAreRefusedBeforeAssimpReservesThem) {
     EXPECT_NE(message.find("<float_array> has count='" + std::string(count) + "'"), std::string::npos)
         << message;
   }
+  const std::string vcount = errorOf(replaced(cube, "<vcount>4 4", "<vcount>400000000 4"));
+  EXPECT_NE(vcount.find("<vcount> adds up to more vertices than a file of"), std::string::npos) << vcount;
+}
+
+// assimp 5.2.5 appends indices without end on a stray character in <p>
+// (found by fuzz_dae_mesh), and takes "-1" as an index.
+TEST_F(ColladaMesh, IndexListsMustHoldWholeNumbersOnly) {
+  const std::string cube = readText(dataPath("cube.dae"));
+  for (const char* bad : {"0 0 2\x1e" "0", "0 0 2 0.5", "0 -1 2 0", "0 0 2x0"}) {
+    const std::string message = errorOf(replaced(cube, "<p>0 0 2 0", std::string("<p>") + bad));
+    EXPECT_NE(message.find("<p> holds '"), std::string::npos) << message;
+    EXPECT_NE(message.find("it must hold whole numbers (indices) only"), std::string::npos) << message;
+  }
 }
 
 // Node instancing is the one way a small COLLADA file makes assimp build
