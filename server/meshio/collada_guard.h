@@ -12,7 +12,9 @@
 //  - a count or stride attribute, or the sum of a <vcount>, is more than
 //    the file could hold (every counted value takes at least two bytes),
 //  - an index list (<p>, <vcount>, ...) holds anything but whole numbers
-//    (assimp 5.2.5 loops, appending, on a stray character),
+//    (assimp 5.2.5 loops, appending, on a stray character), or a list of
+//    reals (<float_array>, <matrix>, <translate>, ...) anything but finite
+//    numbers (assimp leaks the nodes it built when one fails to parse),
 //  - the nodes nest, directly or through <instance_node>, deeper than
 //    kMaxColladaNodeDepth, or form a cycle,
 //  - the visual scenes, with every instance expanded, have more than

@@ -287,6 +287,16 @@ TEST_F(ColladaMesh, IndexListsMustHoldWholeNumbersOnly) {
   }
 }
 
+// assimp 5.2.5 leaks the nodes it has built when a transform fails to
+// parse (found by fuzz_dae_mesh): lists of reals are checked first.
+TEST_F(ColladaMesh, RealListsMustHoldFiniteNumbersOnly) {
+  const std::string cube = readText(dataPath("cube.dae"));
+  const std::string transform = errorOf(replaced(cube, "<translate>0 3 4</translate>", "<translate>0 3@ 4</translate>"));
+  EXPECT_NE(transform.find("<translate> holds '3@', which is not a finite number"), std::string::npos) << transform;
+  const std::string array = errorOf(replaced(cube, "-1 -1 -1   1 -1 -1", "-1 -1 nan   1 -1 -1"));
+  EXPECT_NE(array.find("<float_array> holds 'nan', which is not a finite number"), std::string::npos) << array;
+}
+
 // Node instancing is the one way a small COLLADA file makes assimp build
 // without bound (or, through a cycle, recurse until its stack overflows).
 std::string instancedCubes(const std::string& libraryNodes, const std::string& sceneNodes) {
