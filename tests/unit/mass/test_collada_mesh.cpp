@@ -249,6 +249,12 @@ TEST_F(ColladaMesh, AssimpsReasonIsGiven) {
   const std::string dangling =
       errorOf(replaced(cube, "<instance_geometry url=\"#cube-mesh\"/>", "<instance_geometry url=\"#nothing\"/>"));
   EXPECT_NE(dangling.find("no triangles"), std::string::npos) << dangling;
+  // A scene that names no visual scene (assimp would leak its nodes).
+  const std::string scene = errorOf(replaced(cube, "<instance_visual_scene url=\"#Scene\"/>",
+                                             "<instance_visual_scene url=\"#Other\"/>"));
+  EXPECT_NE(scene.find("<instance_visual_scene url='Other'> names no <visual_scene> of the file"),
+            std::string::npos)
+      << scene;
   // Lines only: no solid.
   const std::string lines = errorOf(replaced(
       replaced(replaced(cube, "<polylist count=\"6\">", "<lines count=\"1\">"), "</polylist>", "</lines>"),
