@@ -231,6 +231,23 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
                              std::to_string(fileBytes) + " bytes");
       }
     }
+    // assimp 5.2.5 is built with its assertions on in Debian: a <polygons>
+    // whose count is not its number of <p> aborts the process (found by
+    // fuzz_dae_mesh), as may a <triangles> or <polylist> with several.
+    if (isNamed(child, "polygons") || isNamed(child, "triangles") || isNamed(child, "polylist")) {
+      long long lists = 0;
+      for (const XMLElement* list = child->FirstChildElement("p"); list;
+           list = list->NextSiblingElement("p")) {
+        ++lists;
+      }
+      const char* declared = child->Attribute("count");
+      if (isNamed(child, "polygons") ? declared && std::to_string(lists) != declared : lists > 1) {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + "> has " + std::to_string(lists) +
+                             " <p> lists, which its count= does not allow (one per polygon of "
+                             "<polygons>, one in all otherwise)");
+      }
+    }
     if (isRealList(child)) {
       Expected<bool> reals = checkRealList(child, path);
       if (!reals) return reals;

@@ -303,6 +303,23 @@ TEST_F(ColladaMesh, RealListsMustHoldFiniteNumbersOnly) {
   EXPECT_NE(array.find("<float_array> holds 'nan', which is not a finite number"), std::string::npos) << array;
 }
 
+// Debian's assimp aborts (a failed assertion) on a <polygons> whose count
+// is not its number of <p> (found by fuzz_dae_mesh).
+TEST_F(ColladaMesh, PolygonCountsMustMatchTheirLists) {
+  const auto polygons = [](const std::string& count) {
+    std::string text = readText(dataPath("tetrahedron_y_up.dae"));
+    text = replaced(text, "<triangles count=\"4\">", "<polygons count=\"" + count + "\">");
+    text = replaced(text, "<p>0 2 1  0 1 3  0 3 2  1 2 3</p>", "<p>0 2 1</p><p>0 1 3</p><p>0 3 2</p><p>1 2 3</p>");
+    return replaced(text, "</triangles>", "</polygons>");
+  };
+  const Expected<TriangleMesh> good = loadMesh(writeText("good.dae", polygons("4")));
+  ASSERT_TRUE(good.ok()) << good.error().message;
+  EXPECT_EQ(good->triangles.size(), 4u);
+  const std::string message = errorOf(polygons("5"));
+  EXPECT_NE(message.find("<polygons> has 4 <p> lists, which its count= does not allow"), std::string::npos)
+      << message;
+}
+
 // Node instancing is the one way a small COLLADA file makes assimp build
 // without bound (or, through a cycle, recurse until its stack overflows).
 std::string instancedCubes(const std::string& libraryNodes, const std::string& sceneNodes) {
