@@ -234,6 +234,14 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
     // assimp 5.2.5 is built with its assertions on in Debian: a <polygons>
     // whose count is not its number of <p> aborts the process (found by
     // fuzz_dae_mesh), as may a <triangles> or <polylist> with several.
+    // COLLADA requires the count; assimp takes a missing one as 0.
+    for (const char* primitives :
+         {"polygons", "triangles", "polylist", "lines", "linestrips", "trifans", "tristrips"}) {
+      if (isNamed(child, primitives) && !child->Attribute("count")) {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + "> has no count= attribute");
+      }
+    }
     if (isNamed(child, "polygons") || isNamed(child, "triangles") || isNamed(child, "polylist")) {
       long long lists = 0;
       for (const XMLElement* list = child->FirstChildElement("p"); list;
@@ -241,7 +249,7 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
         ++lists;
       }
       const char* declared = child->Attribute("count");
-      if (isNamed(child, "polygons") ? declared && std::to_string(lists) != declared : lists > 1) {
+      if (isNamed(child, "polygons") ? std::to_string(lists) != declared : lists > 1) {
         return lineError(path, child->GetLineNum(),
                          std::string("<") + child->Name() + "> has " + std::to_string(lists) +
                              " <p> lists, which its count= does not allow (one per polygon of "

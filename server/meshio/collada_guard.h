@@ -17,7 +17,8 @@
 //    numbers (assimp leaks the nodes it built when one fails to parse),
 //  - the nodes nest, directly or through <instance_node>, deeper than
 //    kMaxColladaNodeDepth, or form a cycle,
-//  - a <polygons> count is not its number of <p> lists, or a <triangles>
+//  - a primitive element has no count, a <polygons> count is not its
+//    number of <p> lists, or a <triangles>
 //    or <polylist> has several (Debian's assimp asserts, and aborts),
 //  - <scene> instances a visual scene the file does not have (assimp
 //    leaks its nodes then),

@@ -317,7 +317,8 @@ TEST_F(ColladaMesh, PolygonCountsMustMatchTheirLists) {
   EXPECT_EQ(good->triangles.size(), 4u);
   const std::string message = errorOf(polygons("5"));
   EXPECT_NE(message.find("<polygons> has 4 <p> lists, which its count= does not allow"), std::string::npos)
-      << message;
+      << message;  const std::string missing = errorOf(replaced(polygons("4"), "<polygons count=\"4\">", "<polygons>"));
+  EXPECT_NE(missing.find("<polygons> has no count= attribute"), std::string::npos) << missing;
 }
 
 // Node instancing is the one way a small COLLADA file makes assimp build
