@@ -234,6 +234,17 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
     // assimp 5.2.5 is built with its assertions on in Debian: a <polygons>
     // whose count is not its number of <p> aborts the process (found by
     // fuzz_dae_mesh), as may a <triangles> or <polylist> with several.
+    // A reference to another file is never followed (the file is untrusted),
+    // and assimp 5.2.5 leaks the nodes it built when it meets one.
+    if (std::strncmp(child->Name(), "instance_", 9) == 0) {
+      const char* url = child->Attribute("url");
+      if (url && url[0] != '#') {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + " url=" + quoted(url) +
+                             "> refers outside this file; references to other files are not "
+                             "followed (mesh files are untrusted input)");
+      }
+    }
     // COLLADA requires the count; assimp takes a missing one as 0.
     for (const char* primitives :
          {"polygons", "triangles", "polylist", "lines", "linestrips", "trifans", "tristrips"}) {

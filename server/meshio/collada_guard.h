@@ -20,6 +20,8 @@
 //  - a primitive element has no count, a <polygons> count is not its
 //    number of <p> lists, or a <triangles>
 //    or <polylist> has several (Debian's assimp asserts, and aborts),
+//  - an <instance_...> url names another file (never followed; assimp
+//    leaks its nodes on one),
 //  - <scene> instances a visual scene the file does not have (assimp
 //    leaks its nodes then),
 //  - the visual scenes, with every instance expanded, have more than
