@@ -14,6 +14,8 @@ packages=(
   libeigen3-dev libccd-dev libyaml-cpp-dev libqhull-dev
   # robots from URDF (urdfdom, and tinyxml2 for the load report's line numbers)
   liburdfdom-dev libtinyxml2-dev
+  # COLLADA meshes (server/meshio/collada_mesh.h)
+  libassimp-dev
   # rbctl --json
   nlohmann-json3-dev
   # tests and benchmarks

@@ -4,21 +4,26 @@
 #include <array>
 #include <bit>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string_view>
-#include <system_error>
-#include <unordered_map>
 #include <vector>
+
+#include "meshio/collada_mesh.h"
+#include "meshio/mesh_file.h"
+#include "meshio/vertex_welder.h"
 
 namespace rbsim {
 namespace {
+
+using meshio::fileError;
+using meshio::OpenFile;
+using meshio::openMeshFile;
+using meshio::triangleLimitText;
+using meshio::VertexWelder;
 
 // Bounds the memory an OBJ file can make us allocate through vertex lines
 // alone. A closed triangle mesh has about half as many vertices as
@@ -28,17 +33,8 @@ constexpr long long kMaxObjVertices = 3LL * kMaxMeshTriangles;
 constexpr std::uintmax_t kStlHeaderBytes = 84;  // 80-byte comment + uint32 triangle count
 constexpr std::uintmax_t kStlRecordBytes = 50;  // normal, 3 vertices (12 float32), uint16
 
-Error fileError(const std::string& path, const std::string& text) {
-  return Error{path + ": " + text};
-}
-
 Error lineError(const std::string& path, long long line, const std::string& text) {
   return Error{path + ":" + std::to_string(line) + ": " + text};
-}
-
-std::string triangleLimitText() {
-  return "more than " + std::to_string(kMaxMeshTriangles) +
-         " triangles; larger meshes are rejected (mesh files are untrusted input)";
 }
 
 // A token from the file, quoted in a message: unprintable bytes replaced and
@@ -85,65 +81,6 @@ bool parseInteger(std::string_view token, long long& value) {
   const auto result = std::from_chars(token.data(), end, value);
   return result.ec == std::errc() && result.ptr == end;
 }
-
-struct OpenFile {
-  std::ifstream stream;
-  std::uintmax_t size = 0;  // bytes
-};
-
-Expected<OpenFile> openMeshFile(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) return fileError(path, "no such file");
-  if (fs::is_directory(status)) return fileError(path, "is a directory, not a mesh file");
-  OpenFile file;
-  file.stream.open(path, std::ios::binary);
-  if (!file.stream) {
-    return fileError(path,
-                     std::string("cannot be opened for reading (") + std::strerror(errno) + ")");
-  }
-  file.size = fs::file_size(path, ec);
-  if (ec) return fileError(path, "cannot determine the file size (" + ec.message() + ")");
-  if (file.size == 0) return fileError(path, "file is empty");
-  return file;
-}
-
-// Welds vertices by exact position: STL stores every triangle's corners
-// separately, and without welding no edge would be shared.
-class VertexWelder {
- public:
-  explicit VertexWelder(TriangleMesh& mesh) : m_mesh(mesh) {}
-
-  int indexOf(const Vec3& p) {
-    // -0.0 and +0.0 are the same position but not the same bits.
-    const Key key{p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(),
-                  p.z() == 0.0 ? 0.0 : p.z()};
-    const auto [it, inserted] =
-        m_indices.try_emplace(key, static_cast<int>(m_mesh.vertices.size()));
-    if (inserted) m_mesh.vertices.push_back(p);
-    return it->second;
-  }
-
- private:
-  using Key = std::array<double, 3>;
-  struct KeyHash {
-    size_t operator()(const Key& key) const {
-      // splitmix64 finaliser over the bit patterns: cheap and well mixed.
-      std::uint64_t h = 0x9E3779B97F4A7C15ull;
-      for (double x : key) {
-        h ^= std::bit_cast<std::uint64_t>(x) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-        h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-        h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-        h ^= h >> 31;
-      }
-      return static_cast<size_t>(h);
-    }
-  };
-
-  TriangleMesh& m_mesh;
-  std::unordered_map<Key, int, KeyHash> m_indices;
-};
 
 std::uint32_t readLittleEndian32(const unsigned char* bytes) {
   return static_cast<std::uint32_t>(bytes[0]) | (static_cast<std::uint32_t>(bytes[1]) << 8) |
@@ -443,9 +380,10 @@ Expected<TriangleMesh> loadMesh(const std::string& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".obj") return loadObj(path);
   if (extension == ".stl") return loadStl(path);
-  if (extension.empty()) return fileError(path, "has no extension (expected .obj or .stl)");
-  return fileError(path,
-                   "unsupported mesh format " + quoteToken(extension) + " (expected .obj or .stl)");
+  if (extension == ".dae") return loadCollada(path);
+  if (extension.empty()) return fileError(path, "has no extension (expected .obj, .stl or .dae)");
+  return fileError(path, "unsupported mesh format " + quoteToken(extension) +
+                             " (expected .obj, .stl or .dae)");
 }
 
 }  // namespace rbsim

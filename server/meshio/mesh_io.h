@@ -1,6 +1,9 @@
 #pragma once
 // Loading triangle meshes from files: Wavefront OBJ (faces triangulated as
-// fans) and STL, ASCII and binary (told apart by content, not by name).
+// fans), STL, ASCII and binary (told apart by content, not by name), and
+// COLLADA through assimp (collada_mesh.h). OBJ and STL keep their own
+// readers: they are faster than assimp's and report line numbers
+// (docs/world_file.md, "Meshes", has the measurement).
 // Load-time I/O only; nothing here runs in the stepping path.
 
 #include <string>
@@ -14,8 +17,10 @@ namespace rbsim {
 // rejected before its triangles are stored.
 inline constexpr int kMaxMeshTriangles = 2'000'000;
 
-// Chooses the reader by extension (.obj, .stl, case-insensitive). STL
-// vertices are welded by exact position so that closedness can be checked.
+// Chooses the reader by extension (.obj, .stl, .dae, case-insensitive).
+// STL and COLLADA vertices are welded by exact position so that closedness
+// can be checked; COLLADA comes in metres and Z-up (its unit and up axis
+// applied).
 // Errors name the file and, where it applies, the line. Loading does not
 // check that the mesh is closed: call validateClosedMesh before computing
 // mass properties.

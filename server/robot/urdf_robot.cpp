@@ -349,11 +349,6 @@ Expected<std::string> RobotBuilder::confinedPackageFile(const std::string& uri, 
 // are often open (many unmatched edges), and the mass comes from
 // <inertial>, so only the hull matters. The hull is closed by construction.
 Expected<CompoundPartShape> RobotBuilder::makeMesh(const urdf::Mesh& mesh, const std::string& link) {
-  std::string extension = std::filesystem::path(mesh.filename).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension == ".dae")
-    return Error{linkAt(link) + ": mesh '" + mesh.filename +
-                 "' is COLLADA (.dae), which rbsim does not read: convert it to STL or OBJ"};
   Expected<std::string> path = meshFile(mesh.filename, link);
   if (!path) return path.error();
   Expected<TriangleMesh> loaded = loadMesh(*path);

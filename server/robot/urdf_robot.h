@@ -8,7 +8,7 @@
 //    is with the joints at their initial positions; its <inertial> gives
 //    the mass properties (mass, centre of mass and inertia in the link's
 //    frame), its <collision> elements its shape (one: that shape; several:
-//    a compound; box, sphere, cylinder, and meshes (OBJ, STL), which collide
+//    a compound; box, sphere, cylinder, and meshes (OBJ, STL, COLLADA), which collide
 //    as their convex hull and may be open, since the mass is given). A link
 //    without collisions collides with nothing.
 //  - revolute, continuous, prismatic and fixed joints are joints with their
@@ -108,7 +108,8 @@ struct RobotModel {
 // Builds the robot of the URDF text `xml`. Errors: XML that is not a URDF
 // (urdfdom's message), a planar joint, a mimic joint, a moving link without
 // mass, mass properties no rigid body has, a shape of non-positive size, a
-// mesh that cannot be read (COLLADA is refused by name), a joint position
+// mesh that cannot be read (loadMesh's message: OBJ, STL and COLLADA are
+// read, any other format is refused by its extension), a joint position
 // for a joint the robot does not have or that does not move, or outside its
 // limits.
 Expected<RobotModel> buildRobot(const std::string& xml, const RobotPlacement& placement, const RobotFiles& files);

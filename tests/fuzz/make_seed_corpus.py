@@ -238,6 +238,29 @@ def mesh_seeds():
     write("stl_mesh", "tetrahedron_binary.stl", binary)
     # Binary, but with a header that starts with "solid", as many exporters write.
     write("stl_mesh", "solid_header_binary.stl", b"solid" + binary[5:])
+    for path in ("tests/data/meshes/cube.dae", "tests/data/meshes/tetrahedron_y_up.dae",
+                 "tests/data/meshes/tetrahedron_mm.dae"):
+        copy("dae_mesh", path)
+    # Library nodes placed by <instance_node>, each kind of transform, X_UP,
+    # a unit, <polygons> and <lines>: the paths the test files do not take.
+    write("dae_mesh", "instanced_nodes.dae", """<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><unit meter="0.5"/><up_axis>X_UP</up_axis></asset>
+<library_geometries><geometry id="g"><mesh>
+<source id="p"><float_array id="pa" count="12">0 0 0 1 0 0 0 1 0 0 0 1</float_array>
+<technique_common><accessor source="#pa" count="4" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+<polygons count="4"><input semantic="VERTEX" source="#v" offset="0"/><p>0 2 1</p><p>0 1 3</p><p>0 3 2</p><p>1 2 3</p></polygons>
+<lines count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1</p></lines>
+</mesh></geometry></library_geometries>
+<library_nodes><node id="part" sid="part" name="part"><rotate>0 0 1 90</rotate><instance_geometry url="#g"/></node></library_nodes>
+<library_visual_scenes><visual_scene id="s">
+<node id="a"><matrix>1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1</matrix><instance_node url="#part"/></node>
+<node id="b"><scale>-1 1 1</scale><translate>0 0 2</translate><instance_node url="#part"/><node id="c"><instance_geometry url="#g"/></node></node>
+</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+""")
 
 
 def hull_seeds():

@@ -49,6 +49,7 @@ dictionary_for() {
     world_config | body_yaml) echo "$fuzz/dictionaries/yaml.dict" ;;
     obj_mesh) echo "$fuzz/dictionaries/obj.dict" ;;
     stl_mesh) echo "$fuzz/dictionaries/stl.dict" ;;
+    dae_mesh) echo "$fuzz/dictionaries/dae.dict" ;;
     urdf_robot) echo "$fuzz/dictionaries/urdf.dict" ;;
     wrench_message | command_message | joint_command_message | command_handler | replay_log) echo "$fuzz/dictionaries/lcm.dict" ;;
   esac

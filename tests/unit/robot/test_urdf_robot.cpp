@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
@@ -692,18 +693,50 @@ TEST(UrdfRobot, JointsThatMakeNoTreeAreRefusedWithTheirLines) {
   EXPECT_NE(hanging.find("the joints make a loop"), std::string::npos) << hanging;
 }
 
-TEST(UrdfRobot, AColladaMeshIsRefusedByName) {
+// ur_description and other public descriptions use COLLADA for collision
+// meshes too: the same tetrahedron as .dae and as .stl gives the same hull.
+TEST(UrdfRobot, ACollisionMeshMayBeCollada) {
   RobotPlacement placement;
   placement.name = "r";
-  RobotFiles files = filesFor("dae.urdf");
-  files.directory = kUrdfDir;
+  const auto linkWith = [](const std::string& mesh) {
+    return robotXml(
+        "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" "
+        "iyz=\"0\" izz=\"0.1\"/></inertial><collision><geometry><mesh filename=\"package://rbsim_test_parts/meshes/" +
+        mesh + "\" scale=\"0.5 0.5 0.5\"/></geometry></collision></link>\n");
+  };
+  Expected<RobotModel> dae = buildRobot(linkWith("tetrahedron.dae"), placement, filesFor("dae.urdf"));
+  ASSERT_TRUE(dae.ok()) << dae.error().message;
+  Expected<RobotModel> stl = buildRobot(linkWith("tetrahedron.stl"), placement, filesFor("stl.urdf"));
+  ASSERT_TRUE(stl.ok()) << stl.error().message;
+  const TriangleMesh& fromDae = *std::get<MeshShape>(dae->bodies[0].shape).mesh;
+  const TriangleMesh& fromStl = *std::get<MeshShape>(stl->bodies[0].shape).mesh;
+  std::vector<Vec3> daeCorners = fromDae.vertices, stlCorners = fromStl.vertices;
+  const auto lexicographic = [](const Vec3& p, const Vec3& q) {
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  std::sort(daeCorners.begin(), daeCorners.end(), lexicographic);
+  std::sort(stlCorners.begin(), stlCorners.end(), lexicographic);
+  EXPECT_EQ(daeCorners, stlCorners);
+  EXPECT_EQ(daeCorners.size(), 4u);
+  EXPECT_TRUE(reportHas(*dae, "link 'a': mesh 'package://rbsim_test_parts/meshes/tetrahedron.dae' (4 triangles, closed)"))
+      << reportText(*dae);
+}
+
+// A format rbsim does not read is refused by its extension, with the link.
+TEST(UrdfRobot, AnUnreadMeshFormatIsRefusedByName) {
+  const std::string directory = ::testing::TempDir();
+  std::ofstream(directory + "/part.3ds") << "not read";
+  RobotPlacement placement;
+  placement.name = "r";
+  RobotFiles files = filesFor("3ds.urdf");
+  files.directory = directory;
   const std::string xml = robotXml(
       "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" "
-      "izz=\"0.1\"/></inertial><collision><geometry><mesh filename=\"meshes/part.dae\"/></geometry></collision></link>\n");
+      "izz=\"0.1\"/></inertial><collision><geometry><mesh filename=\"part.3ds\"/></geometry></collision></link>\n");
   Expected<RobotModel> robot = buildRobot(xml, placement, files);
   ASSERT_FALSE(robot.ok());
-  EXPECT_NE(robot.error().message.find("dae.urdf:3: link 'a': mesh 'meshes/part.dae' is COLLADA (.dae), which rbsim "
-                                       "does not read: convert it to STL or OBJ"),
+  EXPECT_NE(robot.error().message.find("3ds.urdf:3: link 'a': "), std::string::npos) << robot.error().message;
+  EXPECT_NE(robot.error().message.find("part.3ds: unsupported mesh format '.3ds' (expected .obj, .stl or .dae)"),
             std::string::npos)
       << robot.error().message;
 }

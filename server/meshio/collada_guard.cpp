@@ -1,0 +1,442 @@
+#include "meshio/collada_guard.h"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <system_error>
+#include <unordered_map>
+#include <vector>
+
+namespace rbsim::meshio {
+namespace {
+
+using tinyxml2::XMLElement;
+
+Error lineError(const std::string& path, int line, const std::string& text) {
+  return Error{path + ":" + std::to_string(line) + ": " + text};
+}
+
+// Text from the file, quoted in a message: unprintable bytes replaced and
+// length capped.
+std::string quoted(std::string_view text) {
+  constexpr size_t kMaxShown = 40;
+  std::string shown;
+  for (size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    shown += std::isprint(c) ? static_cast<char>(c) : '?';
+  }
+  if (text.size() > kMaxShown) shown += "...";
+  return "'" + shown + "'";
+}
+
+std::string_view trimmed(std::string_view text) {
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  while (!text.empty() && space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && space(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+bool isNamed(const XMLElement* element, const char* name) {
+  return std::strcmp(element->Name(), name) == 0;
+}
+
+// The <node> elements that belong to `element` (its child nodes) and the
+// urls of its <instance_node> elements. assimp reads these as direct
+// children; looking through any element in between as well can only count
+// more, never less.
+void collectParts(const XMLElement* element, std::vector<const XMLElement*>& nodes,
+                  std::vector<std::string_view>& instanceUrls) {
+  for (const XMLElement* child = element->FirstChildElement(); child;
+       child = child->NextSiblingElement()) {
+    if (isNamed(child, "node")) {
+      nodes.push_back(child);
+    } else if (isNamed(child, "instance_node")) {
+      const char* url = child->Attribute("url");
+      instanceUrls.emplace_back(url ? url : "");
+    } else {
+      collectParts(child, nodes, instanceUrls);  // depth bounded by tinyxml2's element depth limit
+    }
+  }
+}
+
+// The node graph with every <instance_node> followed: how many nodes a node
+// becomes once expanded, and how deep it nests, without building it.
+class NodeGraph {
+ public:
+  NodeGraph(const XMLElement* root, const std::string& path) : m_path(path) { index(root); }
+
+  struct Expansion {
+    long long nodes = 0;  // saturates just above kMaxColladaNodes
+    int depth = 0;
+  };
+
+  // `level` is the nesting level of `node` (1 for a visual scene's own nodes).
+  Expected<Expansion> expand(const XMLElement* node, int level) {
+    if (level > kMaxColladaNodeDepth) return tooDeep(node);
+    State& state = m_states[node];
+    if (state.done) {
+      if (level - 1 + state.expansion.depth > kMaxColladaNodeDepth) return tooDeep(node);
+      return state.expansion;
+    }
+    if (state.visiting) {
+      return lineError(m_path, node->GetLineNum(),
+                       "node " + nodeName(node) +
+                           " contains itself through <instance_node>: a cycle, refused");
+    }
+    state.visiting = true;
+    std::vector<const XMLElement*> children;
+    std::vector<std::string_view> urls;
+    collectParts(node, children, urls);
+    Expansion total{1, 1};
+    const auto add = [&](const Expansion& part) {
+      total.nodes = std::min(total.nodes + part.nodes, kMaxColladaNodes + 1);
+      total.depth = std::max(total.depth, 1 + part.depth);
+    };
+    for (const XMLElement* child : children) {
+      Expected<Expansion> part = expand(child, level + 1);
+      if (!part) return part.error();
+      add(*part);
+    }
+    for (std::string_view url : urls) {
+      // A url "#x" names the node whose id (or, as assimp also tries, sid
+      // or name) is x; where several could be meant, count the largest.
+      if (!url.empty() && url.front() == '#') url.remove_prefix(1);
+      const auto found = m_byName.find(std::string(url));
+      if (found == m_byName.end()) continue;  // assimp reports the unresolved reference
+      Expansion largest;
+      for (const XMLElement* target : found->second) {
+        Expected<Expansion> part = expand(target, level + 1);
+        if (!part) return part.error();
+        largest.nodes = std::max(largest.nodes, part->nodes);
+        largest.depth = std::max(largest.depth, part->depth);
+      }
+      add(largest);
+    }
+    // m_states may have rehashed during the recursion: look the state up again.
+    State& finished = m_states[node];
+    finished.visiting = false;
+    finished.done = true;
+    finished.expansion = total;
+    return total;
+  }
+
+ private:
+  struct State {
+    bool visiting = false;
+    bool done = false;
+    Expansion expansion;
+  };
+
+  void index(const XMLElement* element) {
+    for (const XMLElement* child = element->FirstChildElement(); child;
+         child = child->NextSiblingElement()) {
+      if (isNamed(child, "node")) {
+        for (const char* attribute : {"id", "sid", "name"}) {
+          if (const char* value = child->Attribute(attribute)) m_byName[value].push_back(child);
+        }
+      }
+      index(child);
+    }
+  }
+
+  static std::string nodeName(const XMLElement* node) {
+    for (const char* attribute : {"id", "name", "sid"}) {
+      if (const char* value = node->Attribute(attribute)) return quoted(value);
+    }
+    return "(unnamed)";
+  }
+
+  Error tooDeep(const XMLElement* node) const {
+    return lineError(m_path, node->GetLineNum(),
+                     "nodes nest deeper than " + std::to_string(kMaxColladaNodeDepth) +
+                         " levels (directly or through <instance_node>) at node " +
+                         nodeName(node) + "; refused");
+  }
+
+  const std::string& m_path;
+  std::unordered_map<const XMLElement*, State> m_states;
+  std::unordered_map<std::string, std::vector<const XMLElement*>> m_byName;
+};
+
+// The index lists (<p>, <vcount>, <v>, <h>, <int_array>): assimp 5.2.5
+// reads them without checking what it reads, and a single character that is
+// not a digit ("0 2x1", "0.5") makes it append indices until it has
+// allocated gigabytes; a minus sign gives an index it does not check.
+bool isIndexList(const XMLElement* element) {
+  for (const char* name : {"p", "vcount", "v", "h", "int_array"}) {
+    if (isNamed(element, name)) return true;
+  }
+  return false;
+}
+
+// The number lists assimp parses as reals: when one fails to parse inside a
+// <node>, assimp 5.2.5 throws and leaks the nodes it has built (found by
+// fuzz_dae_mesh), so they are checked here first.
+bool isRealList(const XMLElement* element) {
+  for (const char* name : {"float_array", "matrix", "translate", "rotate", "scale", "lookat", "skew",
+                           "bind_shape_matrix"}) {
+    if (isNamed(element, name)) return true;
+  }
+  return false;
+}
+
+Expected<bool> checkRealList(const XMLElement* element, const std::string& path) {
+  const std::string_view text = element->GetText() ? element->GetText() : "";
+  for (size_t i = 0; i < text.size();) {
+    if (std::isspace(static_cast<unsigned char>(text[i]))) {
+      ++i;
+      continue;
+    }
+    size_t end = i;
+    while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
+    std::string_view token = text.substr(i, end - i);
+    if (token.front() == '+') token.remove_prefix(1);
+    double value = 0.0;
+    const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (result.ec != std::errc() || result.ptr != token.data() + token.size() ||
+        !std::isfinite(value)) {
+      return lineError(path, element->GetLineNum(),
+                       std::string("<") + element->Name() + "> holds " + quoted(text.substr(i, end - i)) +
+                           ", which is not a finite number");
+    }
+    i = end;
+  }
+  return true;
+}
+
+// Every count and stride attribute (float_array, accessor, triangles, ...)
+// and the <vcount> lists: assimp reserves memory by them before it reads
+// what they count. Each counted value takes at least two bytes of the file
+// (a digit and a separator), a triangle three values.
+Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
+                            const std::string& path) {
+  for (const XMLElement* child = element->FirstChildElement(); child;
+       child = child->NextSiblingElement()) {
+    for (const char* attribute : {"count", "stride"}) {
+      const char* value = child->Attribute(attribute);
+      if (!value) continue;
+      const std::string_view text(value);
+      const std::size_t largest = isNamed(child, "triangles") ? fileBytes / 6 : fileBytes / 2;
+      unsigned long long number = 0;
+      const auto result = std::from_chars(text.data(), text.data() + text.size(), number);
+      if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+          number > largest) {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + "> has " + attribute + "=" +
+                             quoted(text) + ": not a whole number small enough for a file of " +
+                             std::to_string(fileBytes) + " bytes");
+      }
+    }
+    // assimp 5.2.5 is built with its assertions on in Debian: a <polygons>
+    // whose count is not its number of <p> aborts the process (found by
+    // fuzz_dae_mesh), as may a <triangles> or <polylist> with several.
+    // A reference to another file is never followed (the file is untrusted),
+    // and assimp 5.2.5 leaks the nodes it built when it meets one.
+    if (std::strncmp(child->Name(), "instance_", 9) == 0) {
+      const char* url = child->Attribute("url");
+      if (url && url[0] != '#') {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + " url=" + quoted(url) +
+                             "> refers outside this file; references to other files are not "
+                             "followed (mesh files are untrusted input)");
+      }
+    }
+    // COLLADA requires the count; assimp takes a missing one as 0.
+    for (const char* primitives :
+         {"polygons", "triangles", "polylist", "lines", "linestrips", "trifans", "tristrips"}) {
+      if (isNamed(child, primitives) && !child->Attribute("count")) {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + "> has no count= attribute");
+      }
+    }
+    if (isNamed(child, "polygons") || isNamed(child, "triangles") || isNamed(child, "polylist")) {
+      long long lists = 0;
+      for (const XMLElement* list = child->FirstChildElement("p"); list;
+           list = list->NextSiblingElement("p")) {
+        ++lists;
+      }
+      const char* declared = child->Attribute("count");
+      if (isNamed(child, "polygons") ? std::to_string(lists) != declared : lists > 1) {
+        return lineError(path, child->GetLineNum(),
+                         std::string("<") + child->Name() + "> has " + std::to_string(lists) +
+                             " <p> lists, which its count= does not allow (one per polygon of "
+                             "<polygons>, one in all otherwise)");
+      }
+    }
+    if (isRealList(child)) {
+      Expected<bool> reals = checkRealList(child, path);
+      if (!reals) return reals;
+    }
+    if (isIndexList(child)) {
+      const std::string_view text = child->GetText() ? child->GetText() : "";
+      unsigned long long total = 0;
+      for (size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (std::isspace(c)) {
+          ++i;
+          continue;
+        }
+        unsigned long long number = 0;
+        const auto result = std::from_chars(text.data() + i, text.data() + text.size(), number);
+        const size_t end = static_cast<size_t>(result.ptr - text.data());
+        if (result.ec != std::errc() ||
+            (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])))) {
+          return lineError(path, child->GetLineNum(),
+                           std::string("<") + child->Name() + "> holds " +
+                               quoted(text.substr(i, std::min<size_t>(text.size() - i, 12))) +
+                               ": it must hold whole numbers (indices) only");
+        }
+        total += std::min<unsigned long long>(number, fileBytes);
+        i = end;
+      }
+      if (isNamed(child, "vcount") && total > fileBytes / 2) {
+        return lineError(path, child->GetLineNum(),
+                         "<vcount> adds up to more vertices than a file of " +
+                             std::to_string(fileBytes) + " bytes can index");
+      }
+    }
+    Expected<bool> inner = checkNumbers(child, fileBytes, path);
+    if (!inner) return inner;
+  }
+  return true;
+}
+
+Expected<ColladaAsset> readAsset(const XMLElement* root, const std::string& path) {
+  ColladaAsset asset;
+  const XMLElement* info = root->FirstChildElement("asset");
+  if (!info) return asset;
+  if (const XMLElement* unit = info->FirstChildElement("unit")) {
+    if (const char* value = unit->Attribute("meter")) {
+      const std::string_view text = trimmed(value);
+      double metres = 0.0;
+      const auto result = std::from_chars(text.data(), text.data() + text.size(), metres);
+      if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+          !std::isfinite(metres) || metres <= 0.0) {
+        return lineError(path, unit->GetLineNum(),
+                         "<unit meter=" + quoted(value) + "> is not a positive finite number");
+      }
+      asset.metresPerUnit = metres;
+    }
+  }
+  if (const XMLElement* up = info->FirstChildElement("up_axis")) {
+    const std::string_view text = trimmed(up->GetText() ? up->GetText() : "");
+    if (text == "X_UP") {
+      asset.up = UpAxis::kX;
+    } else if (text == "Y_UP") {
+      asset.up = UpAxis::kY;
+    } else if (text == "Z_UP") {
+      asset.up = UpAxis::kZ;
+    } else {
+      return lineError(path, up->GetLineNum(),
+                       "<up_axis> is " + quoted(text) + ", not X_UP, Y_UP or Z_UP");
+    }
+  }
+  return asset;
+}
+
+std::size_t occurrences(std::string_view text, std::string_view word) {
+  std::size_t count = 0;
+  for (std::size_t at = text.find(word); at != std::string_view::npos;
+       at = text.find(word, at + word.size())) {
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace
+
+Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::string& path) {
+  // tinyxml2 would end the text at a NUL where assimp's parser goes on, and
+  // a document type declaration is read differently by the two; COLLADA
+  // needs neither.
+  if (text.find('\0') != std::string_view::npos) {
+    return Error{path + ": contains a NUL byte: not a text COLLADA file"};
+  }
+  if (text.find("<!DOCTYPE") != std::string_view::npos) {
+    return Error{path + ": has a <!DOCTYPE> declaration, which COLLADA does not use; refused"};
+  }
+  tinyxml2::XMLDocument document;
+  if (document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
+    const char* reason = document.ErrorStr();
+    return lineError(path, document.ErrorLineNum(),
+                     std::string("not well-formed XML (") + (reason ? reason : "no reason given") +
+                         ")");
+  }
+  const XMLElement* root = document.RootElement();
+  if (!root || !isNamed(root, "COLLADA")) {
+    return Error{path + ": not a COLLADA document (its root element is " +
+                 (root ? quoted(root->Name()) : std::string("missing")) + ", not COLLADA)"};
+  }
+  Expected<bool> counts = checkNumbers(root, text.size(), path);
+  if (!counts) return counts.error();
+
+  NodeGraph graph(root, path);
+  std::size_t instanceElements = 0;
+  long long sceneNodes = 0;
+  std::vector<const XMLElement*> scenes;
+  // Visual scenes sit in <library_visual_scenes>; looking everywhere can only
+  // count more.
+  std::vector<const XMLElement*> pending{root};
+  while (!pending.empty()) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    for (const XMLElement* child = element->FirstChildElement(); child;
+         child = child->NextSiblingElement()) {
+      if (isNamed(child, "visual_scene")) scenes.push_back(child);
+      if (isNamed(child, "instance_node")) ++instanceElements;
+      pending.push_back(child);
+    }
+  }
+  // tinyxml2 and assimp's own XML parser must see the same instances, or the
+  // check above would not be about the graph assimp builds.
+  if (occurrences(text, "<instance_node") != instanceElements) {
+    return Error{path + ": '<instance_node' appears where it is not an element (in a comment or "
+                        "text?); refused, since the node graph could not be checked"};
+  }
+  for (const XMLElement* scene : scenes) {
+    std::vector<const XMLElement*> nodes;
+    std::vector<std::string_view> urls;
+    collectParts(scene, nodes, urls);
+    for (const XMLElement* node : nodes) {
+      Expected<NodeGraph::Expansion> expansion = graph.expand(node, 1);
+      if (!expansion) return expansion.error();
+      sceneNodes = std::min(sceneNodes + expansion->nodes, kMaxColladaNodes + 1);
+    }
+    if (!urls.empty()) {
+      return lineError(path, scene->GetLineNum(),
+                       "<instance_node> directly in a <visual_scene> (outside any <node>) is "
+                       "not COLLADA; refused");
+    }
+  }
+  // A dangling <instance_visual_scene> makes assimp 5.2.5 throw with the
+  // nodes it built leaked (found by fuzz_dae_mesh).
+  for (const XMLElement* scene = root->FirstChildElement("scene"); scene;
+       scene = scene->NextSiblingElement("scene")) {
+    for (const XMLElement* instance = scene->FirstChildElement("instance_visual_scene"); instance;
+         instance = instance->NextSiblingElement("instance_visual_scene")) {
+      std::string_view url = instance->Attribute("url") ? instance->Attribute("url") : "";
+      if (!url.empty() && url.front() == '#') url.remove_prefix(1);
+      const bool found = std::any_of(scenes.begin(), scenes.end(), [&](const XMLElement* visual) {
+        const char* id = visual->Attribute("id");
+        return id && url == id;
+      });
+      if (!found) {
+        return lineError(path, instance->GetLineNum(),
+                         "<instance_visual_scene url=" + quoted(url) +
+                             "> names no <visual_scene> of the file");
+      }
+    }
+  }
+  if (sceneNodes > kMaxColladaNodes) {
+    return Error{path + ": the visual scenes have more than " + std::to_string(kMaxColladaNodes) +
+                 " nodes with every <instance_node> expanded; larger scenes are rejected (mesh "
+                 "files are untrusted input)"};
+  }
+  return readAsset(root, path);
+}
+
+}  // namespace rbsim::meshio
