@@ -9,6 +9,7 @@
 #include <cstring>
 #include <system_error>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace rbsim::meshio {
@@ -349,6 +350,47 @@ std::size_t occurrences(std::string_view text, std::string_view word) {
 
 }  // namespace
 
+// Every reference inside the file must name an element of it: an
+// <instance_...>'s url, an <input>'s or <accessor>'s source, an
+// <instance_material>'s target, each "#id" of an element's id (or, as
+// assimp also looks them up, its sid). assimp 5.2.5 throws on a missing or
+// dangling one with what it had built leaked (fuzz_dae_mesh: an
+// <instance_geometry> without its url).
+Expected<bool> checkReferences(const XMLElement* root, const std::string& path) {
+  std::unordered_set<std::string_view> names;
+  std::vector<const XMLElement*> pending{root};
+  while (!pending.empty()) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    for (const char* attribute : {"id", "sid"})
+      if (const char* value = element->Attribute(attribute)) names.insert(value);
+    for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
+  pending.assign(1, root);
+  while (!pending.empty()) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    const char* attribute = nullptr;
+    if (std::strncmp(element->Name(), "instance_", 9) == 0) attribute = isNamed(element, "instance_material") ? "target" : "url";
+    if (isNamed(element, "input") || isNamed(element, "accessor")) attribute = "source";
+    if (attribute != nullptr) {
+      const char* value = element->Attribute(attribute);
+      const std::string_view reference = value ? value : "";
+      if (reference.size() < 2 || reference.front() != '#' || !names.count(reference.substr(1))) {
+        return lineError(path, element->GetLineNum(),
+                         std::string("<") + element->Name() + "> " + attribute + "=" +
+                             (value ? quoted(reference) : std::string("(missing)")) +
+                             " names no element of this file (references to other files are not "
+                             "followed: mesh files are untrusted input)");
+      }
+    }
+    for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
+  return true;
+}
+
 Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::string& path) {
   // tinyxml2 would end the text at a NUL where assimp's parser goes on, and
   // a document type declaration is read differently by the two; COLLADA
@@ -373,6 +415,8 @@ Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::st
   }
   Expected<bool> counts = checkNumbers(root, text.size(), path);
   if (!counts) return counts.error();
+
+  if (Expected<bool> references = checkReferences(root, path); !references) return references.error();
 
   NodeGraph graph(root, path);
   std::size_t instanceElements = 0;
