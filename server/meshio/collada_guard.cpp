@@ -356,6 +356,63 @@ std::size_t occurrences(std::string_view text, std::string_view word) {
 // assimp also looks them up, its sid). assimp 5.2.5 throws on a missing or
 // dangling one with what it had built leaked (fuzz_dae_mesh: an
 // <instance_geometry> without its url).
+// The elements a static mesh file is made of: its asset, geometry, scene
+// graph, and the materials, effects, images, cameras and lights exporters
+// write beside them. Anything else is refused before assimp reads the file:
+// assimp 5.2.5 mishandles elements it does not expect (a misspelt
+// <instance_geometry> inside a <node> makes it allocate 2 GiB: found by
+// fuzz_dae_mesh). What an <extra> or a profile's own <technique> holds is
+// vendor data assimp passes over, and is not looked into.
+bool isMeshFileElement(const XMLElement* element) {
+  static const std::unordered_set<std::string_view> kNames = {
+      // the document and its asset
+      "COLLADA", "asset", "contributor", "author", "author_email", "author_website", "authoring_tool", "comments",
+      "copyright", "source_data", "created", "modified", "keywords", "revision", "subject", "title", "unit",
+      "up_axis", "coverage", "geographic_location", "longitude", "latitude", "altitude", "extra", "technique",
+      // libraries
+      "library_geometries", "library_visual_scenes", "library_nodes", "library_materials", "library_effects",
+      "library_images", "library_cameras", "library_lights", "library_controllers", "library_animations",
+      // geometry
+      "geometry", "mesh", "source", "float_array", "int_array", "bool_array", "Name_array", "IDREF_array",
+      "SIDREF_array", "technique_common", "accessor", "param", "vertices", "input", "triangles", "polylist",
+      "polygons", "lines", "linestrips", "trifans", "tristrips", "p", "vcount", "ph", "h",
+      // the scene graph
+      "visual_scene", "node", "matrix", "translate", "rotate", "scale", "lookat", "skew", "instance_geometry",
+      "instance_node", "instance_camera", "instance_light", "bind_material", "instance_material",
+      "bind_vertex_input", "bind", "scene", "instance_visual_scene",
+      // materials, effects and images
+      "material", "instance_effect", "setparam", "effect", "profile_COMMON", "newparam", "surface", "sampler2D",
+      "init_from", "format", "minfilter", "magfilter", "mipfilter", "wrap_s", "wrap_t", "phong", "lambert",
+      "blinn", "constant", "emission", "ambient", "diffuse", "specular", "shininess", "reflective",
+      "reflectivity", "transparent", "transparency", "index_of_refraction", "color", "float", "float2",
+      "float3", "float4", "texture", "image", "ref", "hex",
+      // cameras and lights
+      "camera", "optics", "perspective", "orthographic", "xfov", "yfov", "xmag", "ymag", "aspect_ratio",
+      "znear", "zfar", "light", "directional", "point", "spot", "constant_attenuation", "linear_attenuation",
+      "quadratic_attenuation", "falloff_angle", "falloff_exponent"};
+  return kNames.count(element->Name()) > 0;
+}
+
+Expected<bool> checkElementNames(const XMLElement* root, const std::string& path) {
+  std::vector<const XMLElement*> pending{root};
+  while (!pending.empty()) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    if (!isMeshFileElement(element)) {
+      return lineError(path, element->GetLineNum(),
+                       "<" + std::string(element->Name()) +
+                           "> is not an element of a static COLLADA mesh file (animations, skins and "
+                           "other content are not read); refused");
+    }
+    const bool vendorData =
+        isNamed(element, "extra") || (isNamed(element, "technique") && element->Attribute("profile") != nullptr);
+    if (vendorData) continue;
+    for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
+  return true;
+}
+
 Expected<bool> checkReferences(const XMLElement* root, const std::string& path) {
   std::unordered_set<std::string_view> names;
   std::vector<const XMLElement*> pending{root};
@@ -385,6 +442,8 @@ Expected<bool> checkReferences(const XMLElement* root, const std::string& path) 
                              "followed: mesh files are untrusted input)");
       }
     }
+    if (isNamed(element, "extra") || (isNamed(element, "technique") && element->Attribute("profile") != nullptr))
+      continue;  // vendor data, as checkElementNames
     for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
       pending.push_back(child);
   }
@@ -416,6 +475,7 @@ Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::st
   Expected<bool> counts = checkNumbers(root, text.size(), path);
   if (!counts) return counts.error();
 
+  if (Expected<bool> names = checkElementNames(root, path); !names) return names.error();
   if (Expected<bool> references = checkReferences(root, path); !references) return references.error();
 
   NodeGraph graph(root, path);
