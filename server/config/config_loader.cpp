@@ -151,8 +151,12 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<st
     std::vector<std::string> report;
     const BodyNameTaken taken = [&](const std::string& name) { return indexByName.count(name) > 0; };
     BodyVisuals looks;
+    // The world file names the directory the viewer serves (default: its own).
+    Expected<std::optional<std::filesystem::path>> served =
+        readViewerMeshDirectory(m_reader, *top, m_baseDirectory);
+    if (!served) return served.error();
     if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, RobotFilePaths::Anywhere, taken, world,
-                                 report, kWorldMeshRoute, looks))
+                                 report, kWorldMeshRoute, served->value_or(m_baseDirectory), looks))
       return *error;
     if (visuals != nullptr) visuals->merge(looks);
     for (std::size_t i = 0; i < world.bodies.size(); ++i) indexByName.emplace(world.bodies[i].name, i);
@@ -221,7 +225,7 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
     WorldDef made;
     std::vector<std::string> report;
     if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, paths, taken, made, report,
-                                 kSpawnMeshRoute, spawn.visuals))
+                                 kSpawnMeshRoute, m_baseDirectory, spawn.visuals))
       return *error;
     for (BodyDef& body : made.bodies) {
       indexByName.emplace(body.name, spawn.bodies.size());

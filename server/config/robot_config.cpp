@@ -83,7 +83,8 @@ std::optional<Error> applyJointDrives(const YamlReader& reader, const YamlNode& 
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
                                  const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
-                                 const std::string& meshRoute, BodyVisuals& visuals) {
+                                 const std::string& meshRoute, const std::filesystem::path& meshRouteDirectory,
+                                 BodyVisuals& visuals) {
   const bool confined = paths == RobotFilePaths::InsideBaseDirectory;
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();
@@ -146,7 +147,7 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     RobotFiles files;
     files.sourceName = *urdf;
     files.meshRoute = meshRoute;
-    files.meshRouteDirectory = baseDirectory.string();
+    files.meshRouteDirectory = meshRouteDirectory.string();
     std::string urdfPath = resolved(baseDirectory, *urdf).string();
     if (confined) {
       Expected<std::string> inside = resolveContainedFile(*urdf, baseDirectory.string());

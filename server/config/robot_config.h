@@ -44,11 +44,13 @@ enum class RobotFilePaths { Anywhere, InsideBaseDirectory };
 // Reads the list `node`, appends each robot's bodies, joints and pairs of
 // bodies excluded from collision to `world`, their visuals to `visuals` and
 // its load report (robot/urdf_robot.h) to `report`. Relative paths are
-// relative to `baseDirectory`, which the viewer's bridge serves visual meshes
-// from under `meshRoute` (robot/visual.h).
+// relative to `baseDirectory`. The viewer's bridge serves visual meshes
+// from `meshRouteDirectory` under `meshRoute` (robot/visual.h): a visual
+// mesh inside it is published with its URL there.
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
                                  const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
-                                 const std::string& meshRoute, BodyVisuals& visuals);
+                                 const std::string& meshRoute, const std::filesystem::path& meshRouteDirectory,
+                                 BodyVisuals& visuals);
 
 }  // namespace rbsim

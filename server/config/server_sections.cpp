@@ -51,9 +51,11 @@ std::optional<Error> readLcm(const YamlReader& reader, const YamlMap& lcm, Serve
 
 std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
                                 ServerSettings& out) {
-  static constexpr std::array<std::string_view, 11> kKeys = {
-      "real_time_factor", "duration", "catch_up", "max_burst", "record", "start_paused", "spin_us",
-      "checkpoint_dir", "checkpoint_every", "read_only", "spawn_mesh_directory"};
+  // viewer_mesh_directory is the world's (readViewerMeshDirectory).
+  static constexpr std::array<std::string_view, 12> kKeys = {
+      "real_time_factor", "duration",         "catch_up",  "max_burst",
+      "record",           "start_paused",     "spin_us",   "checkpoint_dir",
+      "checkpoint_every", "read_only",        "spawn_mesh_directory", "viewer_mesh_directory"};
   if (auto error = reader.checkKeys(server, kKeys, "the server section")) return error;
   const auto rtf = reader.number(server, "real_time_factor",
                                  NumberRule::nonNegative(out.maxRealTimeFactor), out.realTimeFactor);
@@ -91,6 +93,13 @@ std::optional<Error> readServer(const YamlReader& reader, const YamlMap& server,
     // Like mesh paths in the config file: relative to the file.
     out.spawnMeshDirectory =
         (std::filesystem::path(reader.sourceName()).parent_path() / *directory).lexically_normal().string();
+  }
+  if (const auto* entry = server.find("viewer_mesh_directory")) {
+    // Used by the world's robots (readViewerMeshDirectory); checked here
+    // too, for a world without robots.
+    const auto directory = reader.string(entry->value);
+    if (!directory) return directory.error();
+    if (directory->empty()) return reader.error(entry->value, "expected a directory");
   }
   const auto spin = reader.number(server, "spin_us", NumberRule::nonNegative(1e6),
                                   static_cast<double>(out.spinNanoseconds) * 1e-3);
@@ -195,6 +204,26 @@ std::optional<Error> readServerSections(const YamlReader& reader, const YamlMap&
                                [&](const YamlMap& m) { return readLimits(reader, m, settings); }))
     return error;
   return std::nullopt;
+}
+
+Expected<std::optional<std::filesystem::path>> readViewerMeshDirectory(const YamlReader& reader,
+                                                                       const YamlMap& root,
+                                                                       const std::filesystem::path& baseDirectory) {
+  const YamlMap::Entry* section = root.find("server");
+  if (section == nullptr) return std::optional<std::filesystem::path>();
+  const auto server = reader.map(section->value);
+  if (!server) return server.error();
+  const YamlMap::Entry* entry = server->find("viewer_mesh_directory");
+  if (entry == nullptr) return std::optional<std::filesystem::path>();
+  const auto directory = reader.string(entry->value);
+  if (!directory) return directory.error();
+  if (directory->empty()) return reader.error(entry->value, "expected a directory");
+  // Only a prefix for the URLs the server publishes: what the bridge serves
+  // is its own --meshes directory, and a mesh outside this one, or reached
+  // through a link leading out, gets no URL (RobotBuilder::meshUrl).
+  const std::filesystem::path path(*directory);
+  return std::optional<std::filesystem::path>(
+      (path.is_absolute() ? path : baseDirectory / path).lexically_normal());
 }
 
 }  // namespace rbsim

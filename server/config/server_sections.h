@@ -4,6 +4,7 @@
 // document as the world, by the config loader: the file is read and parsed
 // once (loadConfig in config_loader.h).
 
+#include <filesystem>
 #include <optional>
 
 #include "config/server_settings.h"
@@ -19,5 +20,15 @@ namespace rbsim {
 // if any, names file, line, column and key path ("limits.max_force").
 std::optional<Error> readServerSections(const YamlReader& reader, const YamlMap& root,
                                         ServerSettings& settings);
+
+// `server.viewer_mesh_directory` of the root mapping `root`: the directory
+// the viewer's bridge serves the world's visual meshes from (`rbview
+// --meshes DIR`), relative to `baseDirectory` (the world file's directory);
+// nullopt when absent (then it is the world file's directory). Read before
+// the world's robots, whose mesh URLs are relative to it
+// (config/robot_config.h); readServerSections accepts the key.
+Expected<std::optional<std::filesystem::path>> readViewerMeshDirectory(const YamlReader& reader,
+                                                                       const YamlMap& root,
+                                                                       const std::filesystem::path& baseDirectory);
 
 }  // namespace rbsim

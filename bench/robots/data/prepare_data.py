@@ -135,7 +135,11 @@ def cylinder_inertial(mass, radius, length, xyz, rpy):
             f'    </inertial>\n')
 
 
-def ur5e_urdf():
+def ur5e_urdf(visuals=False):
+    """The UR5e's URDF; with `visuals`, with the <visual> elements of
+    ur_macro.xacro (meshes/visual/NAME.dae at the collision meshes' origins,
+    without the xacro's LightGrey colour so that a viewer draws the COLLADA
+    files' own materials), as config/robots/prepare_robots.py makes it."""
     # config/ur5e/default_kinematics.yaml
     kin = {
         "shoulder": (0, 0, 0.1625, 0, 0, 0),
@@ -178,13 +182,23 @@ def ur5e_urdf():
          (0, 0, -0.5 * cyl["wrist_3"][1]), (0, 0, 0)),
     ]
     key = ["base", "shoulder", "upper_arm", "forearm", "wrist_1", "wrist_2", "wrist_3"]
-    out = ['<?xml version="1.0"?>',
-           "<!-- bench/robots/data: the UR5e of ros-industrial/universal_robot ur_description",
-           "     (urdf/inc/ur_macro.xacro with config/ur5e/*.yaml) expanded by prepare_data.py:",
-           "     collision meshes only, no visuals, no transmissions (see SOURCE.md) -->",
-           '<robot name="ur5e">', '  <link name="base_link"/>']
+    if visuals:
+        intro = ["<!-- config/robots: the UR5e of ros-industrial/universal_robot ur_description",
+                 "     (urdf/inc/ur_macro.xacro with config/ur5e/*.yaml) expanded by",
+                 "     bench/robots/data/prepare_data.py: COLLADA visuals, STL collisions,",
+                 "     no transmissions (see SOURCE.md) -->"]
+    else:
+        intro = ["<!-- bench/robots/data: the UR5e of ros-industrial/universal_robot ur_description",
+                 "     (urdf/inc/ur_macro.xacro with config/ur5e/*.yaml) expanded by prepare_data.py:",
+                 "     collision meshes only, no visuals, no transmissions (see SOURCE.md) -->"]
+    out = ['<?xml version="1.0"?>'] + intro + ['<robot name="ur5e">', '  <link name="base_link"/>']
     for (name, mesh, cxyz, crpy, ixyz, irpy), k in zip(links, key):
         out.append(f'  <link name="{name}">')
+        if visuals:
+            out.append(f'    <visual>\n      <origin xyz="{" ".join(f(v) for v in cxyz)}" '
+                       f'rpy="{" ".join(f(v) for v in crpy)}"/>\n      <geometry>\n'
+                       f'        <mesh filename="meshes/visual/{mesh}.dae"/>\n'
+                       f'      </geometry>\n    </visual>')
         out.append(f'    <collision>\n      <origin xyz="{" ".join(f(v) for v in cxyz)}" '
                    f'rpy="{" ".join(f(v) for v in crpy)}"/>\n      <geometry>\n'
                    f'        <mesh filename="meshes/collision/{mesh}.stl"/>\n'

@@ -125,6 +125,44 @@ TEST(RobotConfig, TheLoadReportComesWithTheConfig) {
       << config->robotReport.front();
 }
 
+// server.viewer_mesh_directory: the directory the viewer's bridge serves
+// the world's visual meshes from (rbview --meshes), relative to the world
+// file; mesh URLs are relative to it. By default the world file's own
+// directory; a mesh outside the named one gets no URL (drawn from its
+// collision shape); a bad value is the world file's error.
+TEST(RobotConfig, ViewerMeshDirectoryIsWhereTheVisualsMeshUrlsAreRelativeTo) {
+  const std::string robot = "robots:\n  - {name: v, urdf: visual_arm.urdf, package_paths: [packages]}\n";
+  const auto urlOf = [](const Expected<Config>& config) -> std::string {
+    if (!config.ok()) return "error: " + config.error().message;
+    return config->visuals.at("v/arm").at(0).meshUrl;
+  };
+  EXPECT_EQ(urlOf(parseConfig(robot, kUrdfDir + "/w.yaml", kUrdfDir)),
+            "world/packages/rbsim_test_parts/meshes/tetrahedron.stl");
+  // One up: tests/data, which holds urdf/ (as config/ holds worlds/ and robots/).
+  EXPECT_EQ(urlOf(parseConfig(robot + "server: {viewer_mesh_directory: ..}\n", kUrdfDir + "/w.yaml", kUrdfDir)),
+            "world/urdf/packages/rbsim_test_parts/meshes/tetrahedron.stl");
+  EXPECT_EQ(urlOf(parseConfig(robot + "server: {viewer_mesh_directory: " + kUrdfDir + "/packages}\n",
+                              kUrdfDir + "/w.yaml", kUrdfDir)),
+            "world/rbsim_test_parts/meshes/tetrahedron.stl")
+      << "an absolute directory";
+  EXPECT_EQ(urlOf(parseConfig(robot + "server: {viewer_mesh_directory: packages/rbsim_test_parts/elsewhere}\n",
+                              kUrdfDir + "/w.yaml", kUrdfDir)),
+            "")
+      << "the mesh lies outside it";
+  // The world alone (loadWorldConfig's way) reads it too: the robots' visuals
+  // are made there.
+  EXPECT_TRUE(parseWorldConfig(robot + "server: {viewer_mesh_directory: ..}\n", "w.yaml", kUrdfDir).ok());
+  for (const std::string& bad : {std::string("server: {viewer_mesh_directory: ''}\n"),
+                                 std::string("server: {viewer_mesh_directory: [a]}\n")}) {
+    for (const std::string& world : {robot, std::string("world: {dt: 0.001}\n")}) {
+      const Expected<Config> config = parseConfig(world + bad, kUrdfDir + "/w.yaml", kUrdfDir);
+      ASSERT_FALSE(config.ok()) << world + bad;
+      EXPECT_NE(config.error().message.find("server.viewer_mesh_directory"), std::string::npos)
+          << config.error().message;
+    }
+  }
+}
+
 // hull_tolerance and hull_max_vertices: how far a collision mesh's hull is
 // simplified. The open box's hull is a cube of 8 vertices; a budget of 5
 // keeps 5, and the report says how far the cube lies outside them.
