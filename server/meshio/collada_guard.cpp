@@ -185,8 +185,21 @@ bool isRealList(const XMLElement* element) {
   return false;
 }
 
+// How many numbers a node's transform element holds; 0 for other lists.
+// assimp 5.2.5 throws on a transform of another length with the nodes it
+// built leaked (fuzz_dae_mesh: a <matrix> of 15 numbers).
+std::size_t transformArity(const XMLElement* element) {
+  if (isNamed(element, "matrix")) return 16;
+  if (isNamed(element, "translate") || isNamed(element, "scale")) return 3;
+  if (isNamed(element, "rotate")) return 4;
+  if (isNamed(element, "lookat")) return 9;
+  if (isNamed(element, "skew")) return 7;
+  return 0;
+}
+
 Expected<bool> checkRealList(const XMLElement* element, const std::string& path) {
   const std::string_view text = element->GetText() ? element->GetText() : "";
+  std::size_t numbers = 0;
   for (size_t i = 0; i < text.size();) {
     if (std::isspace(static_cast<unsigned char>(text[i]))) {
       ++i;
@@ -204,7 +217,14 @@ Expected<bool> checkRealList(const XMLElement* element, const std::string& path)
                        std::string("<") + element->Name() + "> holds " + quoted(text.substr(i, end - i)) +
                            ", which is not a finite number");
     }
+    ++numbers;
     i = end;
+  }
+  const std::size_t arity = transformArity(element);
+  if (arity != 0 && numbers != arity) {
+    return lineError(path, element->GetLineNum(),
+                     std::string("<") + element->Name() + "> holds " + std::to_string(numbers) +
+                         " numbers; it takes " + std::to_string(arity));
   }
   return true;
 }
