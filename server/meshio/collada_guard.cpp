@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <system_error>
 #include <unordered_map>
 #include <unordered_set>
@@ -266,6 +267,20 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
                              "followed (mesh files are untrusted input)");
       }
     }
+    // Attributes COLLADA requires and assimp 5.2.5 reads without checking
+    // (a <float_array> without its count crashes it: fuzz_dae_mesh).
+    const auto requireAttribute = [&](const char* attribute) -> std::optional<Error> {
+      if (child->Attribute(attribute)) return std::nullopt;
+      return lineError(path, child->GetLineNum(),
+                       std::string("<") + child->Name() + "> has no " + attribute + "= attribute");
+    };
+    for (const char* array : {"float_array", "int_array", "bool_array", "Name_array", "IDREF_array", "SIDREF_array"})
+      if (isNamed(child, array))
+        if (auto missing = requireAttribute("count")) return *missing;
+    if (isNamed(child, "accessor"))
+      if (auto missing = requireAttribute("count")) return *missing;
+    if (isNamed(child, "input"))
+      if (auto missing = requireAttribute("semantic")) return *missing;
     // COLLADA requires the count; assimp takes a missing one as 0.
     for (const char* primitives :
          {"polygons", "triangles", "polylist", "lines", "linestrips", "trifans", "tristrips"}) {

@@ -321,6 +321,8 @@ TEST_F(ColladaMesh, TransformsHoldTheirNumbersAndOnlyMeshFileElementsAreRead) {
                                                 "<translate>0 3 4</translate><animation id=\"a\"/>"));
   EXPECT_NE(animated.find("<animation> is not an element of a static COLLADA mesh file"), std::string::npos)
       << animated;
+  const std::string uncounted = errorOf(replaced(cube, "id=\"cube-normals-array\" count=\"18\"", "id=\"cube-normals-array\""));
+  EXPECT_NE(uncounted.find("<float_array> has no count= attribute"), std::string::npos) << uncounted;
   const std::string vendor = replaced(cube, "<translate>0 3 4</translate>",
                                       "<translate>0 3 4</translate><extra><technique profile=\"acme\">"
                                       "<anything at=\"all\"/></technique></extra>");
