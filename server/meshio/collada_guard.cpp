@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <system_error>
@@ -485,6 +486,59 @@ Expected<bool> checkReferences(const XMLElement* root, const std::string& path) 
   return true;
 }
 
+// The arrays hold what their count says (at least one value), and an
+// accessor reads within its array: assimp 5.2.5 dereferences a null array
+// on a count of 0 (fuzz_dae_mesh) and trusts the accessor's numbers.
+Expected<bool> checkArrays(const XMLElement* root, const std::string& path) {
+  std::unordered_map<std::string_view, unsigned long long> arrayCount;
+  std::vector<const XMLElement*> accessors;
+  std::vector<const XMLElement*> pending{root};
+  while (!pending.empty()) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    if (std::string_view(element->Name()).size() > 6 &&
+        std::string_view(element->Name()).substr(std::string_view(element->Name()).size() - 6) == "_array") {
+      // checkNumbers made count a whole number that is there.
+      const char* countText = element->Attribute("count");
+      const unsigned long long count = countText ? std::strtoull(countText, nullptr, 10) : 0;
+      const std::string_view text = element->GetText() ? element->GetText() : "";
+      unsigned long long values = 0;
+      for (std::size_t i = 0; i < text.size();) {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        if (i == text.size()) break;
+        ++values;
+        while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      }
+      if (count == 0 || values != count) {
+        return lineError(path, element->GetLineNum(),
+                         std::string("<") + element->Name() + "> has count=" + std::to_string(count) + " but holds " +
+                             std::to_string(values) + " values" + (count == 0 ? " (an array holds at least one)" : ""));
+      }
+      if (const char* id = element->Attribute("id")) arrayCount[id] = count;
+    }
+    if (isNamed(element, "accessor")) accessors.push_back(element);
+    if (isNamed(element, "extra") || (isNamed(element, "technique") && element->Attribute("profile") != nullptr))
+      continue;  // vendor data, as checkElementNames
+    for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
+  for (const XMLElement* accessor : accessors) {
+    const std::string_view source = accessor->Attribute("source") ? accessor->Attribute("source") : "";
+    const auto array = arrayCount.find(source.empty() ? source : source.substr(1));
+    const char* countText = accessor->Attribute("count");
+    const unsigned long long count = countText ? std::strtoull(countText, nullptr, 10) : 0;
+    const unsigned long long stride = accessor->Attribute("stride") ? std::strtoull(accessor->Attribute("stride"), nullptr, 10) : 1;
+    const unsigned long long offset = accessor->Attribute("offset") ? std::strtoull(accessor->Attribute("offset"), nullptr, 10) : 0;
+    if (array == arrayCount.end() || stride == 0 || count == 0 || offset > array->second ||
+        (array->second - offset) / stride < count) {
+      return lineError(path, accessor->GetLineNum(),
+                       "<accessor source=" + quoted(source) + " count=" + std::to_string(count) + " stride=" +
+                           std::to_string(stride) + "> does not read within an array of the file");
+    }
+  }
+  return true;
+}
+
 Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::string& path) {
   // tinyxml2 would end the text at a NUL where assimp's parser goes on, and
   // a document type declaration is read differently by the two; COLLADA
@@ -512,6 +566,7 @@ Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::st
 
   if (Expected<bool> names = checkElementNames(root, path); !names) return names.error();
   if (Expected<bool> references = checkReferences(root, path); !references) return references.error();
+  if (Expected<bool> arrays = checkArrays(root, path); !arrays) return arrays.error();
 
   NodeGraph graph(root, path);
   std::size_t instanceElements = 0;

@@ -241,10 +241,13 @@ TEST_F(ColladaMesh, TruncatedAndGarbageFilesNameTheFile) {
 
 TEST_F(ColladaMesh, AssimpsReasonIsGiven) {
   const std::string cube = readText(dataPath("cube.dae"));
-  // A float_array shorter than its count: assimp's own check, with its reason.
+  // An index past the vertices: assimp's own check, with its reason.
+  const std::string pastTheEnd = errorOf(replaced(cube, "<p>0 0 2 0 3 0 1 0", "<p>0 0 2 0 3 0 99 0"));
+  EXPECT_NE(pastTheEnd.find("COLLADA file could not be read: "), std::string::npos) << pastTheEnd;
+  EXPECT_EQ(pastTheEnd.find("$$$"), std::string::npos) << "assimp's placeholder name is not shown: " << pastTheEnd;
+  // A float_array shorter than its count: refused before assimp reads it.
   const std::string shortArray = errorOf(replaced(cube, "count=\"24\"", "count=\"25\""));
-  EXPECT_NE(shortArray.find("COLLADA file could not be read: "), std::string::npos) << shortArray;
-  EXPECT_EQ(shortArray.find("$$$"), std::string::npos) << "assimp's placeholder name is not shown: " << shortArray;
+  EXPECT_NE(shortArray.find(":15: <float_array> has count=25 but holds 24 values"), std::string::npos) << shortArray;
   // A dangling or missing reference (assimp would leak what it built on
   // some): refused with its line before assimp reads the file.
   const std::string dangling =
