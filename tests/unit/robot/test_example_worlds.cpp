@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "config/config_loader.h"
+#include "robot/urdf_robot.h"
 #include "rbsim/physics/world.h"
 #include "support/test_data_dir.h"
 
@@ -206,6 +207,52 @@ TEST(ExampleWorlds, TheA1StandsOnItsFourFeet) {
   // while the trunk and the joints' positions stay put (noted for the
   // contact solver's owner).
   expectOnTargets(world, 0.1, false);
+}
+
+// The A1 as published: its zero pose has every calf 0.916 rad above its
+// upper limit ([-2.696534, -0.916298]). Hung from a fixed base with no
+// drives, the description loads, the report names each calf and by how
+// much, and the limits bring the calves back within 10 steps (0.1 rad a
+// step) with no velocity from it: nothing moves faster than gravity could
+// make it in that time.
+TEST(ExampleWorlds, TheA1sZeroPoseBeyondItsCalvesLimitsIsBroughtBack) {
+  RobotPlacement placement;
+  placement.name = "a1";
+  placement.fixedBase = true;
+  placement.position = Vec3(0, 0, 1);
+  RobotFiles files;
+  files.sourceName = "a1.urdf";
+  Expected<RobotModel> robot = loadRobot(kConfigDir + "/robots/a1/a1.urdf", placement, files);
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  const char* legs[] = {"FR", "FL", "RR", "RL"};
+  for (const char* leg : legs) {
+    const std::string line = std::string("joint 'a1/") + leg +
+                             "_lower_joint' starts at 0, 0.916298 rad above its upper limit -0.916298";
+    EXPECT_TRUE(std::any_of(robot->report.begin(), robot->report.end(),
+                            [&](const std::string& l) { return l.find(line) != std::string::npos; }))
+        << line;
+  }
+  WorldDef def;
+  def.settings.dt = 0.001;
+  def.settings.gravity = Vec3(0, 0, -9.81);
+  def.bodies = robot->bodies;
+  def.joints = robot->joints;
+  Expected<World> world = World::fromDef(def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  double fastest = 0.0;
+  for (int step = 1; step <= 30; ++step) {
+    world->step();
+    for (BodyView body : world->bodies()) fastest = std::max(fastest, body.linearVelocity().norm());
+    if (step < 10) continue;
+    for (const char* leg : legs) {
+      const JointId id = world->findJoint(std::string("a1/") + leg + "_lower_joint");
+      EXPECT_LE(world->jointState(id).position - world->jointDefinition(id).limit.upper, 1e-9)
+          << leg << " at step " << step;
+    }
+  }
+  // 30 ms of gravity gives 0.29 m/s; a leg swung back by its limit through
+  // velocity would move at 0.9 rad in 1 ms, tens of m/s at the feet.
+  EXPECT_LT(fastest, 1.0) << "m/s";
 }
 
 TEST(ExampleWorlds, VisualsComeWithMeshUrlsUnderTheServedConfigDirectory) {
