@@ -13,6 +13,11 @@
 #   RBSIM_FUZZ_JOBS       targets run at once (default 2, one per core)
 #   RBSIM_FUZZ_BUILD_ONLY 1: build the targets and stop (run_tests.sh times
 #                         the build and the runs apart)
+#   RBSIM_FUZZ_SEED       libFuzzer's seed (default 1: a run from the same
+#                         corpora explores the same inputs in the same order,
+#                         so the suite's short run is reproducible and a
+#                         longer clean run vouches for every shorter one;
+#                         0: a random seed, for exploration)
 # Each target starts from its seed corpus (tests/fuzz/corpus/<target>), the
 # inputs that once found bugs (tests/fuzz/regressions/<target>) and what
 # earlier runs found (<build>/fuzz-corpus/<target>, not checked in).
@@ -22,6 +27,7 @@ source scripts/build_support.sh
 
 build=${RBSIM_FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${RBSIM_FUZZ_SECONDS:-15}
+seed=${RBSIM_FUZZ_SEED:-1}
 jobs=${RBSIM_FUZZ_JOBS:-2}
 fuzz=tests/fuzz
 
@@ -68,7 +74,7 @@ run_one() {
   # -timeout: one input taking longer is a hang; -rss_limit_mb also bounds a
   # single allocation (malloc_limit_mb defaults to it).
   "$build/tests/fuzz/fuzz_$target" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     ${dictionary:+-dict="$dictionary"} \
     -artifact_prefix="$build/fuzz-artifacts/$target-" \
     "$build/fuzz-corpus/$target" "$fuzz/corpus/$target" "$fuzz/regressions/$target" \
