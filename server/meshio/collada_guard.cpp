@@ -429,7 +429,25 @@ bool isMeshFileElement(const XMLElement* element) {
   return kNames.count(element->Name()) > 0;
 }
 
+// Where the document's parts may stand: the libraries and the scene only in
+// <COLLADA>, an <asset> holding only what describes the asset (a file whose
+// <asset> held its libraries made assimp leak: fuzz_dae_mesh).
+std::optional<std::string> misplacedReason(const XMLElement* element) {
+  const XMLElement* parent = element->Parent() ? element->Parent()->ToElement() : nullptr;
+  const std::string_view name = element->Name();
+  if ((name.rfind("library_", 0) == 0 || name == "scene") && (parent == nullptr || !isNamed(parent, "COLLADA")))
+    return "stands outside <COLLADA>'s top level";
+  if (parent != nullptr && isNamed(parent, "asset")) {
+    static const std::unordered_set<std::string_view> kAssetParts = {
+        "contributor", "created",  "modified", "keywords", "revision", "subject",
+        "title",       "unit",     "up_axis",  "coverage", "extra"};
+    if (!kAssetParts.count(name)) return "stands inside an <asset>, which describes the file only";
+  }
+  return std::nullopt;
+}
+
 Expected<bool> checkElementNames(const XMLElement* root, const std::string& path) {
+  std::unordered_set<std::string_view> ids;
   std::vector<const XMLElement*> pending{root};
   while (!pending.empty()) {
     const XMLElement* element = pending.back();
@@ -440,6 +458,13 @@ Expected<bool> checkElementNames(const XMLElement* root, const std::string& path
                            "> is not an element of a static COLLADA mesh file (animations, skins and "
                            "other content are not read); refused");
     }
+    if (std::optional<std::string> why = misplacedReason(element))
+      return lineError(path, element->GetLineNum(), "<" + std::string(element->Name()) + "> " + *why + "; refused");
+    // An id names one element of the document (COLLADA requires it).
+    if (const char* id = element->Attribute("id"); id && !ids.insert(id).second)
+      return lineError(path, element->GetLineNum(),
+                       "<" + std::string(element->Name()) + " id=" + quoted(id) +
+                           ">: the id is already another element's; refused");
     const bool vendorData =
         isNamed(element, "extra") || (isNamed(element, "technique") && element->Attribute("profile") != nullptr);
     if (vendorData) continue;
