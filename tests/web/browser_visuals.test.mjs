@@ -335,3 +335,107 @@ test("the Franka Panda is drawn from its OBJ files in white, with its fingers", 
     stopAll();
   }
 });
+
+// COLLADA files declare their own unit and up axis: rbview must place each in
+// its link's frame as rbserver does (Z_UP kept, Y_UP and X_UP turned to z up,
+// the unit applied), not as three.js's ColladaLoader would. Three one-link
+// robots, each drawn from and colliding as the same COLLADA box, 0.1 × 0.2 ×
+// 0.4 m from its link's origin along x, y and z, written in metres Z_UP, in
+// centimetres Y_UP and in millimetres X_UP. Each is drawn where it collides.
+const COLLADA_FRAMES = [
+  // name, up axis, metres per unit, a link-frame point (metres) in the file's coordinates
+  ["z_up_m", "Z_UP", 1, ([x, y, z]) => [x, y, z]],
+  ["y_up_cm", "Y_UP", 0.01, ([x, y, z]) => [x, z, -y].map((v) => v / 0.01)],
+  ["x_up_mm", "X_UP", 0.001, ([x, y, z]) => [z, -x, -y].map((v) => v / 0.001)],
+];
+const COLLADA_BOX = [0.1, 0.2, 0.4];
+
+function colladaBox(up, metres, toFile) {
+  const corners = [];
+  for (let k = 0; k < 8; k++) {
+    corners.push(toFile([k & 1 ? COLLADA_BOX[0] : 0, k & 2 ? COLLADA_BOX[1] : 0, k & 4 ? COLLADA_BOX[2] : 0]));
+  }
+  // Two triangles a face, counter-clockwise seen from outside (a rotation
+  // into the file's axes keeps them so).
+  const faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const triangles = faces.flatMap(([a, b, c, d]) => [a, b, c, a, c, d]);
+  return `<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="u" meter="${metres}"/><up_axis>${up}</up_axis></asset>
+  <library_effects><effect id="teal-effect"><profile_COMMON><technique sid="common"><lambert>
+    <diffuse><color>0.1 0.7 0.6 1</color></diffuse>
+  </lambert></technique></profile_COMMON></effect></library_effects>
+  <library_materials><material id="teal" name="teal"><instance_effect url="#teal-effect"/></material></library_materials>
+  <library_geometries><geometry id="box"><mesh>
+    <source id="box-positions">
+      <float_array id="box-positions-array" count="24">${corners.flat().join(" ")}</float_array>
+      <technique_common><accessor source="#box-positions-array" count="8" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common>
+    </source>
+    <vertices id="box-vertices"><input semantic="POSITION" source="#box-positions"/></vertices>
+    <triangles material="teal" count="12">
+      <input semantic="VERTEX" source="#box-vertices" offset="0"/>
+      <p>${triangles.join(" ")}</p>
+    </triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="box-node">
+    <instance_geometry url="#box"><bind_material><technique_common>
+      <instance_material symbol="teal" target="#teal"/>
+    </technique_common></bind_material></instance_geometry>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+`;
+}
+
+function colladaFramesWorld() {
+  const dir = path.join(work, "collada_frames");
+  mkdirSync(dir, { recursive: true });
+  const robots = [];
+  COLLADA_FRAMES.forEach(([name, up, metres, toFile], k) => {
+    writeFileSync(path.join(dir, `${name}.dae`), colladaBox(up, metres, toFile));
+    writeFileSync(path.join(dir, `${name}.urdf`), [
+      `<robot name="${name}"><link name="box">`,
+      `  <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>`,
+      `  <visual><geometry><mesh filename="${name}.dae"/></geometry></visual>`,
+      `  <collision><geometry><mesh filename="${name}.dae"/></geometry></collision>`,
+      `</link></robot>`, ""].join("\n"));
+    robots.push(`  - {name: ${name}, urdf: ${name}.urdf, fixed_base: true, position: [${0.5 * k}, 0, 0]}`);
+  });
+  writeFileSync(path.join(dir, "frames.yaml"), [
+    "world: {dt: 0.001, gravity: [0, 0, -9.81]}",
+    "lcm: {state_rate: 60, status_rate: 10}",
+    "robots:", ...robots, ""].join("\n"));
+  return dir;
+}
+
+test("a COLLADA file's unit and up axis place it in its link's frame as rbserver reads it", async () => {
+  const dir = colladaFramesWorld();
+  startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
+    ["--config", path.join(dir, "frames.yaml"), "--paused", "--log-level", "info"]);
+  const url = await rbview("--meshes", dir);
+  const page = await openPage(browser, url, VIEW);
+  try {
+    await waitForVisuals(page);
+    assert.deepEqual(await page.evaluate(() => rbview.visualsFailed()), []);
+    assert.deepEqual(await page.evaluate(() => rbview.visualMeshesDrawn()), { dae: COLLADA_FRAMES.length });
+    for (const [k, [name]] of COLLADA_FRAMES.entries()) {
+      const boxes = await page.evaluate((n) => rbview.visualAndCollisionBoxes(n), `${name}/box`);
+      assert.ok(boxes, `${name}/box has no drawn visuals`);
+      const expected = { min: [0.5 * k, 0, 0], max: [0.5 * k + COLLADA_BOX[0], COLLADA_BOX[1], COLLADA_BOX[2]] };
+      for (const [which, box] of Object.entries(boxes)) {
+        for (const end of ["min", "max"]) {
+          assert.ok(box[end].every((v, i) => Math.abs(v - expected[end][i]) < 0.002),
+            `${name}: its ${which} box is ${JSON.stringify(box)}, not ${JSON.stringify(expected)}`);
+        }
+      }
+    }
+    await hidePanels(page);
+    await screenshot(page, "visuals-collada-frames");
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});

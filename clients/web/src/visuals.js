@@ -89,6 +89,10 @@ async function loadCollada(url) {
   const strays = [];
   scene.traverse((o) => { if (o.isLight || o.isCamera) strays.push(o); });
   for (const o of strays) o.removeFromParent();
+  // A file without normals (rbserver needs none) would be drawn black.
+  scene.traverse((o) => {
+    if (o.isMesh && !o.geometry.hasAttribute("normal")) o.geometry.computeVertexNormals();
+  });
   return scene;
 }
 
