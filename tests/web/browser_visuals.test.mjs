@@ -5,7 +5,11 @@
 // its link is; with the collision toggle on, from its collision box instead
 // (no magenta); the page draws a ground under it. Then the KUKA iiwa of
 // bench/robots/data with <visual> elements put back (its STL meshes, the
-// original's Grey and Orange materials), for a look.
+// original's Grey and Orange materials), for a look. Then two example worlds
+// of public robots, served as `rbview --meshes config` serves them: the UR5e
+// (config/worlds/ur5e.yaml), drawn from its COLLADA files in their own
+// colours, and the Franka Panda (config/worlds/panda.yaml), drawn from its
+// OBJ files in its URDF's white, fingers and all.
 // Screenshots: BUILD/tests/web/artifacts/visuals-*.png.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
@@ -16,6 +20,7 @@ import {
 } from "./browser_support.mjs";
 
 const worldDir = path.join(repo, "tests", "web", "worlds", "robot_visuals");
+const configDir = path.join(repo, "config");
 const VIEW = { width: 1000, height: 700 };
 const work = process.env.RBVIEW_WORK || path.join(build, "tests", "web", "work", "browser_visuals");
 
@@ -177,6 +182,257 @@ test("the KUKA iiwa is drawn from its meshes in its colours", async () => {
     await page.evaluate(() => rbview.viewer.setSelected(rbview.bodyIndex("iiwa/lbr_iiwa_link_3")));
     await sleep(200);
     await screenshot(page, "visuals-iiwa-selected");
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});
+
+// Pixels of a screenshot in `region` of the example robots' colours, however
+// lit: `urBlue` (UR's URBlue, (0.49, 0.68, 0.8) in the .dae files' effects:
+// green and blue well above red, which the background, the ground and its grid,
+// all slate greys, are not), `lightGrey` (UR's LinkGrey, 0.82, and the Panda's
+// white: bright, channels within 24 of each other; the grid lines stay below
+// 140) and `darkGrey` (UR's JointGrey, 0.28, and Black: channels within 12,
+// each below 110, not the bluish slate of the ground).
+async function robotColours(page, png, region) {
+  return page.evaluate(async ({ data, region: r }) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${data}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const x0 = Math.max(0, Math.round(r.x)), y0 = Math.max(0, Math.round(r.y));
+    const w = Math.min(image.width - x0, Math.round(r.width)), h = Math.min(image.height - y0, Math.round(r.height));
+    const pixels = context.getImageData(x0, y0, w, h).data;
+    const counts = { urBlue: 0, lightGrey: 0, darkGrey: 0, all: w * h };
+    for (let o = 0; o < pixels.length; o += 4) {
+      const red = pixels[o], green = pixels[o + 1], blue = pixels[o + 2];
+      const spread = Math.max(red, green, blue) - Math.min(red, green, blue);
+      if (green > red + 25 && blue > red + 45) counts.urBlue++;
+      else if (spread < 24 && Math.min(red, green, blue) > 140) counts.lightGrey++;
+      else if (spread < 12 && Math.max(red, green, blue) < 110) counts.darkGrey++;
+    }
+    return counts;
+  }, { data: png.toString("base64"), region });
+}
+
+// A screenshot with the joints' markers and axes hidden (the joints toggle):
+// their blue would count as UR blue. Shown again after.
+async function screenshotWithoutJoints(page, name) {
+  const toggle = (on) => page.evaluate((checked) => {
+    const box = document.getElementById("toggle-joints");
+    box.checked = checked;
+    box.dispatchEvent(new Event("change"));
+  }, on);
+  await toggle(false);
+  await sleep(300);
+  const shot = await screenshot(page, name);
+  await toggle(true);
+  return shot;
+}
+
+// Opens the example world `name` (config/worlds/NAME.yaml) as its comment
+// says to, `rbview --meshes config`, and waits until every visual mesh of it
+// has been fetched and drawn (none failed): {page, meshes}, meshes being the
+// world's mesh visuals as {body, url}.
+async function openExampleWorld(name) {
+  startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
+    ["--config", path.join(configDir, "worlds", `${name}.yaml`), "--paused", "--log-level", "info"]);
+  const url = await rbview("--meshes", configDir);
+  const page = await openPage(browser, url, VIEW);
+  await waitForVisuals(page);
+  assert.deepEqual(await page.evaluate(() => rbview.visualsFailed()), [], logs());
+  const meshes = await page.evaluate(() => rbview.state.world.bodies.flatMap((b) => (b.visuals || [])
+    .filter((v) => v.kind === "mesh").map((v) => ({ body: b.name, url: v.mesh_url }))));
+  return { page, meshes };
+}
+
+// Body `name`'s visual meshes lie where its collision meshes do (a URDF's
+// visual and collision meshes of a link are modelled in the same frame; here
+// they differ only by simplification): the world boxes around each agree
+// within `tolerance` metres at every face. A mesh turned by a wrong up axis or
+// scaled by a wrong unit would be metres or a quarter turn off.
+async function assertVisualWhereCollision(page, name, tolerance) {
+  const boxes = await page.evaluate((n) => rbview.visualAndCollisionBoxes(n), name);
+  assert.ok(boxes, `${name} has no drawn visuals`);
+  for (const end of ["min", "max"]) {
+    for (let k = 0; k < 3; k++) {
+      assert.ok(Math.abs(boxes.visual[end][k] - boxes.collision[end][k]) < tolerance,
+        `${name}: its visual's box ${JSON.stringify(boxes.visual)} is not its collision shape's `
+        + `${JSON.stringify(boxes.collision)}`);
+    }
+  }
+}
+
+test("the UR5e is drawn from its COLLADA files in their own colours", async () => {
+  const { page, meshes } = await openExampleWorld("ur5e");
+  try {
+    const dae = meshes.filter((m) => m.url.endsWith(".dae"));
+    assert.equal(dae.length, 7, JSON.stringify(meshes));
+    assert.ok(dae.every((m) => m.url.startsWith("world/robots/ur5e/meshes/visual/")), JSON.stringify(dae));
+    // Every one drawn from its file, not from the collision fallback.
+    assert.deepEqual(await page.evaluate(() => rbview.visualMeshesDrawn()), { dae: 7 });
+    assert.equal(await page.evaluate(() => rbview.viewer.noVisuals.size), 0);
+    for (const body of new Set(dae.map((m) => m.body))) await assertVisualWhereCollision(page, body, 0.02);
+
+    await hidePanels(page);
+    await screenshot(page, "visuals-ur5e");
+    const { png } = await screenshotWithoutJoints(page, "visuals-ur5e-no-joints");
+    const rect = await page.evaluate(() => rbview.screenRect(...rbview.state.world.bodies
+      .filter((b) => b.name.startsWith("ur5e/")).map((b) => b.name)));
+    const region = { x: rect.left, y: rect.top, width: rect.right - rect.left, height: rect.bottom - rect.top };
+    const inArm = await robotColours(page, png, region);
+    const whole = await robotColours(page, png, { x: 0, y: 0, width: VIEW.width, height: VIEW.height });
+    // The blue caps of its joints, the light grey of its links and the dark
+    // grey of its joint housings, where the arm is and (the blue) nowhere else.
+    assert.ok(inArm.urBlue > 1500, `only ${inArm.urBlue} pixels of UR blue where the arm is: ${JSON.stringify(inArm)}`);
+    assert.ok(inArm.lightGrey > 1500, `only ${inArm.lightGrey} light grey pixels where the arm is: ${JSON.stringify(inArm)}`);
+    assert.ok(inArm.darkGrey > 1500, `only ${inArm.darkGrey} dark grey pixels where the arm is: ${JSON.stringify(inArm)}`);
+    assert.ok(inArm.urBlue >= 0.98 * whole.urBlue, `UR blue away from the arm: ${inArm.urBlue} of ${whole.urBlue}`);
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});
+
+test("the Franka Panda is drawn from its OBJ files in white, with its fingers", async () => {
+  const { page, meshes } = await openExampleWorld("panda");
+  try {
+    assert.ok(meshes.length >= 10 && meshes.every((m) => m.url.endsWith(".obj")), JSON.stringify(meshes));
+    assert.deepEqual(await page.evaluate(() => rbview.visualMeshesDrawn()), { obj: meshes.length });
+    const fingers = ["panda/panda_leftfinger", "panda/panda_rightfinger"];
+    for (const finger of fingers) {
+      assert.ok(meshes.some((m) => m.body === finger && m.url.endsWith("/finger.obj")), `${finger}: ${JSON.stringify(meshes)}`);
+      await assertVisualWhereCollision(page, finger, 0.01);
+    }
+    for (const link of ["panda/panda_link1", "panda/panda_link4", "panda/panda_link7"]) { // link7 holds the hand
+      await assertVisualWhereCollision(page, link, 0.02);
+    }
+
+    await hidePanels(page);
+    await screenshot(page, "visuals-panda");
+    const { png } = await screenshotWithoutJoints(page, "visuals-panda-no-joints");
+    // The URDF's panda_white, lit: light grey where the arm is, and where each
+    // finger is (the rectangle its box projects to).
+    const arm = await page.evaluate(() => rbview.screenRect(...rbview.state.world.bodies
+      .filter((b) => b.name.startsWith("panda/")).map((b) => b.name)));
+    const inArm = await robotColours(page, png,
+      { x: arm.left, y: arm.top, width: arm.right - arm.left, height: arm.bottom - arm.top });
+    assert.ok(inArm.lightGrey > 5000, `only ${inArm.lightGrey} white pixels where the arm is: ${JSON.stringify(inArm)}`);
+    assert.equal(inArm.urBlue, 0, "the Panda has no blue");
+    for (const finger of fingers) {
+      const r = await page.evaluate((n) => rbview.screenRect(n), finger);
+      const at = await robotColours(page, png, { x: r.left, y: r.top, width: r.right - r.left, height: r.bottom - r.top });
+      assert.ok(at.lightGrey > 0.1 * at.all, `${finger}: ${at.lightGrey} white pixels of ${at.all} where it is`);
+    }
+    assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
+  } finally {
+    await page.close();
+    stopAll();
+  }
+});
+
+// COLLADA files declare their own unit and up axis: rbview must place each in
+// its link's frame as rbserver does (Z_UP kept, Y_UP and X_UP turned to z up,
+// the unit applied), not as three.js's ColladaLoader would. Three one-link
+// robots, each drawn from and colliding as the same COLLADA box, 0.1 × 0.2 ×
+// 0.4 m from its link's origin along x, y and z, written in metres Z_UP, in
+// centimetres Y_UP and in millimetres X_UP. Each is drawn where it collides.
+const COLLADA_FRAMES = [
+  // name, up axis, metres per unit, a link-frame point (metres) in the file's coordinates
+  ["z_up_m", "Z_UP", 1, ([x, y, z]) => [x, y, z]],
+  ["y_up_cm", "Y_UP", 0.01, ([x, y, z]) => [x, z, -y].map((v) => v / 0.01)],
+  ["x_up_mm", "X_UP", 0.001, ([x, y, z]) => [z, -x, -y].map((v) => v / 0.001)],
+];
+const COLLADA_BOX = [0.1, 0.2, 0.4];
+
+function colladaBox(up, metres, toFile) {
+  const corners = [];
+  for (let k = 0; k < 8; k++) {
+    corners.push(toFile([k & 1 ? COLLADA_BOX[0] : 0, k & 2 ? COLLADA_BOX[1] : 0, k & 4 ? COLLADA_BOX[2] : 0]));
+  }
+  // Two triangles a face, counter-clockwise seen from outside (a rotation
+  // into the file's axes keeps them so).
+  const faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const triangles = faces.flatMap(([a, b, c, d]) => [a, b, c, a, c, d]);
+  return `<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="u" meter="${metres}"/><up_axis>${up}</up_axis></asset>
+  <library_effects><effect id="teal-effect"><profile_COMMON><technique sid="common"><lambert>
+    <diffuse><color>0.1 0.7 0.6 1</color></diffuse>
+  </lambert></technique></profile_COMMON></effect></library_effects>
+  <library_materials><material id="teal" name="teal"><instance_effect url="#teal-effect"/></material></library_materials>
+  <library_geometries><geometry id="box"><mesh>
+    <source id="box-positions">
+      <float_array id="box-positions-array" count="24">${corners.flat().join(" ")}</float_array>
+      <technique_common><accessor source="#box-positions-array" count="8" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common>
+    </source>
+    <vertices id="box-vertices"><input semantic="POSITION" source="#box-positions"/></vertices>
+    <triangles material="teal" count="12">
+      <input semantic="VERTEX" source="#box-vertices" offset="0"/>
+      <p>${triangles.join(" ")}</p>
+    </triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="box-node">
+    <instance_geometry url="#box"><bind_material><technique_common>
+      <instance_material symbol="teal" target="#teal"/>
+    </technique_common></bind_material></instance_geometry>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+`;
+}
+
+function colladaFramesWorld() {
+  const dir = path.join(work, "collada_frames");
+  mkdirSync(dir, { recursive: true });
+  const robots = [];
+  COLLADA_FRAMES.forEach(([name, up, metres, toFile], k) => {
+    writeFileSync(path.join(dir, `${name}.dae`), colladaBox(up, metres, toFile));
+    writeFileSync(path.join(dir, `${name}.urdf`), [
+      `<robot name="${name}"><link name="box">`,
+      `  <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>`,
+      `  <visual><geometry><mesh filename="${name}.dae"/></geometry></visual>`,
+      `  <collision><geometry><mesh filename="${name}.dae"/></geometry></collision>`,
+      `</link></robot>`, ""].join("\n"));
+    robots.push(`  - {name: ${name}, urdf: ${name}.urdf, fixed_base: true, position: [${0.5 * k}, 0, 0]}`);
+  });
+  writeFileSync(path.join(dir, "frames.yaml"), [
+    "world: {dt: 0.001, gravity: [0, 0, -9.81]}",
+    "lcm: {state_rate: 60, status_rate: 10}",
+    "robots:", ...robots, ""].join("\n"));
+  return dir;
+}
+
+test("a COLLADA file's unit and up axis place it in its link's frame as rbserver reads it", async () => {
+  const dir = colladaFramesWorld();
+  startProcess("rbserver", path.join(build, "server", "daemon", "rbserver"),
+    ["--config", path.join(dir, "frames.yaml"), "--paused", "--log-level", "info"]);
+  const url = await rbview("--meshes", dir);
+  const page = await openPage(browser, url, VIEW);
+  try {
+    await waitForVisuals(page);
+    assert.deepEqual(await page.evaluate(() => rbview.visualsFailed()), []);
+    assert.deepEqual(await page.evaluate(() => rbview.visualMeshesDrawn()), { dae: COLLADA_FRAMES.length });
+    for (const [k, [name]] of COLLADA_FRAMES.entries()) {
+      const boxes = await page.evaluate((n) => rbview.visualAndCollisionBoxes(n), `${name}/box`);
+      assert.ok(boxes, `${name}/box has no drawn visuals`);
+      const expected = { min: [0.5 * k, 0, 0], max: [0.5 * k + COLLADA_BOX[0], COLLADA_BOX[1], COLLADA_BOX[2]] };
+      for (const [which, box] of Object.entries(boxes)) {
+        for (const end of ["min", "max"]) {
+          assert.ok(box[end].every((v, i) => Math.abs(v - expected[end][i]) < 0.002),
+            `${name}: its ${which} box is ${JSON.stringify(box)}, not ${JSON.stringify(expected)}`);
+        }
+      }
+    }
+    await hidePanels(page);
+    await screenshot(page, "visuals-collada-frames");
     assert.deepEqual(page.errors, [], `console errors:\n${page.errors.join("\n")}\n${logs()}`);
   } finally {
     await page.close();

@@ -18,6 +18,9 @@ const MARKER_PX = 10;
 // and see-through, so that the markers do not hide the links.
 const SUBDUED_MARKER_PX = 6;
 const SUBDUED_OPACITY = 0.35;
+// and axes this much shorter: at full length (up to 1.5 m) they cross a
+// 0.4 m robot link and much of the picture.
+const SUBDUED_AXIS_SCALE = 0.3;
 const SPRING_ZIGZAGS = 12; // corners of a spring's zigzag
 const COLORS = {
   revolute: new THREE.Color(0x4dabf7), prismatic: new THREE.Color(0x51cf66), spherical: new THREE.Color(0xcc5de8),
@@ -130,7 +133,8 @@ export class JointsView {
     this.drawnCount = 0;
   }
 
-  // Smaller, see-through markers and axes (true), or as they are drawn alone.
+  // Smaller, see-through markers and shorter, see-through axes (true), or as
+  // they are drawn alone (the axes' length takes effect at the next update).
   setSubdued(subdued) {
     this.subdued = subdued;
     this.markers.material.uniforms.size.value = subdued ? SUBDUED_MARKER_PX : MARKER_PX;
@@ -203,14 +207,15 @@ export class JointsView {
         case "cone": {
           if (j.a < 0) d.copy(j.axis);
           else JointsView.turn(frame.poses, 7 * j.a, j.axis, d);
-          const tip = p.copy(marker).addScaledVector(d, j.length);
-          setSegment(s++, side.copy(marker).addScaledVector(d, j.style === "axis" ? -0.5 * j.length : 0), tip, j.color);
+          const length = this.subdued ? SUBDUED_AXIS_SCALE * j.length : j.length;
+          const tip = p.copy(marker).addScaledVector(d, length);
+          setSegment(s++, side.copy(marker).addScaledVector(d, j.style === "axis" ? -0.5 * length : 0), tip, j.color);
           if (j.style === "axis") {
             // An arrowhead: two strokes back from the tip, across the axis.
             const across = side.set(0, 0, 1);
             if (Math.abs(d.z) > 0.9) across.set(1, 0, 0);
-            across.cross(d).normalize().multiplyScalar(0.08 * j.length);
-            const back = d.clone().multiplyScalar(-0.2 * j.length).add(tip);
+            across.cross(d).normalize().multiplyScalar(0.08 * length);
+            const back = d.clone().multiplyScalar(-0.2 * length).add(tip);
             setSegment(s++, tip, back.clone().add(across), j.color);
             setSegment(s++, tip, back.sub(across), j.color);
           }

@@ -314,6 +314,36 @@ window.rbview = {
   visualsPending: () => viewer.visualsPending.count,
   visualsFailed: () => [...viewer.visualsPending.failed],
   visualsDrawn: () => viewer.visuals.length,
+  // Visual meshes drawn, by file kind: {stl, obj, dae} (those not fetched yet or failed are not).
+  visualMeshesDrawn: () => ({ ...viewer.visualsPending.drawn }),
+  // The world-axis boxes around body `name`'s drawn visuals and around its
+  // collision shape, as {min, max} arrays (the visual meshes and the collision
+  // meshes of a URDF link are modelled in the same frame: their boxes agree).
+  visualAndCollisionBoxes(name) {
+    const i = this.bodyIndex(name);
+    const drawn = viewer.visuals.find((v) => v.body === i);
+    if (!drawn || !viewer.frame) return null;
+    drawn.object.updateMatrixWorld(true);
+    const visual = new THREE.Box3().setFromObject(drawn.object, true);
+    // Around the collision pieces' vertices (bodyBounds, a box around boxes
+    // turned by the shape frame, would be larger).
+    const pose = viewer.poseMatrix(i, new THREE.Matrix4());
+    const collision = new THREE.Box3();
+    const toWorld = new THREE.Matrix4();
+    const point = new THREE.Vector3();
+    for (const { mesh, pieces, collision: drawnInstead } of viewer.groups) {
+      if (!drawnInstead || !mesh.isInstancedMesh) continue;
+      const positions = mesh.geometry.getAttribute("position");
+      for (const piece of pieces) {
+        if (piece.body !== i) continue;
+        toWorld.multiplyMatrices(pose, piece.local);
+        for (let k = 0; k < positions.count; k++) collision.expandByPoint(point.fromBufferAttribute(positions, k).applyMatrix4(toWorld));
+      }
+    }
+    if (collision.isEmpty()) return null;
+    const plain = (box) => ({ min: box.min.toArray(), max: box.max.toArray() });
+    return { visual: plain(visual), collision: plain(collision) };
+  },
   // Where joint `name`'s marker is drawn (world), or null.
   jointMarker(name) {
     const p = viewer.frameDrawn ? viewer.joints.markerOf(viewer.frameDrawn, name) : null;

@@ -92,7 +92,8 @@ export class Viewer {
     this.sun = sun;
     this.showCollision = false;
     this.visuals = []; // {body, object}: bodies drawn from their visuals
-    this.visualsPending = { count: 0, failed: [], failedBodies: new Set(), changed: false };
+    // Meshes on their way, those that failed, and those drawn by file kind ({dae: 7}).
+    this.visualsPending = { count: 0, failed: [], failedBodies: new Set(), drawn: {}, changed: false };
     this.shadowsFitted = false;
     this.noVisuals = new Set(); // bodies of this world whose visuals failed: drawn from their collision shapes
 
@@ -155,7 +156,7 @@ export class Viewer {
     this.planes = [];
     this.visuals = [];
     const failed = rebuild ? this.visualsPending.failed : [];
-    this.visualsPending = { count: 0, failed, failedBodies: new Set(), changed: false };
+    this.visualsPending = { count: 0, failed, failedBodies: new Set(), drawn: {}, changed: false };
     this.shadowsFitted = false;
     this.bodies = world.bodies;
     this.revision = world.revision;
@@ -366,8 +367,10 @@ export class Viewer {
       if (body === index) tintVisuals(object, true);
       else if (body === previous) tintVisuals(object, false);
     }
-    // Joint markers come forward while a body is selected.
+    // Joint markers come forward while a body is selected (their axes
+    // lengthened: drawn again, even paused).
     this.joints.setSubdued(this.hasVisuals && index < 0);
+    this.frameDrawn = null;
   }
 
   // The body under a point of the canvas (CSS pixels), with the world point hit.

@@ -11,9 +11,12 @@
 //
 // Frames (lcmtypes/rbsim/visual_t.lcm): p_shape = R(orientation) p_visual +
 // position, in the body's shape frame; URDF cylinders lie along z, three.js's
-// along y. A COLLADA file's up axis is ignored: URDF meshes are in their
-// link's frame whatever the file declares (ColladaLoader turns a Z_UP scene to
-// y up, which is undone here).
+// along y. A COLLADA file is placed in its link's frame as rbserver reads it
+// (server/meshio/collada_mesh.cpp, whose collision shape it must match): its
+// <unit meter> applied, Z_UP kept, Y_UP and X_UP turned to z up. ColladaLoader
+// does otherwise (Z_UP turned to y up, the others left as they are, an
+// <up_axis> with spaces around its value taken for Y_UP), so the file's asset
+// is read here and the loader's root transform replaced.
 import * as THREE from "three";
 import { STLLoader } from "three/examples/jsm/loaders/STLLoader.js";
 import { OBJLoader } from "three/examples/jsm/loaders/OBJLoader.js";
@@ -41,6 +44,58 @@ function extensionOf(url) {
   return dot < 0 ? "" : url.slice(dot + 1).toLowerCase();
 }
 
+// A COLLADA document's <asset> settings as rbserver reads them
+// (server/meshio/collada_guard.cpp): metres per unit and up axis, COLLADA's
+// defaults (1, Y_UP) when absent; a value it would refuse is an error here too.
+function colladaAsset(text) {
+  const root = new DOMParser().parseFromString(text, "application/xml").documentElement;
+  const asset = { metres: 1, up: "Y_UP" };
+  const info = [...root.children].find((e) => e.nodeName === "asset");
+  if (!info) return asset;
+  const unit = [...info.children].find((e) => e.nodeName === "unit");
+  if (unit && unit.hasAttribute("meter")) {
+    const value = unit.getAttribute("meter").trim();
+    const metres = Number(value);
+    if (value === "" || !Number.isFinite(metres) || metres <= 0) {
+      throw new Error(`<unit meter="${value.slice(0, 40)}"> is not a positive finite number`);
+    }
+    asset.metres = metres;
+  }
+  const up = [...info.children].find((e) => e.nodeName === "up_axis");
+  if (up) {
+    asset.up = up.textContent.trim();
+    if (!["X_UP", "Y_UP", "Z_UP"].includes(asset.up)) {
+      throw new Error(`<up_axis> is "${asset.up.slice(0, 40)}", not X_UP, Y_UP or Z_UP`);
+    }
+  }
+  return asset;
+}
+
+// The file's axes to its link's: rows of rbserver's sceneToWorld rotation.
+const UP_AXIS_ROTATIONS = {
+  Z_UP: new THREE.Matrix4(),
+  Y_UP: new THREE.Matrix4().set(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1), // +y becomes +z
+  X_UP: new THREE.Matrix4().set(0, -1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 0, 0, 0, 0, 1), // +x becomes +z, +y becomes -x
+};
+
+async function loadCollada(url) {
+  const text = await new THREE.FileLoader().loadAsync(url);
+  const asset = colladaAsset(text);
+  const { scene } = new ColladaLoader().parse(text, THREE.LoaderUtils.extractUrlBase(url));
+  scene.quaternion.setFromRotationMatrix(UP_AXIS_ROTATIONS[asset.up]);
+  scene.scale.setScalar(asset.metres);
+  scene.updateMatrix();
+  // A file's own lights and cameras would light the whole world from inside a link.
+  const strays = [];
+  scene.traverse((o) => { if (o.isLight || o.isCamera) strays.push(o); });
+  for (const o of strays) o.removeFromParent();
+  // A file without normals (rbserver needs none) would be drawn black.
+  scene.traverse((o) => {
+    if (o.isMesh && !o.geometry.hasAttribute("normal")) o.geometry.computeVertexNormals();
+  });
+  return scene;
+}
+
 // url -> Promise of {geometry} (STL), {object} (OBJ, COLLADA).
 const loaded = new Map();
 function loadMesh(url) {
@@ -53,12 +108,7 @@ function loadMesh(url) {
       return { geometry };
     }
     if (kind === "obj") return { object: await new OBJLoader().loadAsync(url) };
-    if (kind === "dae") {
-      const collada = await new ColladaLoader().loadAsync(url);
-      collada.scene.rotation.set(0, 0, 0);
-      collada.scene.updateMatrix();
-      return { object: collada.scene };
-    }
+    if (kind === "dae") return { object: await loadCollada(url) };
     throw new Error(`${url}: not STL, OBJ or COLLADA`);
   })();
   loaded.set(url, promise);
@@ -123,11 +173,20 @@ function visualObject(visual, body, pending) {
       drawn = new THREE.Mesh(shared, material);
     } else {
       drawn = object.clone(true);
-      // OBJ without its material file, or a COLLADA file under a URDF colour.
-      if (extensionOf(url) === "obj" || visual.has_color) drawn.traverse((o) => { if (o.isMesh) o.material = material; });
+      // OBJ without its material file, or a COLLADA file under a URDF colour;
+      // otherwise the file's materials, copied: selecting a body tints its
+      // own, not every body drawn from the same file.
+      const own = extensionOf(url) === "obj" || visual.has_color;
+      drawn.traverse((o) => {
+        if (!o.isMesh) return;
+        if (own) o.material = material;
+        else o.material = Array.isArray(o.material) ? o.material.map((m) => m.clone()) : o.material.clone();
+      });
     }
     castsShadows(drawn, body);
     placed.add(drawn);
+    const kind = extensionOf(url);
+    pending.drawn[kind] = (pending.drawn[kind] || 0) + 1;
   }).catch((error) => {
     pending.failed.push(`${visual.mesh_url}: ${error.message || error}`);
     pending.failedBodies.add(body);
