@@ -311,6 +311,14 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
                              "<polygons>, one in all otherwise)");
       }
     }
+    // A list is text alone: tinyxml2's GetText() sees only what comes
+    // before an element inside it, where assimp reads on (an <input> inside
+    // a <p> overflowed a buffer in assimp: fuzz_dae_mesh).
+    if ((isRealList(child) || isIndexList(child)) && child->FirstChildElement() != nullptr) {
+      return lineError(path, child->GetLineNum(),
+                       std::string("<") + child->Name() + "> holds an element <" +
+                           child->FirstChildElement()->Name() + ">; a list holds numbers only");
+    }
     if (isRealList(child)) {
       Expected<bool> reals = checkRealList(child, path);
       if (!reals) return reals;
