@@ -378,7 +378,7 @@ void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const st
 
 void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                               const std::vector<Mat3>& inverseInertia, bool atEnd,
-                              std::vector<JointLinkResult>& results) {
+                              std::vector<JointLinkResult>& results, bool beforeContacts) {
   // The laws along the axes (axis_actuation.h) act as RATTLE's kicks do:
   // half of the step before the drift, on the rate the drift moves with
   // (the drive's spring at the position the drift reaches), and half after
@@ -408,20 +408,22 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
     const JointLink& link = links[l];
     const JointConstraint& joint = *link.joint;
     if (link.isCoupling() || !axisActs(joint)) continue;
+    if (link.wholeKick != beforeContacts) continue;
+    const double span = beforeContacts ? h : half;
     const JointDef& def = joint.def;
     AxisLaw law;
-    law.h = half;
+    law.h = span;
     // The actuator's limits bound whatever it is commanded.
     const JointActuatorLimits& limits = def.actuatorLimits;
     law.motor = def.motor.enabled;
     law.motorTarget = std::clamp(def.motor.targetRate, -limits.rate, limits.rate);
-    law.motorCap = std::min(def.motor.maxEffort, limits.effort) * half;
+    law.motorCap = std::min(def.motor.maxEffort, limits.effort) * span;
     law.drive = def.drive.enabled;
-    law.driveCap = std::min(def.drive.maxEffort, limits.effort) * half;
+    law.driveCap = std::min(def.drive.maxEffort, limits.effort) * span;
     if (joint.hasAxis()) law.driveRateLimit = limits.rate;
     law.driveLookahead = atEnd ? 0.0 : h;
     law.damping = def.damping;
-    law.frictionCap = def.friction * half;
+    law.frictionCap = def.friction * span;
     Axis axis{l, {link.bodyA, link.bodyB, static_cast<int>(l), {}}, law, {}};
     const JointSidePose a = sidePose(link, bodies, false, !atEnd);
     const JointSidePose b = sidePose(link, bodies, true, !atEnd);
@@ -512,6 +514,27 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   // nothing.)
   for (std::size_t i = 0; i < n; ++i)
     if (locked[i]) results[axes[i].link].axisImpulse += actuationAtRate(axes[i].law, freeRate[static_cast<Eigen::Index>(i)]);
+}
+
+void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                                             double h, std::vector<JointLinkResult>& results) {
+  results.assign(links.size(), JointLinkResult{});
+  m_rows.clear();
+  m_limits.clear();
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const LinkPoses poses = linkPoses(links[l], bodies, true);
+    appendLinkRows(links[l], static_cast<int>(l), poses, links[l].joint->basisAt(poses[0]), m_rows);
+  }
+  std::vector<Mat3> startInverseInertia;
+  startInverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  actuateAxes(links, bodies, h, startInverseInertia, false, results, true);
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const JointSidePose b = sidePose(links[l], bodies, true, true);
+    const Vec3 arm = b.rotation * links[l].joint->anchorB;
+    results[l].angularImpulse -= arm.cross(results[l].linearImpulse);
+  }
 }
 
 bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
@@ -764,7 +787,9 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     return added;
   };
   // The axes' second half needs the end's K itself (its projection exact).
-  const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && axisActs(*l.joint); });
+  const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) {
+    return !l.isCoupling() && !l.wholeKick && axisActs(*l.joint);
+  });
   addLimitsMovedInto();
   for (int round = 0; round < 2; ++round) {
     if (round == 1 && !addLimitsMovedInto()) break;
@@ -901,6 +926,32 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
       results[static_cast<std::size_t>(group.links[k])] = m_groupResults[k];
   }
   return closed;
+}
+
+void JointSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                                        std::vector<JointLinkResult>& results) {
+  std::vector<int> localIndex;
+  const std::vector<JointGroup> groups = jointGroups(links, bodies.size(), localIndex);
+  m_kickSolvers.resize(std::max(m_kickSolvers.size(), groups.size()));
+  results.assign(links.size(), JointLinkResult{});
+  std::vector<JointLink> groupLinks;
+  std::vector<JointBody> groupBodies;
+  std::vector<JointLinkResult> groupResults;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const JointGroup& group = groups[g];
+    const bool acts = std::any_of(group.links.begin(), group.links.end(),
+                                  [&](int l) { return links[static_cast<std::size_t>(l)].wholeKick; });
+    if (!acts) continue;
+    groupBodies.clear();
+    for (const int i : group.bodies) groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
+    groupLinks.clear();
+    for (const int l : group.links) groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], localIndex));
+    m_kickSolvers[g].actuateBeforeContacts(groupLinks, groupBodies, h, groupResults);
+    for (std::size_t k = 0; k < group.bodies.size(); ++k)
+      bodies[static_cast<std::size_t>(group.bodies[k])] = groupBodies[k];
+    for (std::size_t k = 0; k < group.links.size(); ++k)
+      results[static_cast<std::size_t>(group.links[k])] = groupResults[k];
+  }
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,

@@ -78,6 +78,11 @@ struct JointLink {
   JointSidePose fixedC;
   JointSidePose fixedD;
   double followerFrom = 0.0, leaderFrom = 0.0, errorFrom = 0.0;  // rad or m
+  // An island in contact (the contact path's semi-implicit step): the
+  // axis's laws act over the whole step before the contact solve
+  // (JointSolver::actuateBeforeContacts), so that the contacts answer them,
+  // and neither before the drift nor after it.
+  bool wholeKick = false;
 
   bool isCoupling() const { return leader != nullptr; }
 };
@@ -130,6 +135,14 @@ class JointGroupSolver {
   // drives', damping's and friction's impulses over the step h.
   void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                          const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
+  // The contact path's actuation: for the links with wholeKick, the
+  // motors', drives', damping's and friction's impulses over the whole
+  // step h at the start poses (the drive's spring where the drift will
+  // take it), with the joints' rows kept, into the momenta, before the
+  // contact solve sees them. `results` gets them (B's couple about its
+  // anchor).
+  void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                             std::vector<JointLinkResult>& results);
 
  private:
   using Row = JointSolverRow;
@@ -154,8 +167,11 @@ class JointGroupSolver {
   // Half of the step's impulses, at the start's poses before the drift or
   // at the end's after the second half kick (atEnd), with the inverse
   // inertias there.
+  // With beforeContacts, the wholeKick links' whole step instead (the
+  // others' are left alone).
   void actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
-                   const std::vector<Mat3>& inverseInertia, bool atEnd, std::vector<JointLinkResult>& results);
+                   const std::vector<Mat3>& inverseInertia, bool atEnd, std::vector<JointLinkResult>& results,
+                   bool beforeContacts = false);
   // The second half at the end, into `results` (B's couple about its anchor).
   void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
@@ -217,8 +233,13 @@ class JointSolver {
   // As JointGroupSolver's; the links and bodies of the last solvePositions.
   void projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                          const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
+  // As JointGroupSolver's, for every group (with solvers of their own, so
+  // that the step's keep their systems' analysis).
+  void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
+                             std::vector<JointLinkResult>& results);
 
  private:
+  std::vector<JointGroupSolver> m_kickSolvers;  // by group, for actuateBeforeContacts
   std::vector<JointGroup> m_groups;
   std::vector<JointGroupSolver> m_solvers;  // by group
   // A group's links, bodies and results in its own numbering.

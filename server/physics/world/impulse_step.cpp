@@ -390,6 +390,7 @@ void stepImpulse(WorldData& world) {
       integrateFree(world, dt, skip);
     }
     loadSolverBodies(world, step, dt, jointed);
+    if (jointRows) actuateJointedIslandsInContact(world, step, jointed, dt);
     findImpacts(world, step);
     std::vector<SolvedManifold> solved;
     solveContacts(world, *step.contacts, world.settings.contact.solver, dt, solved, jointRows.get());

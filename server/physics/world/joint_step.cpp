@@ -167,6 +167,65 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
   return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
 }
 
+void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
+                                    double h) {
+  world.contactActuation.clear();
+  const std::size_t n = world.bodies.size();
+  std::vector<int> local(n, -1);
+  std::vector<std::size_t> dense;
+  std::vector<JointBody> bodies;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (jointed.empty() || !jointed[i] || !step.solving[i]) continue;
+    const Body& body = world.bodies[i];
+    const SolverBody& sb = world.solverBodies[i];
+    local[i] = static_cast<int>(dense.size());
+    dense.push_back(i);
+    JointBody jb;
+    jb.startPosition = body.position();
+    jb.startOrientation = body.orientation();
+    jb.position = jb.startPosition;
+    jb.orientation = jb.startOrientation;
+    jb.startInverseInertia = body.inverseInertiaWorld();
+    jb.inverseMass = body.inverseMass();
+    jb.linearMomentum = body.mass() * sb.linearVelocity;
+    jb.angularMomentum = body.inertiaWorld() * sb.angularVelocity;
+    bodies.push_back(jb);
+  }
+  if (dense.empty()) return;
+  std::vector<JointLink> links;
+  std::vector<std::size_t> linkJoint;
+  collectJointLinks(world, local, links, linkJoint);
+  if (links.empty()) return;
+  for (JointLink& link : links) link.wholeKick = true;
+  // The direct efforts, as impulses along each joint's axis row over h.
+  for (const JointLink& link : links) {
+    const double effort = appliedEffort(link.joint->def);
+    if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
+    JointRow row;
+    link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
+    const double lambda = effort * h;
+    if (link.bodyA >= 0) {
+      JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
+      body.linearMomentum += lambda * row.linearA;
+      body.angularMomentum += lambda * row.angularA;
+    }
+    if (link.bodyB >= 0) {
+      JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
+      body.linearMomentum += lambda * row.linearB;
+      body.angularMomentum += lambda * row.angularB;
+    }
+  }
+  std::vector<JointLinkResult> results;
+  world.jointSolver->actuateBeforeContacts(links, bodies, h, results);
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    SolverBody& sb = world.solverBodies[dense[k]];
+    sb.linearVelocity = bodies[k].inverseMass * bodies[k].linearMomentum;
+    sb.angularVelocity = sb.inverseInertia * bodies[k].angularMomentum;
+  }
+  world.contactActuation.assign(world.joints.size(), JointLinkResult{});
+  for (std::size_t l = 0; l < links.size(); ++l) world.contactActuation[linkJoint[l]] = results[l];
+}
+
 void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const std::vector<char>& solving,
                        const std::vector<int>& islandOf, double h) {
   if (jointed.empty()) return;
@@ -211,6 +270,13 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   std::vector<JointLink> links;
   std::vector<std::size_t> linkJoint;
   collectJointLinks(world, local, links, linkJoint);
+  // An island in contact had its axes' laws and direct efforts before the
+  // contact solve (actuateJointedIslandsInContact): they are in `kicked`.
+  const bool actuatedBefore = !world.contactActuation.empty();
+  for (JointLink& link : links) {
+    const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB >= 0 ? link.bodyB : link.bodyC >= 0 ? link.bodyC : link.bodyD;
+    link.wholeKick = actuatedBefore && any >= 0 && staggered[static_cast<std::size_t>(any)] == 0;
+  }
 
   // The step in `parts` equal sub-steps, each a whole RATTLE step (half
   // kick, drift and projection, half kick, velocity projection); the
@@ -278,8 +344,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
           jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
         }
       }
-      applyEfforts(bodies, true, 0.5 * s, true);  // RATTLE's first half kick
-      applyEfforts(bodies, true, s, false);       // the whole kick of an island in contact
+      applyEfforts(bodies, true, 0.5 * s, true);  // RATTLE's first half kick (an island in contact had its whole kick)
       std::vector<JointLinkResult> results;
       converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
       // The second half kick at the end poses, then the velocities tangent
@@ -321,6 +386,16 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
     Body& body = world.bodies[dense[k]];
     body.moveTo(ends[k]);
     noteSpeeds(world, body.linearVelocity().squaredNorm(), body.angularVelocity().squaredNorm());
+  }
+  if (actuatedBefore) {
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      if (!links[l].wholeKick) continue;
+      const JointLinkResult& before = world.contactActuation[linkJoint[l]];
+      reactionLinear[l] += before.linearImpulse;
+      reactionAngular[l] += before.angularImpulse;
+      axisImpulse[l] += before.axisImpulse;
+    }
+    world.contactActuation.clear();
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
     JointConstraint& joint = world.joints[linkJoint[l]];

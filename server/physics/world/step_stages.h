@@ -81,6 +81,13 @@ std::vector<char> findActuatedBodies(const WorldData& world);
 std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
                                                                const std::vector<char>& jointed,
                                                                const std::vector<int>& islandOf);
+// For the jointed islands that addJointedIslandsInContact put into the
+// contact solve: their axes' motors, drives, damping and friction and the
+// joints' direct efforts over the whole step h, into world.solverBodies'
+// velocities (after the forces' kick), so that the contacts answer them;
+// stepJointedBodies reports them and leaves them out.
+void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
+                                    double h);
 // The joint step of the jointed bodies over h (joint/joint_solver.h). An
 // island (`islandOf`) that touches nothing takes RATTLE: half kick, drift
 // and projection, half kick, velocity projection. An island in contact

@@ -18,6 +18,7 @@
 #include "physics/body/external_load.h"
 #include "physics/common/deep_copy_ptr.h"
 #include "physics/joint/joint_constraint.h"
+#include "physics/joint/joint_solver.h"
 #include "physics/parallel/task_pool.h"
 #include "physics/solver/contact_solver.h"
 #include "rbsim/physics/world.h"
@@ -63,6 +64,10 @@ struct WorldData {
   DeepCopyPtr<JointSolver> jointSolver;
   std::vector<SolvedManifold> contacts;  // of the last step, sorted by key
   std::vector<SolverBody> solverBodies;  // scratch, one per body
+  // Scratch of a step, by joint: what the axes of jointed islands in
+  // contact did before the contact solve (actuateJointedIslandsInContact),
+  // reported with the joint step's impulses (empty: nothing).
+  std::vector<JointLinkResult> contactActuation;
   std::vector<Body> bodies;              // dense, in creation order
   // Parallel to `bodies`: the external loads for the coming step, kept here
   // rather than in the bodies (most bodies are pushed by nothing, and the
