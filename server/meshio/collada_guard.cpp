@@ -238,6 +238,82 @@ Expected<bool> checkRealList(const XMLElement* element, const std::string& path)
   return true;
 }
 
+// How many values a list holds (separated by XML's white space).
+unsigned long long valueCount(const XMLElement* list) {
+  const std::string_view text = list && list->GetText() ? list->GetText() : "";
+  unsigned long long values = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    while (i < text.size() && isXmlSpace(text[i])) ++i;
+    if (i == text.size()) break;
+    ++values;
+    while (i < text.size() && !isXmlSpace(text[i])) ++i;
+  }
+  return values;
+}
+
+// A primitive's index lists hold what its count and inputs say: each
+// vertex takes one index per input offset; a triangle three vertices, a
+// line two, a polylist's polygon its <vcount>. assimp 5.2.5 asserts (and
+// aborts, in Debian's build) or reads past its buffers otherwise
+// (fuzz_dae_mesh: a <triangles> whose <p> was lost).
+Expected<bool> checkIndexCounts(const XMLElement* primitive, const std::string& path) {
+  const bool triangles = isNamed(primitive, "triangles"), lines = isNamed(primitive, "lines");
+  const bool polylist = isNamed(primitive, "polylist"), polygons = isNamed(primitive, "polygons");
+  const bool strips = isNamed(primitive, "linestrips") || isNamed(primitive, "trifans") || isNamed(primitive, "tristrips");
+  if (!triangles && !lines && !polylist && !polygons && !strips) return true;
+  unsigned long long stride = 1;
+  for (const XMLElement* input = primitive->FirstChildElement("input"); input; input = input->NextSiblingElement("input")) {
+    const char* offset = input->Attribute("offset");
+    const unsigned long long at = offset ? std::strtoull(offset, nullptr, 10) : 0;
+    if (at >= 64) return lineError(path, input->GetLineNum(), "<input> has an offset beyond 63; refused");
+    stride = std::max(stride, at + 1);
+  }
+  const char* countText = primitive->Attribute("count");  // there, but for one in vendor data
+  const unsigned long long count = countText ? std::strtoull(countText, nullptr, 10) : 0;
+  const auto wrong = [&](const XMLElement* list, unsigned long long expected) {
+    return lineError(path, list ? list->GetLineNum() : primitive->GetLineNum(),
+                     std::string("<") + primitive->Name() + " count=\"" + std::to_string(count) + "\"> with " +
+                         std::to_string(stride) + " index(es) per vertex needs " + std::to_string(expected) +
+                         " indices in its <p>, which holds " + std::to_string(valueCount(list)));
+  };
+  const XMLElement* first = primitive->FirstChildElement("p");
+  if (triangles || lines) {
+    const unsigned long long expected = count * (triangles ? 3 : 2) * stride;
+    if (count > 0 && valueCount(first) != expected) return wrong(first, expected);
+  } else if (polylist) {
+    const XMLElement* vcount = primitive->FirstChildElement("vcount");
+    unsigned long long vertices = 0, polygonsListed = 0;
+    const std::string_view text = vcount && vcount->GetText() ? vcount->GetText() : "";
+    for (std::size_t i = 0; i < text.size();) {
+      while (i < text.size() && isXmlSpace(text[i])) ++i;
+      if (i == text.size()) break;
+      std::size_t end = i;
+      while (end < text.size() && !isXmlSpace(text[end])) ++end;
+      const unsigned long long n = std::strtoull(std::string(text.substr(i, end - i)).c_str(), nullptr, 10);
+      if (n < 3) return lineError(path, vcount->GetLineNum(), "<vcount> lists a polygon of fewer than 3 vertices");
+      vertices += n;
+      ++polygonsListed;
+      i = end;
+    }
+    if (count > 0 && polygonsListed != count)
+      return lineError(path, vcount ? vcount->GetLineNum() : primitive->GetLineNum(),
+                       "<polylist count=\"" + std::to_string(count) + "\"> has " + std::to_string(polygonsListed) +
+                           " polygons in its <vcount>");
+    if (count > 0 && valueCount(first) != vertices * stride) return wrong(first, vertices * stride);
+  } else {  // polygons and strips: each list whole vertices, at least a triangle's (a line's)
+    const unsigned long long least = (isNamed(primitive, "linestrips") ? 2 : 3) * stride;
+    for (const XMLElement* list = first; list; list = list->NextSiblingElement("p")) {
+      const unsigned long long values = valueCount(list);
+      if (values % stride != 0 || values < least)
+        return lineError(path, list->GetLineNum(),
+                         "<p> of a <" + std::string(primitive->Name()) + "> holds " + std::to_string(values) +
+                             " indices: not whole vertices of " + std::to_string(stride) + ", or fewer than " +
+                             std::to_string(least / stride));
+    }
+  }
+  return true;
+}
+
 // Every count and stride attribute (float_array, accessor, triangles, ...)
 // and the <vcount> lists: assimp reserves memory by them before it reads
 // what they count. Each counted value takes at least two bytes of the file
@@ -304,7 +380,8 @@ Expected<bool> checkNumbers(const XMLElement* element, std::size_t fileBytes,
         ++lists;
       }
       const char* declared = child->Attribute("count");
-      if (isNamed(child, "polygons") ? std::to_string(lists) != declared : lists > 1) {
+      const bool none = std::string_view(declared) == "0";
+      if (isNamed(child, "polygons") ? std::to_string(lists) != declared : lists != (none ? 0 : 1)) {
         return lineError(path, child->GetLineNum(),
                          std::string("<") + child->Name() + "> has " + std::to_string(lists) +
                              " <p> lists, which its count= does not allow (one per polygon of "
@@ -613,6 +690,14 @@ Expected<ColladaAsset> checkColladaDocument(std::string_view text, const std::st
   if (Expected<bool> names = checkElementNames(root, path); !names) return names.error();
   if (Expected<bool> references = checkReferences(root, path); !references) return references.error();
   if (Expected<bool> arrays = checkArrays(root, path); !arrays) return arrays.error();
+  // After the lists' own checks above (whole numbers, text alone).
+  for (std::vector<const XMLElement*> pending{root}; !pending.empty();) {
+    const XMLElement* element = pending.back();
+    pending.pop_back();
+    if (Expected<bool> indices = checkIndexCounts(element, path); !indices) return indices.error();
+    for (const XMLElement* child = element->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
 
   NodeGraph graph(root, path);
   std::size_t instanceElements = 0;

@@ -324,6 +324,10 @@ TEST_F(ColladaMesh, TransformsHoldTheirNumbersAndOnlyMeshFileElementsAreRead) {
                                                 "<translate>0 3 4</translate><animation id=\"a\"/>"));
   EXPECT_NE(animated.find("<animation> is not an element of a static COLLADA mesh file"), std::string::npos)
       << animated;
+  const std::string lostList = errorOf(replaced(cube, "<vcount>4 4 4 4 4 4</vcount>", "<vcount>4 4 4 4 4 3</vcount>"));
+  EXPECT_NE(lostList.find("<polylist count=\"6\"> with 2 index(es) per vertex needs 46 indices in its <p>, which holds 48"),
+            std::string::npos)
+      << lostList;
   const std::string uncounted = errorOf(replaced(cube, "id=\"cube-normals-array\" count=\"18\"", "id=\"cube-normals-array\""));
   EXPECT_NE(uncounted.find("<float_array> has no count= attribute"), std::string::npos) << uncounted;
   const std::string vendor = replaced(cube, "<translate>0 3 4</translate>",
