@@ -217,7 +217,9 @@ Expected<bool> checkRealList(const XMLElement* element, const std::string& path)
     size_t end = i;
     while (end < text.size() && !isXmlSpace(text[end])) ++end;
     std::string_view token = text.substr(i, end - i);
-    if (token.front() == '+') token.remove_prefix(1);
+    // xs:double allows one sign; from_chars takes '-' only, and assimp
+    // fails (leaking its nodes) on "+-1" (fuzz_dae_mesh).
+    if (token.front() == '+' && token.size() > 1 && token[1] != '-' && token[1] != '+') token.remove_prefix(1);
     double value = 0.0;
     const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
     if (result.ec != std::errc() || result.ptr != token.data() + token.size() ||
