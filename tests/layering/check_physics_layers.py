@@ -49,6 +49,7 @@ PUBLIC_HEADERS = {
     "world_settings.h": "world",
     "world.h": "world",
     "rotation_drift.h": "world",
+    "joint_space_dynamics.h": "world",
 }
 PUBLIC_DIR = ("include", "rbsim", "physics")
 

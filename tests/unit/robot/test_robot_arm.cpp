@@ -20,6 +20,7 @@
 #include <utility>
 #include <string>
 
+#include "rbsim/physics/joint_space_dynamics.h"
 #include "rbsim/physics/world.h"
 #include "robot/urdf_robot.h"
 #include "support/test_data_dir.h"
@@ -126,6 +127,54 @@ TEST(RobotArm, WithoutDrivesItFallsAsADoublePendulumAndKeepsItsEnergy) {
                                   world.jointState(world.findJoint("arm/elbow")).error);
     EXPECT_LT(error, 1e-10) << "the joints held";
   }
+}
+
+// Gravity compensation from the model the world simulates: the seven-joint
+// arm of config/robots/arm7.urdf, bent, passive (no drives, damping,
+// friction or limits), with its gravity torques g(q) from
+// JointSpaceDynamics applied as the joints' efforts every step, stays
+// where it is: no joint drifts 1e-6 rad in 10 s.
+TEST(RobotArm, ItsGravityTorquesHoldTheSevenJointArmStill) {
+  RobotPlacement placement;
+  placement.name = "arm";
+  placement.fixedBase = true;
+  placement.jointPositions = {{"joint2", 0.6}, {"joint3", 0.4}, {"joint4", -1.2}, {"joint6", 0.8}};
+  RobotFiles files;
+  files.sourceName = "arm7.urdf";
+  Expected<RobotModel> robot =
+      loadRobot(std::string(rbsim::test_support::kTestDataDir) + "/../../config/robots/arm7.urdf", placement, files);
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  WorldDef def;
+  def.settings.dt = 1e-3;
+  def.settings.gravity = Vec3(0, 0, -kGravity);
+  def.settings.contact.sleeping = false;
+  def.bodies = robot->bodies;
+  for (BodyDef& body : def.bodies) body.collides = false;
+  def.joints = robot->joints;
+  for (NamedJointDef& joint : def.joints) {
+    joint.def.damping = 0.0;
+    joint.def.friction = 0.0;
+    joint.def.limit.enabled = false;
+    joint.def.actuatorLimits = {};
+  }
+  Expected<World> world = World::fromDef(def);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  const Expected<JointSpaceDynamics> start = JointSpaceDynamics::ofRobot(*world, "arm/");
+  ASSERT_TRUE(start.ok()) << start.error().message;
+  ASSERT_EQ(start->dofCount(), 7);
+  const Eigen::VectorXd q0 = start->positions();
+  EXPECT_GT(start->gravityTorques().cwiseAbs().maxCoeff(), 10.0) << "N·m: gravity has work to do";
+  double drift = 0.0;
+  for (int step = 0; step < 10000; ++step) {
+    const Expected<JointSpaceDynamics> now = JointSpaceDynamics::ofRobot(*world, "arm/");
+    ASSERT_TRUE(now.ok());
+    const Eigen::VectorXd tau = now->gravityTorques();
+    for (int j = 0; j < 7; ++j)
+      ASSERT_TRUE(world->setJointEffort(world->findJoint(now->jointNames()[static_cast<std::size_t>(j)]), tau[j]).ok());
+    world->step();
+    drift = std::max(drift, (now->positions() - q0).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(drift, 1e-6) << "rad";
 }
 
 }  // namespace
