@@ -275,12 +275,12 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
         return reject("REMOVE names a body (body) or a joint (joint), exactly one of the two");
       if (!message.joint.empty()) {
         const JointId id = world.findJoint(message.joint);
-        if (id.isNull()) return reject("unknown joint '" + message.joint + "'");
+        if (id.isNull()) return reject(unknownJointReason(world, message.joint));
         world.removeJoint(id);
         m_session.jointCommands().removeJoint(message.joint);
       } else {
         const BodyId id = world.findBody(message.body);
-        if (id.isNull()) return reject("unknown body '" + message.body + "'");
+        if (id.isNull()) return reject(unknownBodyReason(world, message.body));
         // Its joints go with it, and so do the commands waiting for them.
         for (const std::string& joint : jointsOf(world, id)) m_session.jointCommands().removeJoint(joint);
         world.removeBody(id);

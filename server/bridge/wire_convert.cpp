@@ -1,5 +1,7 @@
 #include "bridge/wire_convert.h"
 
+#include "bridge/closest_names.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -414,6 +416,20 @@ Expected<WrenchFrame> wrenchFrameFrom(int8_t value, const char* field) {
 
 }  // namespace
 
+std::string unknownJointReason(const World& world, const std::string& name) {
+  std::vector<std::string> names;
+  names.reserve(static_cast<std::size_t>(world.jointCount()));
+  for (int i = 0; i < world.jointCount(); ++i) names.push_back(world.jointDefinitionAt(i).name);
+  return "unknown joint '" + name + "'" + didYouMean(name, names);
+}
+
+std::string unknownBodyReason(const World& world, const std::string& name) {
+  std::vector<std::string> names;
+  names.reserve(static_cast<std::size_t>(world.bodyCount()));
+  for (BodyView body : world.bodies()) names.push_back(body.name());
+  return "unknown body '" + name + "'" + didYouMean(name, names);
+}
+
 Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command_t& message,
                                                       const World& world, int64_t nextStep,
                                                       const WrenchLimits& limits) {
@@ -440,7 +456,7 @@ Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command
   }
 
   const JointId id = world.findJoint(message.joint);
-  if (id.isNull()) return Error{"joint: unknown joint '" + message.joint + "'"};
+  if (id.isNull()) return Error{"joint: " + unknownJointReason(world, message.joint)};
   const JointDef& def = world.jointDefinition(id);
   const bool revolute = def.type == JointType::Revolute;
   // A distance joint made with a spring: MODE_POSITION sets its rest length
@@ -489,6 +505,16 @@ Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command
         return Error{"max_effort must be finite and >= 0 for MODE_VELOCITY (the motor's largest effort)"};
       if (message.max_effort > effortLimit) return overLimit("max_effort", message.max_effort);
       request.maxEffort = message.max_effort;
+      if (request.maxEffort == 0.0) {
+        // A motor without effort does nothing, so 0 (the field's default,
+        // what `rbctl joint J velocity 0.5` sends) asks for what the joint's
+        // actuator can give, within what a client may command.
+        const double jointLimit = def.actuatorLimits.effort;
+        if (!std::isfinite(jointLimit))
+          return Error{"max_effort: give --max-effort (max_effort > 0): joint '" + message.joint +
+                       "' has no effort limit to default to, and a motor with max_effort 0 would do nothing"};
+        request.maxEffort = std::min(jointLimit, effortLimit);
+      }
       break;
     case JointCommandMode::Position:
       if (std::isnan(message.max_effort))
@@ -554,7 +580,7 @@ Expected<WrenchRequest> wrenchRequestFrom(const rbsim::wrench_t& message, const 
 
   const bool clearEverything = isClear(request.mode) && message.body.empty();
   const BodyId id = world.findBody(message.body);
-  if (!clearEverything && id.isNull()) return Error{"unknown body '" + message.body + "'"};
+  if (!clearEverything && id.isNull()) return Error{unknownBodyReason(world, message.body)};
 
   if (message.apply_at_step == -1) {
     request.firstStep = nextStep;

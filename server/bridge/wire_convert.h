@@ -53,10 +53,18 @@ std::vector<rbsim::joints_t> jointStatePages(const World& world, int64_t utime, 
 // Checks a joint command against the world and the limits (max_torque and
 // max_force bound a revolute's and a prismatic's efforts, as for wrenches);
 // on success the request is ready for the JointCommandScheduler. Errors
-// name the field.
+// name the field. A velocity command without max_effort (0) takes the
+// joint's effort limit (its actuator's, URDF's <limit effort>), and is
+// refused when the joint has none: a motor with no effort would be accepted
+// and do nothing.
 Expected<JointCommandRequest> jointCommandRequestFrom(const rbsim::joint_command_t& message,
                                                       const World& world, int64_t nextStep,
                                                       const WrenchLimits& limits);
+
+// "unknown joint 'x'" and "unknown body 'x'" with the world's closest names
+// ("... (did you mean 'y'?)"), for every refusal of a name.
+std::string unknownJointReason(const World& world, const std::string& name);
+std::string unknownBodyReason(const World& world, const std::string& name);
 
 // Checks a wrench message against the world and the limits; on success the
 // request is ready for the WrenchScheduler. `nextStep` is the step the

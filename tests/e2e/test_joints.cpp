@@ -186,6 +186,10 @@ TEST_F(Joints, TheWorldDescriptionListsTheJoints) {
 TEST_F(Joints, BadJointCommandsAreRejectedWithReasons) {
   const auto reason = [&](const client::JointCommand& c) { return expectRejected(client().commandJoint(c)).reason; };
   EXPECT_EQ(reason(command("nosuch", client::JointMode::Effort, 1.0)), "joint: unknown joint 'nosuch'");
+  EXPECT_EQ(reason(command("Axel", client::JointMode::Effort, 1.0)),
+            "joint: unknown joint 'Axel' (did you mean 'axle'?)");
+  // A motor with no effort cap and no joint limit to take would do nothing.
+  EXPECT_EQ(reason(command("axle", client::JointMode::Velocity, 1.0)).rfind("max_effort: give --max-effort", 0), 0u);
   EXPECT_NE(reason(command("weld", client::JointMode::Velocity, 1.0)).find("'weld' is a fixed joint"),
             std::string::npos);
   EXPECT_EQ(reason(command("gear_axle", client::JointMode::Velocity, 1.0)),

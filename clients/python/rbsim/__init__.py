@@ -114,11 +114,17 @@ del _name
 
 
 def __getattr__(name):
-    """Lazy access to the main entry points: rbsim.Client, rbsim.load_log."""
+    """Lazy access to the main entry points: rbsim.Client, rbsim.load_log,
+    and the client's exceptions (rbsim.RbsimError, rbsim.UnknownNameError,
+    rbsim.Rejected)."""
     if name == "Client":
         from .client import Client
 
         return Client
+    if name in ("RbsimError", "UnknownNameError", "Rejected"):
+        from . import client
+
+        return getattr(client, name)
     if name == "load_log":
         from .log import load_log
 
@@ -126,4 +132,4 @@ def __getattr__(name):
     raise AttributeError("module 'rbsim' has no attribute %r" % name)
 
 
-__all__ = list(_GENERATED_TYPES) + ["Client", "load_log"]
+__all__ = list(_GENERATED_TYPES) + ["Client", "load_log", "RbsimError", "UnknownNameError", "Rejected"]

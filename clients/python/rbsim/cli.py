@@ -360,8 +360,9 @@ def build_parser():
     sub.add_argument("target", type=float, nargs="?", default=None, metavar="TARGET",
                      help="rad/s or m/s, rad or m, N*m or N by MODE")
     sub.add_argument("--max-effort", type=float, default=0.0, metavar="E",
-                     help="N*m or N: velocity: the motor's largest effort (default 0); position: the "
-                          "drive's cap (default 0: uncapped)")
+                     help="N*m or N: velocity: the motor's largest effort (default 0: the joint's effort "
+                          "limit, refused for a joint without one); position: the drive's cap "
+                          "(default 0: uncapped)")
     sub.add_argument("--stiffness", type=float, default=0.0, metavar="K",
                      help="position: N*m/rad or N/m (default 0)")
     sub.add_argument("--damping", type=float, default=0.0, metavar="D",

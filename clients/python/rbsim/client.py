@@ -50,12 +50,15 @@ from typing import Callable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import ack_t, command_t, contacts_t, joint_command_t, joints_t, status_t, world_state_t, world_t, wrench_t
+from .errors import RbsimError, UnknownNameError
 from .constants import AckKind, Command, ContactKind, Frame, JointMode, PointFrame, WrenchMode, parse_enum
 from .lcm_ctypes import Lcm
 
 __all__ = [
     "Client",
+    "RbsimError",
     "Rejected",
+    "UnknownNameError",
     "BodyState",
     "WorldState",
     "WorldDescription",
@@ -135,8 +138,9 @@ def quaternion_to_matrix(q: Vector) -> np.ndarray:
     )
 
 
-class Rejected(RuntimeError):
-    """The server rejected a wrench or command; ``.ack`` is its ``ack_t``."""
+class Rejected(RbsimError, RuntimeError):
+    """The server rejected a wrench or command; ``.ack`` is its ``ack_t``,
+    and the message carries its reason."""
 
     def __init__(self, ack, what=None):
         self.ack = ack
@@ -197,7 +201,10 @@ class WorldState:
         self.recv_utime = recv_utime
 
     def __getitem__(self, name):
-        return self.by_name[name]
+        try:
+            return self.by_name[name]
+        except KeyError:
+            raise UnknownNameError("body", name, self.by_name, "the state of step %d" % self.step) from None
 
     def __contains__(self, name):
         return name in self.by_name
@@ -291,20 +298,29 @@ class WorldDescription:
         self.joints_by_name = {j.name: j for j in self.joints}
 
     def __getitem__(self, name):
-        return self.by_name[name]
+        try:
+            return self.by_name[name]
+        except KeyError:
+            raise UnknownNameError("body", name, self.by_name,
+                                   "the world description of revision %d" % self.world_revision) from None
 
     def __contains__(self, name):
         return name in self.by_name
 
     def joint(self, name: str):
-        """The ``joint_description_t`` of joint ``name`` (KeyError if none)."""
-        return self.joints_by_name[name]
+        """The ``joint_description_t`` of joint ``name`` (:class:`UnknownNameError`,
+        a KeyError, if none)."""
+        try:
+            return self.joints_by_name[name]
+        except KeyError:
+            raise UnknownNameError("joint", name, self.joints_by_name,
+                                   "the world description of revision %d" % self.world_revision) from None
 
     def inertia_world(self, name: str, orientation: Vector) -> np.ndarray:
         """Inertia tensor (kg*m^2, 3x3, world frame, about the centre of mass)
         of body ``name`` at ``orientation`` (w, x, y, z): R diag(I) R^T."""
         rotation = quaternion_to_matrix(orientation)
-        return rotation @ np.diag(self.by_name[name].inertia) @ rotation.T
+        return rotation @ np.diag(self[name].inertia) @ rotation.T
 
     def __repr__(self):
         return "WorldDescription(revision=%d, dt=%g, bodies=%r)" % (
@@ -414,7 +430,10 @@ class JointStates:
         self.by_name = {j.name: j for j in self.joints}
 
     def __getitem__(self, name):
-        return self.by_name[name]
+        try:
+            return self.by_name[name]
+        except KeyError:
+            raise UnknownNameError("joint", name, self.by_name, "the joint states of step %d" % self.step) from None
 
     def __contains__(self, name):
         return name in self.by_name
@@ -868,7 +887,8 @@ class Client:
 
     def joint_state(self, name: str, timeout: Optional[float] = None) -> JointState:
         """The latest state of joint ``name`` (waiting for one if none came yet);
-        KeyError if the world has no such joint."""
+        :class:`UnknownNameError` (a KeyError, naming the closest joints) if the
+        world has no such joint."""
         joints = self._joints if self._joints is not None else self.wait_joints(timeout)
         return joints[name]
 
@@ -889,7 +909,9 @@ class Client:
 
         ``mode`` (a :class:`JointMode` or its name) picks the one actuator that
         acts, turning the others off: "velocity" (the motor drives the rate to
-        ``target``, rad/s or m/s, with at most ``max_effort``, N*m or N),
+        ``target``, rad/s or m/s, with at most ``max_effort``, N*m or N; 0
+        takes the joint's effort limit, and is rejected for a joint without
+        one),
         "position" (a spring ``stiffness`` and damper ``damping`` pull the
         joint to ``target``, rad or m; ``max_effort`` <= 0 is uncapped),
         "effort" (a constant ``target`` N*m or N along the axis) or "off".

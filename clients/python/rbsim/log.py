@@ -24,6 +24,7 @@ import numpy as np
 
 from . import ack_t, command_t, joint_command_t, joints_t, status_t, world_state_t, world_t, wrench_t
 from .client import JointStates, WorldDescription
+from .errors import UnknownNameError
 from .lcm_ctypes import EventLog
 
 __all__ = ["load_log", "Log", "StateSeries", "BodyTrajectory"]
@@ -83,7 +84,10 @@ class StateSeries:
         return len(self.step)
 
     def __getitem__(self, name):
-        return self.bodies[name]
+        try:
+            return self.bodies[name]
+        except KeyError:
+            raise UnknownNameError("body", name, self.bodies, "the log's states") from None
 
     def __contains__(self, name):
         return name in self.bodies

@@ -106,6 +106,8 @@ TEST(JointWire, RejectsBadJointCommandsNamingTheField) {
   auto c = velocity();
   c.joint = "nothing";
   EXPECT_EQ(reason(c), "joint: unknown joint 'nothing'");
+  c.joint = "Axel";
+  EXPECT_EQ(reason(c), "joint: unknown joint 'Axel' (did you mean 'axle'?)");
   c = velocity();
   c.joint = "socket";
   EXPECT_NE(reason(c).find("joint: 'socket' is a spherical joint, which has no axis"), std::string::npos);
@@ -146,6 +148,58 @@ TEST(JointWire, RejectsBadJointCommandsNamingTheField) {
   EXPECT_EQ(reason(c), "accepted");
   c.joint = "socket";
   EXPECT_NE(reason(c).find("no axis"), std::string::npos);
+}
+
+// A velocity motor without max_effort would do nothing: it takes the joint's
+// effort limit (within max_torque / max_force), or is refused saying so.
+TEST(JointWire, AVelocityCommandWithoutMaxEffortTakesTheJointsEffortLimit) {
+  World world = jointWorld();
+  BodyDef rotor;
+  rotor.name = "rotor";
+  rotor.shape = CylinderShape{0.2, 0.05};
+  rotor.mass = 2.0;
+  rotor.position = Vec3(0, 3, 1);
+  JointDef servo;
+  servo.name = "servo";
+  servo.type = JointType::Revolute;
+  servo.bodyB = *world.createBody(rotor);
+  servo.anchor = Vec3(0, 3, 1);
+  servo.actuatorLimits.effort = 12.5;
+  ASSERT_TRUE(world.createJoint(servo).ok());
+
+  auto c = jointCommand("servo", rbsim::joint_command_t::MODE_VELOCITY, 0.5);
+  auto request = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->maxEffort, 12.5);
+  // A cap given is kept, even one under the joint's.
+  c.max_effort = 3.0;
+  request = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->maxEffort, 3.0);
+  // A joint stronger than a client may command gets the client's most.
+  c.max_effort = 0.0;
+  WrenchLimits tight;
+  tight.maxTorque = 10.0;
+  request = jointCommandRequestFrom(c, world, 1, tight);
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->maxEffort, 10.0);
+
+  // The axle has no effort limit: 0 is refused, naming the joint and the fix.
+  c.joint = "axle";
+  request = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+  ASSERT_FALSE(request.ok());
+  EXPECT_EQ(request.error().message.rfind("max_effort: give --max-effort (max_effort > 0): joint 'axle' has no "
+                                          "effort limit",
+                                          0),
+            0u)
+      << request.error().message;
+  // A position drive without a cap is not a no-op: it is uncapped, and the
+  // solver still holds it to the joint's effort limit.
+  c = jointCommand("axle", rbsim::joint_command_t::MODE_POSITION, 0.5);
+  c.stiffness = 10.0;
+  request = jointCommandRequestFrom(c, world, 1, WrenchLimits{});
+  ASSERT_TRUE(request.ok()) << request.error().message;
+  EXPECT_EQ(request->maxEffort, std::numeric_limits<double>::infinity());
 }
 
 // Each mode sets all three actuators; the ack says when.

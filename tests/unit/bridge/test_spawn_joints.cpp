@@ -235,7 +235,7 @@ TEST(SpawnJoints, RemoveTakesAJointAndTheCommandsWaitingForIt) {
   for (int i = 0; i < 12; ++i) f.session.step();
   EXPECT_EQ(f.world().jointDefinitionAt(f.world().jointCount() - 1).effort, 0.0);
 
-  EXPECT_EQ(f.remove("", "elbow2").ack.reason, "unknown joint 'elbow2'");
+  EXPECT_EQ(f.remove("", "elbow2").ack.reason, "unknown joint 'elbow2' (did you mean 'elbow'?)");
   EXPECT_EQ(f.remove("bob", "elbow").ack.reason, "REMOVE names a body (body) or a joint (joint), exactly one of the two");
   EXPECT_EQ(f.remove("", "").ack.reason, "REMOVE names a body (body) or a joint (joint), exactly one of the two");
 }
