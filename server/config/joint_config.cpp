@@ -29,8 +29,9 @@ constexpr std::array<std::string_view, 3> kMimicKeys = {"joint", "multiplier", "
 constexpr std::array<std::string_view, 2> kActuatorLimitKeys = {"effort", "rate"};
 constexpr std::array<std::string_view, 2> kLimitKeys = {"lower", "upper"};
 constexpr std::array<std::string_view, 2> kMotorKeys = {"max_effort", "target_rate"};
-constexpr std::array<std::string_view, 6> kDriveKeys = {"target", "stiffness", "damping", "frequency", "damping_ratio",
-                                                        "max_effort"};
+constexpr std::array<std::string_view, 7> kDriveKeys = {"target",        "stiffness",  "damping",
+                                                        "frequency",     "damping_ratio", "max_effort",
+                                                        "gravity_compensation"};
 // A distance joint's spring: a drive whose target is the joint's `length`.
 constexpr std::array<std::string_view, 5> kSpringKeys = {"stiffness", "damping", "frequency", "damping_ratio",
                                                          "max_effort"};
@@ -345,6 +346,10 @@ class JointParser {
       if (!value) return value.error();
       drive.maxEffort = *value;
     }
+    // (A spring's keys do not hold it: checkKeys refused it above.)
+    Expected<bool> compensate = m_reader.boolean(*map, "gravity_compensation", false);
+    if (!compensate) return compensate.error();
+    drive.gravityCompensation = *compensate;
     return drive;
   }
 

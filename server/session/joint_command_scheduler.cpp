@@ -29,7 +29,10 @@ JointActuation actuationOf(const JointCommandRequest& request) {
 }
 
 Expected<bool> applyJointCommand(World& world, JointId id, const JointCommandRequest& request) {
-  const JointActuation actuation = actuationOf(request);
+  JointActuation actuation = actuationOf(request);
+  // A drive's gravity compensation is the joint's setting (the world
+  // file's), not the command's: a new target keeps it.
+  if (world.isValid(id)) actuation.drive.gravityCompensation = world.jointDefinition(id).drive.gravityCompensation;
   // Turn off before turning on: the World lets at most one of motor and
   // drive be enabled, and enabling one turns the other off anyway.
   if (!actuation.motor.enabled) {

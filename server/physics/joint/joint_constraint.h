@@ -112,6 +112,10 @@ struct JointConstraint {
   JointId mimicLeader;
   double mimicError = 0.0;  // rad or m
 
+  // A drive's gravity compensation for the step (def.drive.
+  // gravityCompensation), computed from the state at its start.
+  double gravityFeedForward = 0.0;  // N·m or N
+
   // The joint coordinate and its rate (JointState::position, rate) from the
   // poses and the sides' velocities; an axis's coordinate counts from
   // def.position at creation, as its limits and drive target do.

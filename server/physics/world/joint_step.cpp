@@ -23,9 +23,11 @@ namespace rbsim {
 
 namespace {
 
-// The direct effort as the actuator gives it: capped at its effort limit.
-double appliedEffort(const JointDef& def) {
-  return std::clamp(def.effort, -def.actuatorLimits.effort, def.actuatorLimits.effort);
+// The direct effort and a drive's gravity compensation as the actuator
+// gives them: capped at its effort limit.
+double appliedEffort(const JointConstraint& joint) {
+  const JointDef& def = joint.def;
+  return std::clamp(def.effort + joint.gravityFeedForward, -def.actuatorLimits.effort, def.actuatorLimits.effort);
 }
 
 // A joint's sides as the joint solver takes them: by `local` index, or a
@@ -199,7 +201,7 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
   for (JointLink& link : links) link.wholeKick = true;
   // The direct efforts, as impulses along each joint's axis row over h.
   for (const JointLink& link : links) {
-    const double effort = appliedEffort(link.joint->def);
+    const double effort = appliedEffort(*link.joint);
     if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
     JointRow row;
     link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
@@ -289,7 +291,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   // `duration` at the current poses of `bodies` (start or end).
   const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
     for (const JointLink& link : links) {
-      const double effort = appliedEffort(link.joint->def);
+      const double effort = appliedEffort(*link.joint);
       if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
       const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
       if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
@@ -402,7 +404,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
     if (links[l].isCoupling()) continue;
     joint.lastForce = reactionLinear[l] / h;
     joint.lastTorque = reactionAngular[l] / h;
-    joint.lastAxisEffort = axisImpulse[l] / h + appliedEffort(joint.def);
+    joint.lastAxisEffort = axisImpulse[l] / h + appliedEffort(joint);
     joint.lastAtLimit = atLimit[l];
   }
   // A coupling's push along its follower's axis is the follower's effort

@@ -182,6 +182,75 @@ Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follo
   return true;
 }
 
+void computeGravityFeedForward(WorldData& world) {
+  // Most worlds have no compensated drive: nothing to walk.
+  bool any = false;
+  for (JointConstraint& joint : world.joints) {
+    joint.gravityFeedForward = 0.0;
+    any = any || (joint.def.drive.enabled && joint.def.drive.gravityCompensation && joint.hasAxis());
+  }
+  if (!any) return;
+  const std::size_t n = world.bodies.size();
+  // The joints at each body (indices), to walk the joint graph.
+  std::vector<std::vector<std::size_t>> jointsAt(n);
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    const JointDef& def = world.joints[j].def;
+    if (!jointIsEnforced(world, world.joints[j])) continue;
+    for (const BodyId id : {def.bodyA, def.bodyB})
+      if (!id.isNull()) jointsAt[denseIndexOf(world, id)].push_back(j);
+  }
+  const Vec3 gravity = world.settings.gravity;
+  std::vector<char> seen(n, 0);
+  std::vector<std::size_t> pending, reached;
+  for (std::size_t j = 0; j < world.joints.size(); ++j) {
+    JointConstraint& joint = world.joints[j];
+    const JointDef& def = joint.def;
+    if (!(def.drive.enabled && def.drive.gravityCompensation && joint.hasAxis()) || def.bodyB.isNull() ||
+        !jointIsEnforced(world, joint))
+      continue;
+    // What B's side carries: the bodies reached from B through the other
+    // joints, stopping at static bodies (and the world); reaching A is a
+    // loop, whose load the joint does not carry alone.
+    std::fill(seen.begin(), seen.end(), 0);
+    const std::size_t start = denseIndexOf(world, def.bodyB);
+    const std::size_t sideA = def.bodyA.isNull() ? n : denseIndexOf(world, def.bodyA);
+    pending.assign(1, start);
+    reached.clear();
+    seen[start] = 1;
+    bool loop = false;
+    while (!pending.empty() && !loop) {
+      const std::size_t b = pending.back();
+      pending.pop_back();
+      reached.push_back(b);
+      for (const std::size_t k : jointsAt[b]) {
+        if (k == j) continue;
+        const JointDef& other = world.joints[k].def;
+        for (const BodyId id : {other.bodyA, other.bodyB}) {
+          if (id.isNull()) continue;
+          const std::size_t next = denseIndexOf(world, id);
+          if (next == sideA) loop = true;
+          if (seen[next] || world.bodies[next].isStatic()) continue;
+          seen[next] = 1;
+          pending.push_back(next);
+        }
+      }
+    }
+    if (loop) continue;
+    // Gravity's torque about the axis (or force along it) on what it
+    // carries; the drive gives its opposite.
+    const JointSidePose a = def.bodyA.isNull() ? JointSidePose{} : jointSidePose(world.bodies[sideA]);
+    const Vec3 axis = a.rotation * joint.axisA;
+    const Vec3 anchor = a.position + a.rotation * joint.anchorA;
+    double load = 0.0;
+    for (const std::size_t b : reached) {
+      const Body& body = world.bodies[b];
+      const Vec3 weight = body.mass() * gravity;
+      load += def.type == JointType::Prismatic ? axis.dot(weight) : axis.dot((body.position() - anchor).cross(weight));
+    }
+    joint.gravityFeedForward = -load;
+  }
+}
+
 int enforcedLeaderOf(const WorldData& world, const JointConstraint& follower) {
   if (!follower.def.mimic.enabled || !invalidJointReason(world, follower.mimicLeader).empty()) return -1;
   const int dense = world.jointSlots[static_cast<std::size_t>(follower.mimicLeader.index - 1)].denseIndex;

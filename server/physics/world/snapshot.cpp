@@ -309,6 +309,7 @@ void writeJoint(const JointConstraint& joint, ByteWriter& out) {
   out.f64(def.mimic.multiplier);
   out.f64(def.mimic.offset);
   out.f64(joint.mimicError);
+  out.boolean(def.drive.gravityCompensation);
 }
 
 // Reads what writeJoint wrote; the bodies' ids get `worldTag`. Checks only
@@ -367,6 +368,7 @@ JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
   def.mimic.multiplier = in.f64("joint mimic multiplier");
   def.mimic.offset = in.f64("joint mimic offset");
   joint.mimicError = in.f64("joint mimic error");
+  def.drive.gravityCompensation = in.boolean("joint drive gravity compensation flag");
   return joint;
 }
 

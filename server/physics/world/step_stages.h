@@ -104,6 +104,10 @@ JointSidePose jointSidePose(const Body& body);
 bool jointIsEnforced(const WorldData& world, const JointConstraint& joint);
 JointId findJointByName(const WorldData& world, std::string_view name);  // null id when absent
 JointState jointStateAt(const WorldData& world, int denseIndex);
+// Each joint's gravityFeedForward for the step: the effort that holds what
+// it carries against gravity, for an enabled drive with gravity
+// compensation, else 0.
+void computeGravityFeedForward(WorldData& world);
 // A follower's leader (def.mimic.leader, by name) into follower.mimicLeader:
 // an existing revolute or prismatic joint.
 Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follower);

@@ -62,6 +62,7 @@ void guardStates(WorldData& world) {
 
 void stepWorld(WorldData& world) {
   world.judged.assign(world.bodies.size(), 0);
+  computeGravityFeedForward(world);
   const bool anyContact = world.settings.contact.enabled && world.collidingBodies > 0;
   // The impulse model's step is also where islands at rest fall asleep, so
   // a world whose bodies all collide with nothing (BodyDef::collides) takes

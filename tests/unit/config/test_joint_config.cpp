@@ -68,7 +68,8 @@ TEST(JointConfig, DrivesDampingAndFrictionAreReadAsWritten) {
       kBodies +
           "joints:\n"
           "  - {name: servo, type: revolute, body_a: world, body_b: arm, anchor: [0, 0, 0], axis: [0, 1, 0],\n"
-          "     drive: {target: 0.3, stiffness: 200, damping: 20, max_effort: 50}, damping: 0.1, friction: 0.2}\n"
+          "     drive: {target: 0.3, stiffness: 200, damping: 20, max_effort: 50, gravity_compensation: true},\n"
+          "     damping: 0.1, friction: 0.2}\n"
           "  - {name: soft, type: prismatic, body_a: arm, body_b: tip, anchor: [1, 0, 0], axis: [1, 0, 0],\n"
           "     drive: {frequency: 2, damping_ratio: 0.7}}\n",
       "j.yaml", "");
@@ -80,6 +81,7 @@ TEST(JointConfig, DrivesDampingAndFrictionAreReadAsWritten) {
   EXPECT_EQ(servo.drive.damping, 20.0);
   EXPECT_EQ(servo.drive.maxEffort, 50.0);
   EXPECT_EQ(servo.drive.frequency, 0.0);
+  EXPECT_TRUE(servo.drive.gravityCompensation);
   EXPECT_EQ(servo.damping, 0.1);
   EXPECT_EQ(servo.friction, 0.2);
   const JointDef& soft = def->joints[1].def;
@@ -87,6 +89,7 @@ TEST(JointConfig, DrivesDampingAndFrictionAreReadAsWritten) {
   EXPECT_EQ(soft.drive.dampingRatio, 0.7);
   EXPECT_EQ(soft.drive.target, 0.0);
   EXPECT_TRUE(std::isinf(soft.drive.maxEffort)) << "no cap unless given";
+  EXPECT_FALSE(soft.drive.gravityCompensation) << "off unless asked for";
   Expected<World> world = World::fromDef(*def);
   ASSERT_TRUE(world.ok()) << world.error().message;
 }

@@ -71,6 +71,15 @@ struct JointDrive {
   double frequency = 0.0;     // Hz, >= 0; > 0: used instead of stiffness and damping
   double dampingRatio = 0.0;  // with frequency: 1 is critical damping
   double maxEffort = std::numeric_limits<double>::infinity();  // N·m or N, > 0
+  // Revolute and prismatic joints: the drive adds, as feed-forward, the
+  // effort that holds against gravity everything the joint carries (the
+  // bodies beyond it, reached through the other joints without passing a
+  // static body or the world) in the configuration at the step's start,
+  // as MuJoCo's gravcomp and Gazebo's controllers do: a servo then holds
+  // its target without the sag its stiffness would leave. Nothing for a
+  // joint whose bodies close a loop back to its own side. Within the
+  // actuator's effort limit, with the direct effort.
+  bool gravityCompensation = false;
 };
 
 // Revolute and prismatic joints: what the joint's actuator can give at
