@@ -38,6 +38,8 @@ _GENERATED_TYPES = (
     "joint_description_t",
     "joint_state_t",
     "joints_t",
+    "robot_command_t",
+    "robot_state_t",
     "status_t",
     "visual_t",
     "world_state_t",
