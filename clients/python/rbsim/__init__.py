@@ -16,6 +16,7 @@ whose directory is appended to this package's ``__path__``, looked up, in order,
 Hand-written modules:
   ``rbsim.lcm_ctypes``  ctypes wrapper over liblcm.so.1 (transport, event logs)
   ``rbsim.client``      :class:`Client`: state, status, world, joints, wrenches, commands, acks
+  ``rbsim.robot``       :class:`Robot`: one robot's commands and state at control rate (lock-step too)
   ``rbsim.log``         :func:`load_log`: LCM logs as numpy arrays
   ``rbsim.cli``         the ``python3 -m rbsim`` command line
 """
@@ -116,13 +117,17 @@ del _name
 
 
 def __getattr__(name):
-    """Lazy access to the main entry points: rbsim.Client, rbsim.load_log,
+    """Lazy access to the main entry points: rbsim.Client, rbsim.Robot, rbsim.load_log,
     and the client's exceptions (rbsim.RbsimError, rbsim.UnknownNameError,
     rbsim.Rejected)."""
     if name == "Client":
         from .client import Client
 
         return Client
+    if name == "Robot":
+        from .robot import Robot
+
+        return Robot
     if name in ("RbsimError", "UnknownNameError", "Rejected"):
         from . import client
 
@@ -134,4 +139,4 @@ def __getattr__(name):
     raise AttributeError("module 'rbsim' has no attribute %r" % name)
 
 
-__all__ = list(_GENERATED_TYPES) + ["Client", "load_log", "RbsimError", "UnknownNameError", "Rejected"]
+__all__ = list(_GENERATED_TYPES) + ["Client", "Robot", "load_log", "RbsimError", "UnknownNameError", "Rejected"]

@@ -9,9 +9,10 @@ and prints with its name (``repr(WrenchMode(3))`` is ``<WrenchMode.CLEAR: 3>``).
 from enum import IntEnum
 from typing import Type, TypeVar, Union
 
-from . import ack_t, command_t, contact_t, joint_command_t, wrench_t
+from . import ack_t, command_t, contact_t, joint_command_t, robot_command_t, wrench_t
 
-__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "ContactKind", "JointMode", "parse_enum"]
+__all__ = ["Frame", "PointFrame", "WrenchMode", "AckKind", "Command", "ContactKind", "JointMode", "RobotMode",
+           "parse_enum"]
 
 
 class Frame(IntEnum):
@@ -49,6 +50,7 @@ class AckKind(IntEnum):
     WRENCH = ack_t.KIND_WRENCH
     COMMAND = ack_t.KIND_COMMAND
     JOINT_COMMAND = ack_t.KIND_JOINT_COMMAND
+    ROBOT_COMMAND = ack_t.KIND_ROBOT_COMMAND
 
 
 class JointMode(IntEnum):
@@ -58,6 +60,17 @@ class JointMode(IntEnum):
     VELOCITY = joint_command_t.MODE_VELOCITY
     POSITION = joint_command_t.MODE_POSITION
     EFFORT = joint_command_t.MODE_EFFORT
+
+
+class RobotMode(IntEnum):
+    """robot_command_t.mode: each joint entry's actuator; KEEP leaves the
+    joint's actuation as it is (a mimic follower's must be KEEP)."""
+
+    KEEP = robot_command_t.MODE_KEEP
+    OFF = robot_command_t.MODE_OFF
+    VELOCITY = robot_command_t.MODE_VELOCITY
+    POSITION = robot_command_t.MODE_POSITION
+    EFFORT = robot_command_t.MODE_EFFORT
 
 
 class Command(IntEnum):
