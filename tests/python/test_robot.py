@@ -299,3 +299,11 @@ def test_robot_is_exported():
     import rbsim
 
     assert rbsim.Robot is Robot and "Robot" in rbsim.__all__
+
+
+# -- against rbserver, each in its own network namespace (scenarios/robot.py) --------------
+
+
+@pytest.mark.parametrize("name", ["refusals", "step_sync", "dynamics"])
+def test_robot_against_the_server(scenario, name):
+    assert scenario("robot.py", name, timeout=60).returncode == 0

@@ -456,12 +456,17 @@ class Robot:
         return indices
 
     def _values(self, values, names, what, default):
-        """``values`` (a scalar or one per joint) as a float array of len(names)."""
+        """``values`` (a scalar or one per joint) as a float array of len(names)
+        (maybe ``values`` itself: not to be written to)."""
         count = len(names)
         if values is None:
             return np.full(count, float(default))
+        if isinstance(values, (float, int)) and not isinstance(values, bool):
+            if not math.isfinite(values):
+                raise ValueError("%s is %r: every value must be finite" % (what, values))
+            return np.full(count, float(values))
         try:
-            array = np.array(values, dtype=float)
+            array = np.asarray(values, dtype=float)
         except (TypeError, ValueError):
             raise TypeError("%s must be a number or %d numbers, got %r" % (what, count, values)) from None
         if array.ndim == 0:
@@ -469,10 +474,10 @@ class Robot:
         elif array.shape != (count,):
             raise ValueError("%s has %s values, the command has %d joints (%s)"
                              % (what, "x".join(map(str, array.shape)), count, ", ".join(names)))
-        bad = np.flatnonzero(~np.isfinite(array))
-        if bad.size:
-            raise ValueError("%s for joint %s is %r: every value must be finite"
-                             % (what, names[bad[0]], float(array[bad[0]])))
+        finite = np.isfinite(array)
+        if not finite.all():
+            bad = int(np.argmin(finite))
+            raise ValueError("%s for joint %s is %r: every value must be finite" % (what, names[bad], float(array[bad])))
         return array
 
     def _build(self, q=None, qd=None, tau_ff=None, kp=None, kd=None, max_effort=None, joints=None,
@@ -521,15 +526,15 @@ class Robot:
         if mode == RobotMode.POSITION:
             if q is None and np.any(kp_values != 0):
                 raise ValueError("position mode with kp needs q (the target position)")
-            both_zero = np.flatnonzero((kp_values == 0) & (kd_values == 0) & (modes == int(mode)))
-            if both_zero.size:
+            both_zero = (kp_values == 0) & (kd_values == 0) & (modes == int(mode))
+            if both_zero.any():
                 raise ValueError("position mode needs kp or kd above 0; joint %s has neither"
-                                 % names[both_zero[0]])
+                                 % names[int(np.argmax(both_zero))])
         for values, what in ((kp_values, "kp"), (kd_values, "kd")):
-            negative = np.flatnonzero(values < 0)
-            if negative.size:
-                raise ValueError("%s for joint %s is %g: gains are >= 0" % (what, names[negative[0]],
-                                                                             values[negative[0]]))
+            negative = values < 0
+            if negative.any():
+                bad = int(np.argmax(negative))
+                raise ValueError("%s for joint %s is %g: gains are >= 0" % (what, names[bad], values[bad]))
         position = self._values(q, names, "q", 0.0) if q is not None else state.q[indices]
         velocity = self._values(qd, names, "qd", 0.0)
         effort = self._values(tau_ff, names, "tau_ff", 0.0)

@@ -1,0 +1,140 @@
+"""rbsim.robot.Robot against rbserver: refusals (a name the robot lacks, a
+mimic follower given a mode, lock-step while running), step_sync advancing
+exactly n steps, and the dynamics of robot_state_t against the simulation
+(M symmetric positive definite; tau = M qdd + h as efforts gives qdd over
+one step, to the step's first order)."""
+
+import os
+
+from harness import CLIENT_TIMEOUT, REPO, Client, Server, np, run
+from rbsim import ack_t
+from rbsim.client import Rejected
+from rbsim.errors import UnknownNameError
+from rbsim.robot import Robot
+
+ARM_WORLD = os.path.join(REPO, "config", "worlds", "robot_arm.yaml")
+
+# Two fingers on prismatic joints, the right one the left one's mimic.
+GRIPPER_URDF = """<?xml version="1.0"?>
+<robot name="gripper">
+  <link name="palm"/>
+  <link name="left">
+    <inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.02 0.02 0.05"/></geometry></collision>
+  </link>
+  <link name="right">
+    <inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.02 0.02 0.05"/></geometry></collision>
+  </link>
+  <joint name="left_joint" type="prismatic">
+    <parent link="palm"/><child link="left"/><origin xyz="0 0.05 0.5"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
+  </joint>
+  <joint name="right_joint" type="prismatic">
+    <parent link="palm"/><child link="right"/><origin xyz="0 -0.05 0.5"/><axis xyz="0 -1 0"/>
+    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
+    <mimic joint="left_joint" multiplier="1" offset="0"/>
+  </joint>
+</robot>
+"""
+GRIPPER_WORLD = """world: {dt: 0.001, gravity: [0, 0, -9.81]}
+robots:
+  - {name: g, urdf: gripper.urdf, fixed_base: true}
+"""
+
+
+def refusals(workdir):
+    with open(os.path.join(workdir, "gripper.urdf"), "w") as f:
+        f.write(GRIPPER_URDF)
+    world = os.path.join(workdir, "gripper.yaml")
+    with open(world, "w") as f:
+        f.write(GRIPPER_WORLD)
+    server = Server(workdir, world)
+    try:
+        with Robot("g", timeout=CLIENT_TIMEOUT) as robot:
+            assert robot.joint_names == ["g/left_joint", "g/right_joint"], robot.joint_names
+            assert list(robot.leader) == [-1, 0]
+            try:
+                robot.command(tau_ff=1.0, joints=["left_jiont"])
+                raise AssertionError("an unknown joint was sent")
+            except UnknownNameError as exc:
+                assert "did you mean 'left_joint'" in str(exc), str(exc)
+            # The follower given a mode: the server refuses it, naming its leader.
+            try:
+                robot.command(tau_ff=1.0, joints=["right_joint"])
+                raise AssertionError("a follower's effort was accepted")
+            except Rejected as exc:
+                assert exc.ack.kind == ack_t.KIND_ROBOT_COMMAND and not exc.ack.accepted
+                assert "g/right_joint" in exc.ack.reason and "g/left_joint" in exc.ack.reason, exc.ack.reason
+            # Without names, the follower's entry is MODE_KEEP: accepted, and it follows.
+            step = robot.command(q=[0.03, 0.0], kp=200.0, kd=5.0)
+            state = robot.wait_state(step=step + 300, timeout=CLIENT_TIMEOUT)
+            assert abs(state.q[0] - 0.03) < 2e-3 and abs(state.q[1] - state.q[0]) < 1e-9, state.q
+            # Lock-step while the server runs is refused.
+            try:
+                robot.step_sync()
+                raise AssertionError("steps were accepted while running")
+            except Rejected as exc:
+                assert exc.ack.reason, exc.ack
+        try:
+            Robot("gg", timeout=1.0)
+            raise AssertionError("an unknown robot was found")
+        except UnknownNameError as exc:
+            assert "unknown robot 'gg'" in str(exc) and "did you mean 'g'" in str(exc), str(exc)
+    finally:
+        assert server.stop() == 0
+
+
+def step_sync(workdir):
+    server = Server(workdir, ARM_WORLD, "--paused")
+    sim = Client(timeout=CLIENT_TIMEOUT)
+    try:
+        with Robot("arm", timeout=CLIENT_TIMEOUT) as arm:
+            first = arm.step_sync()
+            for n in (1, 5, 37):
+                before = arm.step
+                state = arm.step_sync(n, q=first.q, kp=2000.0, kd=100.0)
+                assert state.step == before + n == arm.step, (before, n, state.step)
+                assert abs(state.sim_time - 0.001 * state.step) < 1e-12
+            # The world's state agrees: the server took exactly these steps.
+            world_state = sim.wait_for_step(arm.step)
+            assert world_state.step == arm.step, (world_state.step, arm.step)
+            # And no more: a new state of the robot (published while paused) has the same step.
+            assert arm.wait_state(timeout=CLIENT_TIMEOUT).step == state.step
+    finally:
+        sim.close()
+        assert server.stop() == 0
+
+
+def dynamics(workdir):
+    server = Server(workdir, ARM_WORLD, "--paused")
+    sim = Client(timeout=CLIENT_TIMEOUT)
+    try:
+        joints = {j.name: j for j in sim.request_world().joints}
+        with Robot("arm", timeout=CLIENT_TIMEOUT, dynamics=True) as arm:
+            state = arm.step_sync()
+            M = arm.mass_matrix()
+            assert M.shape == (7, 7) and np.allclose(M, M.T, rtol=0, atol=1e-12 * np.abs(M).max()), M
+            assert np.linalg.eigvalsh(M).min() > 0, np.linalg.eigvalsh(M)
+            assert len(arm.link_names) == 8 and arm.link_names[-1] == "arm/link7", arm.link_names
+            # The joints' own damping and dry friction are not in h: add what they take at this
+            # state (at rest, friction opposes the acceleration), then tau = M qdd + h.
+            damping = np.array([joints[n].damping for n in arm.joint_names])
+            friction = np.array([joints[n].friction for n in arm.joint_names])
+            qdd = np.array([0.8, -0.5, 0.6, 1.0, -0.7, 0.9, -1.2])
+            tau = M @ qdd + arm.bias() + damping * state.qd + friction * np.sign(qdd)
+            after = arm.step_sync(tau_ff=tau)
+            measured = (after.qd - state.qd) / (after.sim_time - state.sim_time)
+            error = np.abs(measured - qdd).max()
+            # First order in dt: the error is O(dt) of qdd's scale.
+            assert error < 0.02 * np.abs(qdd).max(), (measured, qdd, error)
+            # The check can fail: the diagonal of M alone misses it by far more.
+            wrong = (np.diag(np.diag(M)) @ qdd - M @ qdd)
+            assert np.abs(np.linalg.solve(M, wrong)).max() > 10 * error
+    finally:
+        sim.close()
+        assert server.stop() == 0
+
+
+if __name__ == "__main__":
+    run({"refusals": refusals, "step_sync": step_sync, "dynamics": dynamics})
