@@ -1,13 +1,16 @@
 """clients/python/examples: the PD height controller converges under
-gravity; record_and_plot.sh records and plots (scenarios/examples.py)."""
+gravity; record_and_plot.sh records and plots; the arm tracks a joint
+trajectory (computed torque) and a straight line (operational space)
+(scenarios/examples.py)."""
 
 import pytest
 
 
 @pytest.mark.parametrize("name", ["pd_hold_height", "record_and_plot", "pd_hold_height_default_world",
-                                  "record_and_plot_default_world"])
+                                  "record_and_plot_default_world", "computed_torque",
+                                  "operational_space"])
 def test_example(scenario, name):
-    result = scenario("examples.py", name, timeout=90)
+    result = scenario("examples.py", name, timeout=150)
     # The scenario asserts the physics itself and exits 0 only if all held.
     assert result.returncode == 0
 

@@ -45,7 +45,7 @@ import struct
 import threading
 import time
 from collections import OrderedDict
-from typing import Iterable, List, Optional, Sequence, Tuple, Union
+from typing import List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -241,7 +241,7 @@ class Robot:
         self._name_bytes = name.encode("utf-8")
         self._lock = threading.RLock()  # one thread at a time handles messages and reads the cache
         self._raw = None  # this robot's latest state: (bytes, step, recv_utime), decoded when read
-        self._decoded = None  # the RobotState of _raw, or the last one decoded
+        self._decoded = (None, None)  # (a _raw, its RobotState, or the last good one's)
         self._state_count = 0
         self._acks = OrderedDict()  # (kind, seq) -> ack_t of this client id
         self._robots_seen = set()
@@ -274,7 +274,7 @@ class Robot:
         self.close()
 
     def __repr__(self):
-        state = self._decoded
+        state = self._decoded[1]
         return "Robot(%r, step=%s, joints=%d)" % (self.name, state.step if state else "?",
                                                   len(state.joint_names) if state else 0)
 
@@ -327,18 +327,20 @@ class Robot:
                 self._lcm.handle_timeout(max(1, int(math.ceil(remaining * 1000))))
 
     def _latest(self) -> RobotState:
-        """The latest state received, decoded (at most once)."""
-        raw = self._raw
-        if raw is not None and (self._decoded is None or self._decoded_raw is not raw):
-            data, _step, recv_utime = raw
-            try:
-                self._decoded = RobotState(robot_state_t.decode(data), recv_utime)
-            except Exception:
-                self.decode_errors += 1  # keep the last good one
-            self._decoded_raw = raw
-        return self._decoded
-
-    _decoded_raw = None
+        """The latest state received, decoded (once). Needs no lock: the pair
+        (raw state, its decoding) is replaced whole, so a reader racing the
+        handling thread at worst decodes the same bytes twice."""
+        raw, (decoded_raw, decoded) = self._raw, self._decoded
+        if raw is None or raw is decoded_raw:
+            return decoded
+        data, _step, recv_utime = raw
+        try:
+            state = RobotState(robot_state_t.decode(data), recv_utime)
+        except Exception:
+            self.decode_errors += 1
+            state = decoded  # keep the last good one
+        self._decoded = (raw, state)
+        return state
 
     def _wait_first_state(self):
         try:
@@ -379,8 +381,7 @@ class Robot:
     @property
     def state(self) -> RobotState:
         """The latest state received (a :class:`RobotState`; not a copy)."""
-        with self._lock:
-            return self._latest()
+        return self._latest()
 
     # -- the latest state's values (copies) ---------------------------------------------
 
@@ -477,7 +478,8 @@ class Robot:
         finite = np.isfinite(array)
         if not finite.all():
             bad = int(np.argmin(finite))
-            raise ValueError("%s for joint %s is %r: every value must be finite" % (what, names[bad], float(array[bad])))
+            raise ValueError("%s for joint %s is %r: every value must be finite"
+                             % (what, names[bad], float(array[bad])))
         return array
 
     def _build(self, q=None, qd=None, tau_ff=None, kp=None, kd=None, max_effort=None, joints=None,

@@ -3,9 +3,11 @@
 import os
 import re
 import subprocess
+import threading
 
 from harness import PYTHON, REPO, Server, np, run, session, subprocess_env, world_file
 from rbsim import ack_t, wrench_t
+from rbsim.robot import Robot
 
 EXAMPLES = os.path.join(REPO, "clients", "python", "examples")
 
@@ -151,7 +153,68 @@ def check_plot_layout(log, png):
     assert np.all(np.isfinite(values)) and np.all(values >= 0), "kinetic energy"
 
 
+ARM_WORLD = os.path.join(REPO, "config", "worlds", "robot_arm.yaml")
+
+
+def _run_arm_example(workdir, script, *options):
+    """Runs an arm example against a server on robot_arm.yaml, paused from
+    the start (the arm at rest where the file places it), while another
+    Robot watches the arm's states; returns (its output, the states seen)."""
+    server = Server(workdir, ARM_WORLD, "--paused")
+    seen, stop = [], threading.Event()
+    try:
+        watcher = Robot("arm", timeout=10.0)
+
+        def watch():
+            while not stop.is_set():
+                try:
+                    seen.append(watcher.wait_state(timeout=0.2))
+                except TimeoutError:
+                    pass
+
+        thread = threading.Thread(target=watch)
+        thread.start()
+        try:
+            proc = subprocess.run([PYTHON, os.path.join(EXAMPLES, script)] + list(options), capture_output=True,
+                                  text=True, timeout=120, env=subprocess_env())
+        finally:
+            stop.set()
+            thread.join()
+            watcher.close()
+        assert proc.returncode == 0, "%s exited %d\n%s%s" % (script, proc.returncode, proc.stdout, proc.stderr)
+    finally:
+        assert server.stop() == 0
+    return proc.stdout, seen
+
+
+def computed_torque(workdir):
+    """Every joint of the arm follows q0 + 0.3 (1 - cos(pi t)) for 2 s within
+    1e-3 rad (the example's own measure), and another client saw it: each
+    joint went 0.6 rad out and came back."""
+    out, seen = _run_arm_example(workdir, "computed_torque.py", "--tolerance", "1e-3")
+    error = float(re.search(r"max tracking error ([-\d.e]+) rad", out).group(1))
+    assert 0 < error < 1e-3, out
+    q = np.array([s.q for s in seen])
+    excursion = q.max(axis=0) - q.min(axis=0)
+    assert len(seen) > 500 and np.all(np.abs(excursion - 0.6) < 2e-3), (len(seen), excursion)
+    assert np.abs(q[-1] - q[0]).max() < 2e-3, (q[0], q[-1])
+
+
+def operational_space(workdir):
+    """The tool point moves 0.2 m along world y within 1 mm of the line (the
+    example's measure), and another client saw the point (from the link
+    poses in the states) go the distance along the line and not off it."""
+    out, seen = _run_arm_example(workdir, "operational_space.py", "--tolerance", "1e-3")
+    distance = float(re.search(r"largest distance from the line ([-\d.e]+) m", out).group(1))
+    assert 0 < distance < 1e-3, out
+    points = np.array([s.link_pose("link7")[0] for s in seen if s.has_dynamics])
+    assert len(points) > 500, len(points)
+    span = points.max(axis=0) - points.min(axis=0)
+    assert abs(span[1] - 0.2) < 2e-3 and span[0] < 2e-3 and span[2] < 2e-3, span
+
+
 if __name__ == "__main__":
     run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot,
          "pd_hold_height_default_world": pd_hold_height_default_world,
-         "record_and_plot_default_world": record_and_plot_default_world})
+         "record_and_plot_default_world": record_and_plot_default_world,
+         "computed_torque": computed_torque, "operational_space": operational_space})
