@@ -36,13 +36,13 @@ def run(arm, cycles, dynamics):
     kp, kd = np.full(n, 2000.0), np.full(n, 100.0)
     times = np.empty(cycles)
     state = arm.state
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for i in range(cycles):
         t = time.perf_counter()
         tau_ff = state.bias if dynamics else np.zeros(n)
         state = arm.step_sync(q=q0, qd=0.0, kp=kp, kd=kd, tau_ff=tau_ff)
         times[i] = time.perf_counter() - t
-    return time.perf_counter() - start, times, state
+    return time.perf_counter() - start, time.process_time() - cpu, times, state
 
 
 def main(argv=None):
@@ -61,6 +61,7 @@ def main(argv=None):
     try:
         with Robot(args.robot, timeout=10.0, dynamics=args.dynamics) as arm:
             arm.pause()
+            arm.step_sync()  # a state after the pause (with the dynamics if asked for)
             run(arm, args.warmup, args.dynamics)
             if args.profile:
                 import cProfile
@@ -69,7 +70,7 @@ def main(argv=None):
                 profiler = cProfile.Profile()
                 profiler.enable()
             first = arm.step
-            total, times, state = run(arm, args.cycles, args.dynamics)
+            total, cpu, times, state = run(arm, args.cycles, args.dynamics)
             if args.profile:
                 profiler.disable()
                 pstats.Stats(profiler).sort_stats("tottime").print_stats(15)
@@ -77,8 +78,9 @@ def main(argv=None):
         assert state.step == first + args.cycles, (state.step, first, args.cycles)
         us = times * 1e6
         print("%d lock-step cycles (%s, dynamics %s): %.0f cycles/s; round trip p50 %.0f us, p99 %.0f us, "
-              "max %.0f us" % (args.cycles, args.robot, "on" if args.dynamics else "off", args.cycles / total,
-                               np.percentile(us, 50), np.percentile(us, 99), us.max()))
+              "max %.0f us; this process's CPU %.0f us a cycle"
+              % (args.cycles, args.robot, "on" if args.dynamics else "off", args.cycles / total,
+                 np.percentile(us, 50), np.percentile(us, 99), us.max(), cpu / args.cycles * 1e6))
     finally:
         if server is not None:
             server.terminate()
