@@ -201,17 +201,17 @@ def computed_torque(workdir):
 
 
 def operational_space(workdir):
-    """The tool point moves 0.2 m along world y within 1 mm of the line (the
-    example's measure), and another client saw the point (from the link
-    poses in the states) go the distance along the line and not off it."""
-    out, seen = _run_arm_example(workdir, "operational_space.py", "--tolerance", "1e-3")
+    """The tool point moves 0.2 m along world y within 0.1 mm of the line (the
+    example's measure; it achieves 2e-5 m), and another client saw the point
+    (from the link poses in the states) go the distance along the line and
+    not off it."""
+    out, seen = _run_arm_example(workdir, "operational_space.py", "--tolerance", "1e-4")
     distance = float(re.search(r"largest distance from the line ([-\d.e]+) m", out).group(1))
-    assert 0 < distance < 1e-3, out
+    assert 0 < distance < 1e-4, out
     points = np.array([s.link_pose("link7")[0] for s in seen if s.has_dynamics])
     assert len(points) > 500, len(points)
     span = points.max(axis=0) - points.min(axis=0)
-    assert abs(span[1] - 0.2) < 2e-3 and span[0] < 2e-3 and span[2] < 2e-3, span
-
+    assert abs(span[1] - 0.2) < 1e-3 and span[0] < 2e-4 and span[2] < 2e-4, span
 
 if __name__ == "__main__":
     run({"pd_hold_height": pd_hold_height, "record_and_plot": record_and_plot,
