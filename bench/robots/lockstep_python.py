@@ -45,6 +45,13 @@ def run(arm, cycles, dynamics):
     return time.perf_counter() - start, time.process_time() - cpu, times, state
 
 
+def cpu_seconds(pid):
+    """User and system CPU time (s) of process ``pid`` so far, all its threads."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--robot", default="arm")
@@ -70,7 +77,10 @@ def main(argv=None):
                 profiler = cProfile.Profile()
                 profiler.enable()
             first = arm.step
+            server_cpu = cpu_seconds(server.pid) if server else None
             total, cpu, times, state = run(arm, args.cycles, args.dynamics)
+            if server:
+                server_cpu = cpu_seconds(server.pid) - server_cpu
             if args.profile:
                 profiler.disable()
                 pstats.Stats(profiler).sort_stats("tottime").print_stats(15)
@@ -80,7 +90,8 @@ def main(argv=None):
         print("%d lock-step cycles (%s, dynamics %s): %.0f cycles/s; round trip p50 %.0f us, p99 %.0f us, "
               "max %.0f us; this process's CPU %.0f us a cycle"
               % (args.cycles, args.robot, "on" if args.dynamics else "off", args.cycles / total,
-                 np.percentile(us, 50), np.percentile(us, 99), us.max(), cpu / args.cycles * 1e6))
+                 np.percentile(us, 50), np.percentile(us, 99), us.max(), cpu / args.cycles * 1e6)
+              + ("; the server's %.0f us" % (server_cpu / args.cycles * 1e6) if server else ""))
     finally:
         if server is not None:
             server.terminate()

@@ -297,6 +297,38 @@ def test_robot_state_decodes_a_hand_built_message():
     assert state.has_dynamics and state.base_fixed and state.world_revision == 2
 
 
+def _same_states(a, b):
+    for field in RobotState.__slots__:
+        x, y = getattr(a, field), getattr(b, field)
+        if isinstance(x, np.ndarray):
+            assert x.shape == y.shape and x.dtype == y.dtype and np.array_equal(x, y), (field, x, y)
+        else:
+            assert x == y, (field, x, y)
+
+
+def test_from_bytes_reads_what_the_generated_decoder_reads():
+    floating = hand_built_state(dynamics=True)
+    # A floating base: 6 + 3 coordinates, three links.
+    floating.base_fixed, floating.num_dofs, floating.num_links = False, 9, 3
+    floating.mass_matrix = (np.eye(9) * 2.0 + 0.01 * np.arange(81).reshape(9, 9)).tolist()
+    floating.bias, floating.gravity = list(range(9)), list(range(9, 18))
+    floating.link_names = ["g/base", "g/palm", "g/tip"]
+    floating.link_position = [[1.0, 2.0, 3.0], [1.0, 2.0, 3.5], [0.0, 0.0, 9.0]]
+    floating.link_orientation = [[1.0, 0.0, 0.0, 0.0]] * 3
+    floating.link_jacobian = np.arange(3 * 6 * 9, dtype=float).reshape(3, 6, 9).tolist()
+    noted = hand_built_state()
+    noted.dynamics_note, noted.robot, noted.joint_names = "a spherical joint: 'g/ball'", "gé", ["gé/a", "", "x"]
+    for message in (hand_built_state(), hand_built_state(dynamics=True), floating, noted):
+        data = message.encode()
+        state = RobotState.from_bytes(data, recv_utime=9)
+        _same_states(RobotState(robot_state_t.decode(data), recv_utime=9), state)
+        state.q[0] = 5.0  # its own arrays, writable
+    data = hand_built_state(dynamics=True).encode()
+    for bad in (data[:-1], data + b"\0", data[:60], b"\0" * 8 + data[8:], data[:8]):
+        with pytest.raises(ValueError):
+            RobotState.from_bytes(bad)
+
+
 def test_robot_is_exported():
     import rbsim
 
