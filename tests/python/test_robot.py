@@ -60,7 +60,7 @@ class FakeServer:
 
     def __init__(self, bus, dynamics=False):
         self.bus, self.step, self.dynamics_on = bus, 7, dynamics
-        self.commands, self.server_commands = [], []
+        self.commands, self.server_commands, self.raw_commands = [], [], []
         self.refuse = ""
         bus.subscribe("RBSIM_ROBOT_COMMAND", self._on_robot_command)
         bus.subscribe("RBSIM_COMMAND", self._on_command)
@@ -83,6 +83,7 @@ class FakeServer:
     def _on_robot_command(self, _channel, data, _recv_utime):
         message = robot_command_t.decode(data)
         self.commands.append(message)
+        self.raw_commands.append(data)
         if self._ack(message, ack_t.KIND_ROBOT_COMMAND):
             if message.state_dynamics == 1:
                 self.dynamics_on = True
@@ -130,6 +131,18 @@ def test_position_command_fields(robot, bus_and_server):
     # The next command has the next seq.
     robot.command(tau_ff=0.5)
     assert server.commands[-1].seq == m.seq + 1
+
+
+def test_the_bytes_are_the_generated_encoders(robot, bus_and_server):
+    """Robot encodes robot_command_t itself (one join of numpy bytes): the
+    generated class, given what it decoded, writes the very same bytes."""
+    _bus, server = bus_and_server
+    robot.command(q=[0.5, 0.01, 0.0], qd=[0.25, -1.0, 3.0], kp=100, kd=10, tau_ff=[1, 2, 3], max_effort=40)
+    robot.command(tau_ff=[-1.5, 2.0], joints=["finger_left", "g/base_yaw"], apply_at_step=99)
+    robot.step_sync(3)
+    robot.set_state_rate(250.0)
+    for data in server.raw_commands:
+        assert robot_command_t.decode(data).encode() == data
 
 
 def test_modes_follow_from_what_is_given(robot, bus_and_server):

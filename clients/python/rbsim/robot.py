@@ -110,6 +110,30 @@ def _array(data, at, dtype, count):
     return np.frombuffer(data, dtype, count, at).astype(_NATIVE[dtype.char]), end
 
 
+_COMMAND_FINGERPRINT = robot_command_t._get_packed_fingerprint()
+_INT64 = struct.Struct(">q")
+_COMMAND_COUNTS = struct.Struct(">qii")  # apply_at_step, num_joints, num_names
+_COMMAND_TAIL = struct.Struct(">dbi")  # state_rate, state_dynamics, steps
+_NO_MODES, _NO_VALUES = np.zeros(0, dtype=np.int8), np.zeros((6, 0))
+
+
+def _lcm_string(text):
+    encoded = text.encode("utf-8")
+    return _UINT32.pack(len(encoded) + 1) + encoded + b"\0"
+
+
+class _Command:
+    """A checked robot command: ``head`` (apply_at_step, state_rate,
+    state_dynamics, steps), the joint ``names`` sent (none: all, in order),
+    ``modes`` (int8) and ``values`` (6 x entries: position, velocity,
+    effort, stiffness, damping, max_effort)."""
+
+    __slots__ = ("head", "names", "modes", "values")
+
+    def __init__(self, head, names, modes, values):
+        self.head, self.names, self.modes, self.values = head, names, modes, values
+
+
 def _wall_utime():
     return int(time.time() * 1e6)
 
@@ -327,6 +351,7 @@ class Robot:
         # that a later run of the same id keeps increasing.
         self._seq = itertools.count(_wall_utime() if named else 1)
         self._name_bytes = name.encode("utf-8")
+        self._client_field, self._robot_field = _lcm_string(self.client_id), _lcm_string(name)
         self._lock = threading.RLock()  # one thread at a time handles messages
         self._raw = None  # this robot's latest state: (bytes, step, recv_utime), decoded when read
         self._decoded = (None, None)  # (a _raw, its RobotState), replaced whole (see _latest)
@@ -544,58 +569,37 @@ class Robot:
             raise ValueError("joints is empty: name at least one joint, or give None for all of them")
         return indices
 
-    def _values(self, values, names, what, default):
-        """``values`` (a scalar or one per joint) as a float array of len(names)
-        (maybe ``values`` itself: not to be written to)."""
-        count = len(names)
+    @staticmethod
+    def _fill(row, values, names, what):
+        """Writes ``values`` (a scalar or one per joint) into ``row``."""
         if values is None:
-            return np.full(count, float(default))
-        if isinstance(values, (float, int)) and not isinstance(values, bool):
-            if not math.isfinite(values):
-                raise ValueError("%s is %r: every value must be finite" % (what, values))
-            return np.full(count, float(values))
+            return
         try:
-            array = np.asarray(values, dtype=float)
+            row[:] = values  # a scalar broadcasts
         except (TypeError, ValueError):
-            raise TypeError("%s must be a number or %d numbers, got %r" % (what, count, values)) from None
-        if array.ndim == 0:
-            array = np.full(count, float(array))
-        elif array.shape != (count,):
-            raise ValueError("%s has %s values, the command has %d joints (%s)"
-                             % (what, "x".join(map(str, array.shape)), count, ", ".join(names)))
-        finite = np.isfinite(array)
-        if not finite.all():
-            bad = int(np.argmin(finite))
-            raise ValueError("%s for joint %s is %r: every value must be finite"
-                             % (what, names[bad], float(array[bad])))
-        return array
+            shape = np.shape(values) if not isinstance(values, str) else ()
+            if len(shape) >= 1 and shape != row.shape:
+                raise ValueError("%s has %s values, the command has %d joints (%s)"
+                                 % (what, "x".join(map(str, shape)), len(row), ", ".join(names))) from None
+            raise TypeError("%s must be a number or %d numbers, got %r" % (what, len(row), values)) from None
 
     def _build(self, q=None, qd=None, tau_ff=None, kp=None, kd=None, max_effort=None, joints=None,
                apply_at_step=-1, mode=None, steps=0, state_rate=0.0, state_dynamics=-1):
-        """The robot_command_t these arguments make (see :meth:`command`)."""
-        message = robot_command_t()
-        message.robot = self.name
-        message.apply_at_step = int(apply_at_step)
-        if message.apply_at_step < -1:
+        """What these arguments command (see :meth:`command`), checked: a
+        :class:`_Command` for :meth:`_send`."""
+        apply_at_step = int(apply_at_step)
+        if apply_at_step < -1:
             raise ValueError("apply_at_step must be -1 (the next step) or a step number, got %d" % apply_at_step)
-        message.state_rate = float(state_rate)
-        message.state_dynamics = int(state_dynamics)
-        message.steps = int(steps)
-        given = [v is not None for v in (q, qd, tau_ff, kp, kd, max_effort)]
-        if mode is None and not any(given) and joints is None:
-            message.num_joints = message.num_names = 0  # no joint entries
-            message.joint_names = message.mode = message.position = message.velocity = []
-            message.effort = message.stiffness = message.damping = message.max_effort = []
-            return message
+        head = (apply_at_step, float(state_rate), int(state_dynamics), int(steps))
+        if mode is None and joints is None and all(v is None for v in (q, qd, tau_ff, kp, kd, max_effort)):
+            return _Command(head, (), _NO_MODES, _NO_VALUES)  # no joint entries
         state = self._latest()
         if joints is None:
-            indices = list(range(len(state.joint_names)))
-            message.num_names, message.joint_names = 0, []
+            indices, sent_names = slice(None), ()
+            names = state.joint_names
         else:
             indices = self._resolve_joints(joints, state)
-            message.num_names = len(indices)
-            message.joint_names = [state.joint_names[i] for i in indices]
-        names = [state.joint_names[i] for i in indices]
+            sent_names = names = tuple(state.joint_names[i] for i in indices)
         if mode is None:
             if kp is not None or kd is not None:
                 mode = RobotMode.POSITION
@@ -606,45 +610,54 @@ class Robot:
             else:
                 raise ValueError("nothing to command: give kp and/or kd (position), qd alone (velocity), "
                                  "tau_ff alone (effort), or mode=")
-        mode = parse_enum(RobotMode, mode, "mode")
-        kp_values = self._values(kp, names, "kp", 0.0)
-        kd_values = self._values(kd, names, "kd", 0.0)
-        modes = np.full(len(indices), int(mode), dtype=np.int64)
+        elif not isinstance(mode, RobotMode):
+            mode = parse_enum(RobotMode, mode, "mode")
+        # The wire's order: position, velocity, effort, stiffness, damping, max_effort.
+        values = np.zeros((6, len(names)))
+        position, velocity, effort, kp_values, kd_values, cap = values
+        if q is None:
+            position[:] = state.q[indices]  # the drive's target where the joint is (kd alone)
+        for row, given, what in ((position, q, "q"), (velocity, qd, "qd"), (effort, tau_ff, "tau_ff"),
+                                 (kp_values, kp, "kp"), (kd_values, kd, "kd"), (cap, max_effort, "max_effort")):
+            self._fill(row, given, names, what)
+        finite = np.isfinite(values)
+        if not finite.all():
+            row, column = divmod(int(np.argmin(finite)), len(names))
+            what = ("q", "qd", "tau_ff", "kp", "kd", "max_effort")[row]
+            raise ValueError("%s for joint %s is %r: every value must be finite"
+                             % (what, names[column], float(values[row, column])))
+        modes = np.full(len(names), int(mode), dtype=np.int8)
         if joints is None:
             # A mimic follower moves with its leader and must be left as it is.
-            modes[state.leader[indices] >= 0] = int(RobotMode.KEEP)
+            modes[state.leader >= 0] = int(RobotMode.KEEP)
         if mode == RobotMode.POSITION:
-            if q is None and np.any(kp_values != 0):
+            if q is None and kp_values.any():
                 raise ValueError("position mode with kp needs q (the target position)")
             both_zero = (kp_values == 0) & (kd_values == 0) & (modes == int(mode))
             if both_zero.any():
                 raise ValueError("position mode needs kp or kd above 0; joint %s has neither"
                                  % names[int(np.argmax(both_zero))])
-        for values, what in ((kp_values, "kp"), (kd_values, "kd")):
-            negative = values < 0
-            if negative.any():
-                bad = int(np.argmax(negative))
-                raise ValueError("%s for joint %s is %g: gains are >= 0" % (what, names[bad], values[bad]))
-        position = self._values(q, names, "q", 0.0) if q is not None else state.q[indices]
-        velocity = self._values(qd, names, "qd", 0.0)
-        effort = self._values(tau_ff, names, "tau_ff", 0.0)
-        cap = self._values(max_effort, names, "max_effort", 0.0)
-        message.num_joints = len(indices)
-        message.mode = modes.tolist()
-        message.position = position.tolist()
-        message.velocity = velocity.tolist()
-        message.effort = effort.tolist()
-        message.stiffness = kp_values.tolist()
-        message.damping = kd_values.tolist()
-        message.max_effort = cap.tolist()
-        return message
+        negative = values[3:5] < 0
+        if negative.any():
+            row, column = divmod(int(np.argmax(negative)), len(names))
+            raise ValueError("%s for joint %s is %g: gains are >= 0"
+                             % (("kp", "kd")[row], names[column], values[3 + row, column]))
+        return _Command(head, sent_names, modes, values)
 
-    def _send(self, message):
-        message.client = self.client_id
-        message.seq = self._next_seq()
-        message.utime = _wall_utime()
-        self._lcm.publish(self.prefix + "ROBOT_COMMAND", message.encode())
-        return message.seq
+    def _send(self, command):
+        """Encodes and publishes a robot_command_t (the layout of
+        lcmtypes/rbsim/robot_command_t.lcm, as the generated encoder writes
+        it, in one join); returns its seq."""
+        seq = self._next_seq()
+        apply_at_step, state_rate, state_dynamics, steps = command.head
+        parts = [_COMMAND_FINGERPRINT, _INT64.pack(_wall_utime()), self._client_field, _INT64.pack(seq),
+                 self._robot_field, _COMMAND_COUNTS.pack(apply_at_step, len(command.modes), len(command.names))]
+        parts.extend(_lcm_string(name) for name in command.names)
+        parts.append(command.modes.tobytes())
+        parts.append(command.values.astype(_F64).tobytes())
+        parts.append(_COMMAND_TAIL.pack(state_rate, state_dynamics, steps))
+        self._lcm.publish(self.prefix + "ROBOT_COMMAND", b"".join(parts))
+        return seq
 
     def wait_ack(self, seq: int, kind: int = AckKind.ROBOT_COMMAND, timeout: Optional[float] = None) -> ack_t:
         """The ``ack_t`` of this client's request ``seq`` (of ``kind``)."""
@@ -681,9 +694,9 @@ class Robot:
         if mode is None and all(v is None for v in (q, qd, tau_ff, kp, kd, max_effort)):
             raise ValueError("nothing to command: give kp and/or kd (position), qd alone (velocity), "
                              "tau_ff alone (effort), or mode=")
-        message = self._build(q, qd, tau_ff, kp, kd, max_effort, joints, apply_at_step, mode)
+        command = self._build(q, qd, tau_ff, kp, kd, max_effort, joints, apply_at_step, mode)
         with self._lock:
-            seq = self._send(message)
+            seq = self._send(command)
             if not wait:
                 return seq
             return self._checked_ack(seq, timeout, "robot command to '%s'" % self.name).effective_step
@@ -696,10 +709,10 @@ class Robot:
         n = int(n)
         if n < 1:
             raise ValueError("n must be at least 1 step, got %d" % n)
-        message = self._build(steps=n, **command)
+        request = self._build(steps=n, **command)
         timeout = self.timeout if timeout is None else float(timeout)
         with self._lock:
-            seq = self._send(message)
+            seq = self._send(request)
             ack = self._checked_ack(seq, timeout, "robot command to '%s' with %d steps" % (self.name, n))
             last = ack.effective_step + n - 1
             # The server publishes the state after the last step; allow the
@@ -716,17 +729,17 @@ class Robot:
         if not (rate == -1.0 or (rate > 0 and math.isfinite(rate))):
             raise ValueError("state rate must be a positive number of Hz (or None/-1 for the server's), got %r"
                              % (hz,))
-        message = self._build(state_rate=rate)
+        request = self._build(state_rate=rate)
         with self._lock:
-            seq = self._send(message)
+            seq = self._send(request)
             return self._checked_ack(seq, timeout, "state rate of '%s'" % self.name).effective_step
 
     def enable_dynamics(self, on: bool = True, timeout: Optional[float] = None) -> int:
         """Asks for (or, ``on=False``, stops) the dynamics in this robot's
         states: M, h, g, link poses and Jacobians. Returns the effective step."""
-        message = self._build(state_dynamics=1 if on else 0)
+        request = self._build(state_dynamics=1 if on else 0)
         with self._lock:
-            seq = self._send(message)
+            seq = self._send(request)
             step = self._checked_ack(seq, timeout, "state dynamics of '%s'" % self.name).effective_step
             self._dynamics_on = bool(on)
             return step
