@@ -70,6 +70,13 @@ def refusals(workdir):
             step = robot.command(q=[0.03, 0.0], kp=200.0, kd=5.0)
             state = robot.wait_state(step=step + 300, timeout=CLIENT_TIMEOUT)
             assert abs(state.q[0] - 0.03) < 2e-3 and abs(state.q[1] - state.q[0]) < 1e-9, state.q
+            # At 1000 Hz (dt = 1 ms) a state every step, back at the server's 100 Hz every 10th.
+            for hz, low, high in ((1000.0, 150, 200), (None, 15, 25)):
+                robot.set_state_rate(hz)
+                start = robot.wait_state().step
+                count = robot._state_count  # states received; those of steps start+1 ... start+200 follow
+                robot.wait_state(step=start + 200, timeout=CLIENT_TIMEOUT)
+                assert low <= robot._state_count - count <= high, (hz, robot._state_count - count)
             # Lock-step while the server runs is refused.
             try:
                 robot.step_sync()
@@ -96,6 +103,12 @@ def step_sync(workdir):
                 state = arm.step_sync(n, q=first.q, kp=2000.0, kd=100.0)
                 assert state.step == before + n == arm.step, (before, n, state.step)
                 assert abs(state.sim_time - 0.001 * state.step) < 1e-12
+            # A Robot on a Client's bus and id pauses and resumes through the Client.
+            with Robot("arm", client=sim) as shared:
+                assert shared.client_id == sim.client_id and shared.url == sim.url
+                assert shared.resume().kind == ack_t.KIND_COMMAND and shared.pause().accepted
+                assert shared.step_sync(2).step >= arm.step + 2
+            state = arm.step_sync()
             # The world's state agrees: the server took exactly these steps.
             world_state = sim.wait_for_step(arm.step)
             assert world_state.step == arm.step, (world_state.step, arm.step)
