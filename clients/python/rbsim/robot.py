@@ -139,7 +139,7 @@ def _wall_utime():
 
 
 def shift_jacobian(jacobian, origin, point) -> np.ndarray:
-    """The 6 x n Jacobian of ``point`` (world) fixed on a link, from the
+    """The 6 x d Jacobian of ``point`` (world) fixed on a link, from the
     Jacobian of the link frame's ``origin`` (rows 0-2 linear, 3-5 angular):
     v(p) = v(o) + w x (p - o), so J_v(p) = J_v - [p - o]x J_w, J_w unchanged."""
     jacobian = np.asarray(jacobian, dtype=float)
@@ -161,11 +161,14 @@ class RobotState:
     over the last step), ``base`` (its base body's name), ``base_position``,
     ``base_orientation`` (w, x, y, z), ``base_linear_velocity``,
     ``base_angular_velocity``, ``base_fixed``; with the dynamics (when
-    :attr:`has_dynamics`): ``mass_matrix`` (n x n), ``bias`` (h = gravity,
+    :attr:`has_dynamics`): ``mass_matrix`` (d x d), ``bias`` (h = gravity,
     Coriolis and centrifugal), ``gravity``, ``link_names``,
     ``link_positions`` (L x 3), ``link_orientations`` (L x 4),
-    ``link_jacobians`` (L x 6 x n); ``dynamics_note`` says why not when they
-    were asked for and cannot be given.
+    ``link_jacobians`` (L x 6 x d); ``dynamics_note`` says why not when they
+    were asked for and cannot be given. d = ``num_dofs``: the joints' for a
+    fixed base (d = n, in joint order); for a floating base the base's
+    velocity and angular velocity (world frame) first, then the joints'
+    (d = 6 + n). A fixed base is not among the links.
     """
 
     __slots__ = ("utime", "recv_utime", "step", "sim_time", "world_revision", "robot", "joint_names", "leader",
@@ -268,8 +271,8 @@ class RobotState:
         return self.link_positions[i].copy(), self.link_orientations[i].copy()
 
     def jacobian(self, link: str, point=None, point_local=None) -> np.ndarray:
-        """The 6 x n Jacobian (rows 0-2 the point's velocity, 3-5 the link's
-        angular velocity, world frame, per joint rate) of a point fixed on
+        """The 6 x d Jacobian (rows 0-2 the point's velocity, 3-5 the link's
+        angular velocity, world frame, per velocity coordinate) of a point fixed on
         ``link``: ``point`` in the world frame, or ``point_local`` in the
         link's frame; neither: the link frame's origin."""
         if point is not None and point_local is not None:
@@ -377,8 +380,9 @@ class Robot:
 
     def close(self) -> None:
         """Stops receiving and releases the LCM instance (the robot's joints
-        keep their last commands)."""
-        self._lcm.close()
+        keep their last commands); waits for a wait in another thread to end."""
+        with self._lock:
+            self._lcm.close()
 
     def __enter__(self):
         return self
@@ -787,7 +791,8 @@ class Robot:
             return self._wait(ready, timeout, "robot_state_t of robot '%s' with its dynamics" % self.name)
 
     def mass_matrix(self, timeout: Optional[float] = None) -> np.ndarray:
-        """M(q), n x n, of the latest state (asking for the dynamics first, once)."""
+        """M(q), d x d (see :class:`RobotState`), of the latest state (asking for
+        the dynamics first, once)."""
         state = self._dynamics_state(timeout)
         state._require_dynamics("mass matrix")
         return state.mass_matrix.copy()
@@ -806,7 +811,7 @@ class Robot:
         return state.gravity.copy()
 
     def jacobian(self, link: str, point=None, point_local=None, timeout: Optional[float] = None) -> np.ndarray:
-        """6 x n Jacobian of a point fixed on ``link`` (see :meth:`RobotState.jacobian`)."""
+        """6 x d Jacobian of a point fixed on ``link`` (see :meth:`RobotState.jacobian`)."""
         return self._dynamics_state(timeout).jacobian(link, point=point, point_local=point_local)
 
     def link_pose(self, link: str, timeout: Optional[float] = None) -> Tuple[np.ndarray, np.ndarray]:
