@@ -28,10 +28,10 @@ def main(argv=None):
         parser.add_argument(flag, default=default, type=float if isinstance(default, float) else str)
     args, worst = parser.parse_args(argv), 0.0
     w, a, omega = 2 * np.pi * args.frequency, args.amplitude, args.omega
-    with Robot(args.robot, url=args.url, prefix=args.prefix, timeout=args.timeout, dynamics=True) as arm, \
-            Client(url=args.url, prefix=args.prefix, timeout=args.timeout) as sim:
-        damping, friction = np.array([[j.damping, j.friction] for j in map(sim.request_world().joint,
-                                                                                arm.joint_names)]).T
+    with Robot(args.robot, url=args.url, prefix=args.prefix, timeout=args.timeout, dynamics=True) as arm:
+        with Client(url=args.url, prefix=args.prefix, timeout=args.timeout) as sim:  # closed: it decodes every state
+            joints = list(map(sim.request_world().joint, arm.joint_names))
+        damping, friction = np.array([[j.damping, j.friction] for j in joints]).T
         arm.pause()
         try:
             state = arm.step_sync()  # the first state with the dynamics, paused
