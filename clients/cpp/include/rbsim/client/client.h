@@ -50,7 +50,7 @@ struct ClientOptions {
 };
 
 // Which channel a request went on, as ack_t::kind says.
-enum class AckKind : int8_t { Wrench = 1, Command = 2, JointCommand = 3 };
+enum class AckKind : int8_t { Wrench = 1, Command = 2, JointCommand = 3, RobotCommand = 4 };
 
 // A request sent: what its ack will carry. `sent` is false when LCM could not
 // publish it (no ack will come).
