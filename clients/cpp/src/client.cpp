@@ -32,7 +32,6 @@ static_assert(static_cast<int8_t>(JointMode::Effort) == rbsim::joint_command_t::
 
 namespace {
 
-using detail::kMaxKeptAcks;
 using detail::kQueueCapacity;
 using detail::regexEscaped;
 using detail::wallMicroseconds;
@@ -216,8 +215,7 @@ void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
 void Client::onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
   if (ack->client == m_clientId) {
     if (!ack->instance_id.empty()) m_instances.insert(ack->instance_id);
-    m_acks[{ack->kind, ack->seq}] = *ack;
-    if (m_acks.size() > kMaxKeptAcks) m_acks.erase(m_acks.begin());
+    m_acks.add(*ack);
   }
   notify(m_ackCallbacks, *ack);
 }
@@ -337,10 +335,10 @@ Request Client::commandJoint(const JointCommand& command) {
 
 std::optional<rbsim::ack_t> Client::waitForAck(int64_t seq, AckKind kind, Timeout timeout) {
   const std::pair<int8_t, int64_t> key{static_cast<int8_t>(kind), seq};
-  spinUntil([&] { return m_acks.count(key) > 0; }, timeout);
-  const auto found = m_acks.find(key);
-  if (found == m_acks.end()) return std::nullopt;
-  return found->second;
+  spinUntil([&] { return m_acks.find(key) != nullptr; }, timeout);
+  const rbsim::ack_t* found = m_acks.find(key);
+  if (found == nullptr) return std::nullopt;
+  return *found;
 }
 
 std::optional<rbsim::ack_t> Client::waitForAck(const Request& request, Timeout timeout) {

@@ -70,8 +70,7 @@ void Robot::onState(const lcm::ReceiveBuffer*, const std::string&, const rbsim::
 
 void Robot::onAck(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
   if (ack->client != m_clientId) return;
-  m_acks[{ack->kind, ack->seq}] = *ack;
-  if (m_acks.size() > detail::kMaxKeptAcks) m_acks.erase(m_acks.begin());
+  m_acks.add(*ack);
 }
 
 int Robot::handle(Timeout timeout) {
@@ -294,10 +293,10 @@ Request Robot::send(int64_t applyAtStep, int32_t steps) {
 std::optional<rbsim::ack_t> Robot::waitForAck(const Request& request, Timeout timeout) {
   if (!request.sent) return std::nullopt;
   const std::pair<int8_t, int64_t> key{static_cast<int8_t>(request.kind), request.seq};
-  spinUntil([&] { return m_acks.count(key) > 0; }, timeout);
-  const auto found = m_acks.find(key);
-  if (found == m_acks.end()) return std::nullopt;
-  return found->second;
+  spinUntil([&] { return m_acks.find(key) != nullptr; }, timeout);
+  const rbsim::ack_t* found = m_acks.find(key);
+  if (found == nullptr) return std::nullopt;
+  return *found;
 }
 
 bool Robot::stepSync(int32_t steps, Timeout timeout) {

@@ -13,8 +13,6 @@ namespace rbsim::client::detail {
 // silently (docs/lcm.md, "Subscriptions"); a burst of STEPs at state rate 0
 // publishes far more before the caller gets to handle them.
 inline constexpr int kQueueCapacity = 10000;
-// Acks kept for waitForAck, per client.
-inline constexpr std::size_t kMaxKeptAcks = 4096;
 
 inline int64_t wallMicroseconds() {
   return std::chrono::duration_cast<std::chrono::microseconds>(

@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "rbsim/client/ack_store.h"
 #include "rbsim/client/client_defaults.h"
 #include "rbsim/client/joint_command.h"
 #include "rbsim/client/page_assembler.h"
@@ -218,9 +219,8 @@ class Client {
   uint64_t m_statusCount = 0;
   uint64_t m_worldCount = 0;
 
-  // This client's acks by (kind, seq); the oldest are dropped past a bound so
-  // that a client streaming wrenches without waiting does not grow forever.
-  std::map<std::pair<int8_t, int64_t>, rbsim::ack_t> m_acks;
+  // This client's acks by (kind, seq).
+  AckStore m_acks;
 
   CallbackId m_nextCallbackId = 1;
   std::vector<Registered<StateCallback>> m_stateCallbacks;

@@ -193,8 +193,8 @@ class Robot {
   // that its vectors are not allocated again each cycle.
   rbsim::robot_command_t m_message;
 
-  // This Robot's acks by (kind, seq), the oldest dropped past a bound.
-  std::map<std::pair<int8_t, int64_t>, rbsim::ack_t> m_acks;
+  // This Robot's acks by (kind, seq).
+  AckStore m_acks;
 };
 
 }  // namespace rbsim::client
