@@ -304,6 +304,9 @@ bool Robot::stepSync(int32_t steps, Timeout timeout) {
   const auto left = [&] {
     return std::max(Timeout{0}, std::chrono::ceil<Timeout>(deadline - std::chrono::steady_clock::now()));
   };
+  // Only a state that arrives after the command counts: after a RESET the
+  // newest state held may be of a later step than the one waited for.
+  const uint64_t before = m_stateCount;
   const Request request = send(-1, steps);
   if (!request.sent) return fail("could not publish on " + m_prefix + "ROBOT_COMMAND");
   const auto ack = waitForAck(request, left());
@@ -313,7 +316,11 @@ bool Robot::stepSync(int32_t steps, Timeout timeout) {
   if (!ack->accepted) return fail("robot command refused: " + ack->reason);
   // The command acts from effective_step, the first of the steps; the state
   // after the last of them is the one to wait for.
-  return waitForStep(ack->effective_step + std::max(steps, 1) - 1, left());
+  const int64_t last = ack->effective_step + std::max(steps, 1) - 1;
+  if (spinUntil([&] { return m_stateCount > before && m_state->step >= last; }, left())) return true;
+  return fail("no state of robot '" + m_name + "' at step " + std::to_string(last) + " within " +
+              std::to_string(timeout.count()) + " ms (newest: " +
+              (m_state ? std::to_string(m_state->step) : std::string("none")) + ")");
 }
 
 bool Robot::sendCommand(int8_t command, Timeout timeout) {

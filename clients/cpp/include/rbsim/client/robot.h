@@ -84,7 +84,8 @@ class Robot {
   // carries the dynamics or a note saying why it cannot); false after
   // `timeout`.
   bool waitForState(Timeout timeout, bool withDynamics = false);
-  // Until a state of step `step` or later has come.
+  // Until a state of step `step` or later has come (the newest one held
+  // counts, even from before a RESET).
   bool waitForStep(int64_t step, Timeout timeout);
 
   // The newest state of this robot (by arrival), if any.
