@@ -95,7 +95,8 @@ void benchRobot(const Options& options) {
   const Eigen::VectorXd kp = Eigen::VectorXd::Constant(n, kStiffness);
   const Eigen::VectorXd kd = Eigen::VectorXd::Constant(n, kDamping);
   measure("robot", options, [&] {
-    return (robot.command(hold, zero, zero, kp, kd) && robot.stepSync(1, 2s)) || failed(robot.lastError());
+    return (robot.command(hold, zero, zero, kp, kd) && robot.stepSync(1, 2s)) ||
+           failed(robot.lastError());
   });
 }
 
@@ -167,7 +168,8 @@ void benchJoints(const Options& options) {
     if (!ack) return failed("no ack of STEP");
     if (!ack->accepted) return failed("STEP refused: " + ack->reason);
     return client.spinUntil(
-        [&] { return client.latestJoints() && client.latestJoints()->step >= ack->effective_step; }, 2s);
+        [&] { return client.latestJoints() && client.latestJoints()->step >= ack->effective_step; },
+        2s);
   });
 }
 
@@ -179,25 +181,35 @@ int main(int argc, char** argv) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) fail("usage: see the comment at the top of bench/robots/lockstep.cpp");
     const std::string value = argv[++i];
-    if (flag == "--url") options.client.url = value;
-    else if (flag == "--prefix") options.client.channelPrefix = value;
-    else if (flag == "--robot") options.robot = value;
-    else if (flag == "--cycles") options.cycles = std::stoi(value);
-    else if (flag == "--warmup") options.warmup = std::stoi(value);
+    if (flag == "--url")
+      options.client.url = value;
+    else if (flag == "--prefix")
+      options.client.channelPrefix = value;
+    else if (flag == "--robot")
+      options.robot = value;
+    else if (flag == "--cycles")
+      options.cycles = std::stoi(value);
+    else if (flag == "--warmup")
+      options.warmup = std::stoi(value);
     else if (flag == "--paths") {
       options.paths.clear();
       std::stringstream list(value);
       for (std::string path; std::getline(list, path, ',');) options.paths.push_back(path);
-    } else fail("unknown option " + flag);
+    } else
+      fail("unknown option " + flag);
   }
   std::printf("CFG | robot %s | cycles %d | warmup %d |\n", options.robot.c_str(), options.cycles,
               options.warmup);
   std::printf("ROW | path | cycles | cycles/s | p50 us | p99 us | max us |\n");
   for (const std::string& path : options.paths) {
-    if (path == "robot") benchRobot(options);
-    else if (path == "robot-client") benchRobotOverClient(options);
-    else if (path == "joints") benchJoints(options);
-    else fail("unknown path " + path);
+    if (path == "robot")
+      benchRobot(options);
+    else if (path == "robot-client")
+      benchRobotOverClient(options);
+    else if (path == "joints")
+      benchJoints(options);
+    else
+      fail("unknown path " + path);
   }
   return 0;
 }

@@ -62,7 +62,8 @@ bool Robot::fail(std::string error) {
 
 // --- receiving ---------------------------------------------------------------
 
-void Robot::onState(const lcm::ReceiveBuffer*, const std::string&, const rbsim::robot_state_t* state) {
+void Robot::onState(const lcm::ReceiveBuffer*, const std::string&,
+                    const rbsim::robot_state_t* state) {
   if (state->robot != m_name) return;  // every robot of the world publishes on one channel
   m_state = *state;
   ++m_stateCount;
@@ -273,7 +274,8 @@ Request Robot::send(int64_t applyAtStep, int32_t steps) {
     // vectors' storage for the next command.
     m.num_joints = 0;
     m.num_names = 0;
-    for (auto* field : {&m.position, &m.velocity, &m.effort, &m.stiffness, &m.damping, &m.max_effort})
+    for (auto* field :
+         {&m.position, &m.velocity, &m.effort, &m.stiffness, &m.damping, &m.max_effort})
       field->clear();
     m.mode.clear();
     m.joint_names.clear();
@@ -302,7 +304,8 @@ std::optional<rbsim::ack_t> Robot::waitForAck(const Request& request, Timeout ti
 bool Robot::stepSync(int32_t steps, Timeout timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   const auto left = [&] {
-    return std::max(Timeout{0}, std::chrono::ceil<Timeout>(deadline - std::chrono::steady_clock::now()));
+    return std::max(Timeout{0},
+                    std::chrono::ceil<Timeout>(deadline - std::chrono::steady_clock::now()));
   };
   // Only a state that arrives after the command counts: after a RESET the
   // newest state held may be of a later step than the one waited for.
@@ -317,7 +320,8 @@ bool Robot::stepSync(int32_t steps, Timeout timeout) {
   // The command acts from effective_step, the first of the steps; the state
   // after the last of them is the one to wait for.
   const int64_t last = ack->effective_step + std::max(steps, 1) - 1;
-  if (spinUntil([&] { return m_stateCount > before && m_state->step >= last; }, left())) return true;
+  if (spinUntil([&] { return m_stateCount > before && m_state->step >= last; }, left()))
+    return true;
   return fail("no state of robot '" + m_name + "' at step " + std::to_string(last) + " within " +
               std::to_string(timeout.count()) + " ms (newest: " +
               (m_state ? std::to_string(m_state->step) : std::string("none")) + ")");
