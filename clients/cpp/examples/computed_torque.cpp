@@ -3,7 +3,8 @@
 // q0 + 0.3 sin(2π 0.5 t) rad for 2 s with τ = M (q̈_d + Kp e + Kd ė) + h + b q̇_d + f sign(q̇_d), as
 // efforts (the file's drives off); M, h from each state, the joints' damping b and friction f (not
 // in h) from world_t. A 0.2 s lead-in eases each joint from rest to the sine's 0.94 rad/s at q0 (a
-// jump in the rate saturates the joints). Prints the largest error after it; 0: below --tolerance.
+// jump in the rate saturates the joints). Prints the largest error after it, resumes the server;
+// exit status 0: below --tolerance.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -16,8 +17,7 @@ int main(int argc, char** argv) {
   std::string robot = "arm";
   double duration = 2.0, tolerance = 1e-3;  // s, rad
   for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (flag == "--url") options.url = argv[i + 1];
+    if (const std::string flag = argv[i]; flag == "--url") options.url = argv[i + 1];
     else if (flag == "--robot") robot = argv[i + 1];
     else if (flag == "--duration") duration = std::stod(argv[i + 1]);
     else if (flag == "--tolerance") tolerance = std::stod(argv[i + 1]);
@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   const double a = 0.3, w = std::numbers::pi, v = a * w, lead = 0.2, t0 = arm.simTime() + lead;
   const double kp = std::pow(2 * std::numbers::pi * 20, 2), kd = 2 * std::sqrt(kp);  // 20 Hz, ζ = 1
   const Eigen::VectorXd start = arm.q();
-  double worst = 0.0;  // rad
+  double worst = 0.0;
   for (double t = -lead;; t = arm.simTime() - t0) {
     // r(t): in the lead-in a quartic whose rate rises from 0 to v, without jumps; then the sine.
     const double x = (t + lead) / lead, x2 = x * x;
@@ -55,5 +55,5 @@ int main(int argc, char** argv) {
     if (!arm.commandEffort(tau) || !arm.stepSync()) return failed();
   }
   std::printf("max tracking error %.3g rad over %.3g s, %d joints\n", worst, duration, n);
-  return worst < tolerance ? 0 : 1;
+  return arm.resume() ? (worst < tolerance ? 0 : 1) : failed();
 }
