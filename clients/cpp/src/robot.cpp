@@ -227,7 +227,7 @@ bool Robot::command(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
   for (auto* field : {&m.position, &m.velocity, &m.effort, &m.stiffness, &m.damping, &m.max_effort})
     field->resize(n);
   for (int i = 0; i < n; ++i) {
-    const bool drive = kp[i] > 0.0 || kd[i] > 0.0;
+    const bool drive = kp[i] != 0.0 || kd[i] != 0.0;  // a negative gain: the server refuses it
     m.mode[i] = m_state->leader[i] >= 0 ? rbsim::robot_command_t::MODE_KEEP
                 : drive                 ? rbsim::robot_command_t::MODE_POSITION
                                         : rbsim::robot_command_t::MODE_EFFORT;

@@ -126,7 +126,7 @@ class Robot {
   // --- commanding ----------------------------------------------------------
 
   // What the next message sent (send() or stepSync()) commands, per joint in
-  // jointNames() order: with kp or kd above 0 the joint's position drive
+  // jointNames() order: with kp or kd not 0 the joint's position drive
   // pulls it to q with stiffness kp and damping kd, towards the rate qd, plus
   // the feed-forward tau_ff (MODE_POSITION, uncapped); with kp = kd = 0 the
   // effort tau_ff alone (MODE_EFFORT, which turns the drive off). A mimic
