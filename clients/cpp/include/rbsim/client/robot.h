@@ -19,12 +19,12 @@
 // The lock-step loop of a paused server (one message and one state per cycle):
 //
 //   rbsim::client::Robot arm("arm");
-//   if (!arm.waitForState(2s) || !arm.pause()) ...       // joint names, q, q̇; lock-step needs a
-//   pause arm.setDynamics(true);                               // M, h, Jacobians from the next
-//   state on while (...) {
-//     arm.command(q_d, qd_d, tau_ff, kp, kd);            // per joint; kp = kd = 0: effort alone
-//     if (!arm.stepSync()) ... arm.lastError()           // one step, then its state
-//     use arm.q(), arm.qd(), arm.massMatrix(), arm.bias(), arm.jacobian("link7")
+//   if (!arm.waitForState(2s) || !arm.pause()) ...  // joint names, q, q̇; then lock step
+//   arm.setDynamics(true);                          // M, h, Jacobians from the next state on
+//   while (...) {
+//     arm.command(q_d, qd_d, tau_ff, kp, kd);       // per joint; kp = kd = 0: effort alone
+//     if (!arm.stepSync()) ... arm.lastError()      // one step, then its state
+//     ... arm.q(), arm.qd(), arm.massMatrix(), arm.bias(), arm.jacobian("link7") ...
 //   }
 
 #include <Eigen/Core>
