@@ -16,7 +16,10 @@
 // Every path holds the arm where it stands with position drives (the world
 // file's gains), so the runs are alike. Per path it prints
 //   ROW | path | cycles | cycles/s | p50 us | p99 us | max us |
-// with the round trip of a cycle from its first send to the state it waits for.
+// with the round trip of a cycle from its first send to the state it waits for,
+// and for the robot path a BREAKDOWN line: the medians of the time to the
+// server's ack, from the ack to the state's publication, and from there to
+// the client (the messages' utimes against the wall clock).
 //
 //   bench_robots_lockstep [--url URL] [--prefix P] [--robot arm] [--cycles 2000]
 //                         [--warmup 200] [--paths robot,robot-client,joints]
@@ -51,6 +54,27 @@ struct Options {
   int warmup = 200;
   std::vector<std::string> paths = {"robot", "robot-client", "joints"};
 };
+
+int64_t wallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The physics' share of a cycle as the server reports it: status_t (1–10
+// Hz) of the newest window that the client handled during the run just timed.
+void printServerStepTime(const std::string& path, rbsim::client::Client& client) {
+  const auto& status = client.latestStatus();
+  if (!status) return;
+  std::printf("SERVER | %s | step_time_mean %.1f us | step_time_worst %.1f us |\n", path.c_str(),
+              status->step_time_mean * 1e6, status->step_time_worst * 1e6);
+}
 
 // For a cycle that cannot go on: says why, returns false.
 bool failed(const std::string& why) {
@@ -94,10 +118,25 @@ void benchRobot(const Options& options) {
   const Eigen::VectorXd hold = robot.q(), zero = Eigen::VectorXd::Zero(n);
   const Eigen::VectorXd kp = Eigen::VectorXd::Constant(n, kStiffness);
   const Eigen::VectorXd kd = Eigen::VectorXd::Constant(n, kDamping);
+  // Where a cycle's time goes, from the wall clock (one host, one clock):
+  // until the server's ack (its utime: when it took the command), from the
+  // ack to the state (its utime: when it was published: the step and the
+  // states published before it), from the state to the client having it.
+  std::vector<double> toAck, toState, toClient;
   measure("robot", options, [&] {
-    return (robot.command(hold, zero, zero, kp, kd) && robot.stepSync(1, 2s)) ||
-           failed(robot.lastError());
+    const int64_t sent = wallMicros();
+    if (!robot.command(hold, zero, zero, kp, kd) || !robot.stepSync(1, 2s))
+      return failed(robot.lastError());
+    const int64_t received = wallMicros();
+    const int64_t acked = robot.lastAck()->utime, published = robot.state()->utime;
+    toAck.push_back(static_cast<double>(acked - sent));
+    toState.push_back(static_cast<double>(published - acked));
+    toClient.push_back(static_cast<double>(received - published));
+    return true;
   });
+  std::printf("BREAKDOWN | robot | to the ack p50 %.0f us | ack to state p50 %.0f us | "
+              "state to client p50 %.0f us |\n",
+              median(toAck), median(toState), median(toClient));
 }
 
 // The robot path over a Client's connection: the same two messages a cycle,
@@ -144,6 +183,7 @@ void benchRobotOverClient(const Options& options) {
     if (!ack->accepted) return failed("robot command refused: " + ack->reason);
     return client.spinUntil([&] { return state->step >= ack->effective_step; }, 2s);
   });
+  printServerStepTime("robot-client", client);
 }
 
 void benchJoints(const Options& options) {
@@ -171,6 +211,7 @@ void benchJoints(const Options& options) {
         [&] { return client.latestJoints() && client.latestJoints()->step >= ack->effective_step; },
         2s);
   });
+  printServerStepTime("joints", client);
 }
 
 }  // namespace

@@ -313,6 +313,7 @@ bool Robot::stepSync(int32_t steps, Timeout timeout) {
   const Request request = send(-1, steps);
   if (!request.sent) return fail("could not publish on " + m_prefix + "ROBOT_COMMAND");
   const auto ack = waitForAck(request, left());
+  m_lastAck = ack;
   if (!ack)
     return fail("no ack of robot command seq " + std::to_string(request.seq) + " within " +
                 std::to_string(timeout.count()) + " ms");

@@ -161,6 +161,9 @@ class Robot {
   // `timeout` (lastError() says which).
   bool stepSync(int32_t steps = 1, Timeout timeout = std::chrono::seconds(2));
 
+  // The ack of the last stepSync()'s command (its effective_step, and its
+  // utime: when the server took it), if one came.
+  const std::optional<rbsim::ack_t>& lastAck() const { return m_lastAck; }
   // The ack answering this Robot's `request`, handling messages until it is
   // there; nullopt after `timeout`.
   std::optional<rbsim::ack_t> waitForAck(const Request& request, Timeout timeout);
@@ -186,6 +189,7 @@ class Robot {
 
   std::optional<rbsim::robot_state_t> m_state;
   uint64_t m_stateCount = 0;
+  std::optional<rbsim::ack_t> m_lastAck;
 
   bool m_hasPending = false;
   double m_stateRate = 0.0;  // robot_command_t.state_rate: 0 leaves it
