@@ -105,20 +105,24 @@ class Robot {
   Eigen::VectorXd qd() const;
   Eigen::VectorXd tau() const;
 
-  // The dynamics of the newest state (setDynamics(true); a fixed base only:
-  // else hasDynamics() stays false and dynamicsNote() says why).
+  // The dynamics of the newest state (setDynamics(true); when the server
+  // cannot give them, hasDynamics() stays false and dynamicsNote() says
+  // why). Their size m is the state's num_dofs: n, the joints, for a fixed
+  // base; 6 + n for a floating one, whose first six coordinates are its
+  // frame origin's velocity and its angular velocity (world frame).
   bool hasDynamics() const;
   const std::string& dynamicsNote() const;
-  Eigen::MatrixXd massMatrix() const;  // M(q), n × n (0 × 0 without the dynamics)
+  Eigen::MatrixXd massMatrix() const;  // M(q), m × m (0 × 0 without the dynamics)
   Eigen::VectorXd bias() const;        // h(q, q̇) = gravity + Coriolis and centrifugal
   Eigen::VectorXd gravity() const;     // g(q)
-  // The links (the robot's bodies, merged links as one), parents first.
+  // The links (the robot's bodies, merged links as one; a floating base
+  // first, a fixed base not at all), parents first.
   const std::vector<std::string>& linkNames() const;
   // `link` by its full name ("arm/link7") or the robot's own ("link7").
   std::optional<LinkPose> linkPose(const std::string& link) const;
-  // The 6 × n Jacobian of the link frame's origin, or of `worldPoint` (m,
+  // The 6 × m Jacobian of the link frame's origin, or of `worldPoint` (m,
   // world frame) fixed on the link: rows 0–2 the point's velocity, 3–5 the
-  // link's angular velocity, world frame, per joint rate.
+  // link's angular velocity, world frame, per velocity coordinate.
   std::optional<Eigen::MatrixXd> jacobian(const std::string& link) const;
   std::optional<Eigen::MatrixXd> jacobian(const std::string& link,
                                           const Eigen::Vector3d& worldPoint) const;
