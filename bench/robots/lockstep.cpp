@@ -15,8 +15,10 @@
 //
 // Every path holds the arm where it stands with position drives (the world
 // file's gains), so the runs are alike. Per path it prints
-//   ROW | path | cycles | cycles/s | p50 us | p99 us | max us |
-// with the round trip of a cycle from its first send to the state it waits for,
+//   ROW | path | cycles | cycles/s | p50 us | p99 us | max us | client cpu us |
+// with the round trip of a cycle from its first send to the state it waits
+// for, and the client thread's CPU time per cycle (which shows what decoding
+// everything costs a Client, and which the machine's load does not inflate);
 // and for the robot path a BREAKDOWN line: the medians of the time to the
 // server's ack, from the ack to the state's publication, and from there to
 // the client (the messages' utimes against the wall clock).
@@ -28,6 +30,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <optional>
 #include <rbsim/robot_command_t.hpp>
@@ -54,6 +57,15 @@ struct Options {
   int warmup = 200;
   std::vector<std::string> paths = {"robot", "robot-client", "joints"};
 };
+
+// The client's own CPU time (its thread: sending, receiving, decoding,
+// waiting in poll), which other processes on the machine do not inflate as
+// they do the wall clock.
+double cpuMicros() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e6 + static_cast<double>(now.tv_nsec) * 1e-3;
+}
 
 int64_t wallMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -95,18 +107,20 @@ void measure(const std::string& path, const Options& options, const std::functio
   std::vector<double> micros;
   micros.reserve(options.cycles);
   const auto start = Clock::now();
+  const double cpuStart = cpuMicros();
   for (int i = 0; i < options.cycles; ++i) {
     const auto begin = Clock::now();
     if (!cycle()) fail(path + ": cycle " + std::to_string(i) + " failed");
     micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - begin).count());
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const double cpuPerCycle = (cpuMicros() - cpuStart) / options.cycles;
   std::sort(micros.begin(), micros.end());
   const auto at = [&](double fraction) {
     return micros[std::min(micros.size() - 1, static_cast<std::size_t>(fraction * micros.size()))];
   };
-  std::printf("ROW | %s | %d | %.0f | %.1f | %.1f | %.1f |\n", path.c_str(), options.cycles,
-              options.cycles / seconds, at(0.50), at(0.99), micros.back());
+  std::printf("ROW | %s | %d | %.0f | %.1f | %.1f | %.1f | %.1f |\n", path.c_str(), options.cycles,
+              options.cycles / seconds, at(0.50), at(0.99), micros.back(), cpuPerCycle);
   std::fflush(stdout);
 }
 
@@ -241,7 +255,7 @@ int main(int argc, char** argv) {
   }
   std::printf("CFG | robot %s | cycles %d | warmup %d |\n", options.robot.c_str(), options.cycles,
               options.warmup);
-  std::printf("ROW | path | cycles | cycles/s | p50 us | p99 us | max us |\n");
+  std::printf("ROW | path | cycles | cycles/s | p50 us | p99 us | max us | client cpu us |\n");
   for (const std::string& path : options.paths) {
     if (path == "robot")
       benchRobot(options);

@@ -32,13 +32,13 @@ fi
   kill "$server"; wait "$server" || true
 ' sh "$build" "$world" "$runs" "$cycles" "${RBSIM_LOCKSTEP_PATHS:-robot,robot-client,joints}" | tee "$out"
 echo "median of $runs runs:"
-echo "ROW | path | cycles/s | p50 us | p99 us |"
+echo "ROW | path | cycles/s | p50 us | p99 us | client cpu us |"
 for path in robot robot-client joints; do
   grep "^ROW | $path |" "$out" | awk -F'|' -v p="$path" '
-    { c[NR] = $4; m[NR] = $5; n[NR] = $6 }
+    { c[NR] = $4; m[NR] = $5; n[NR] = $6; u[NR] = $8 }
     function median(a, k,   i, j, t) {
       for (i = 1; i <= k; i++) for (j = i + 1; j <= k; j++) if (a[j] + 0 < a[i] + 0) { t = a[i]; a[i] = a[j]; a[j] = t }
       return a[int((k + 1) / 2)]
     }
-    END { if (NR) printf "ROW | %s | %s | %s | %s |\n", p, median(c, NR), median(m, NR), median(n, NR) }'
+    END { if (NR) printf "ROW | %s | %s | %s | %s | %s |\n", p, median(c, NR), median(m, NR), median(n, NR), median(u, NR) }'
 done
