@@ -2,9 +2,8 @@
 // of config/worlds/robot_arm.yaml's arm, one command and one state a step; each joint tracks
 // q0 + 0.3 sin(2π 0.5 t) rad for 2 s with τ = M (q̈_d + Kp e + Kd ė) + h + b q̇_d + f sign(q̇_d), as
 // efforts (the file's drives off); M, h from each state, the joints' damping b and friction f (not
-// in h) from world_t. A 0.2 s lead-in eases each joint from rest to the sine's 0.94 rad/s at q0 (a
-// jump in the rate saturates the joints). Prints the largest error after it, resumes the server;
-// exit status 0: below --tolerance.
+// in h) from world_t. A 0.2 s lead-in eases each joint from rest onto the sine's 0.94 rad/s (a
+// jump saturates the joints). Prints the largest error after it, resumes; 0: below --tolerance.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -28,11 +27,13 @@ int main(int argc, char** argv) {
   if (!arm.waitForState(std::chrono::seconds(5)) || !arm.pause()) return failed();
   const int n = arm.numJoints();
   Eigen::VectorXd b(n), f(n);
-  rbsim::client::Client sim(options);  // the world description, for b and f
-  sim.publishWorld();
-  if (!sim.spinUntil([&] { return sim.world().has_value(); }, std::chrono::seconds(5))) return 3;
-  for (int i = 0; i < n; ++i) b[i] = sim.jointDescription(arm.jointNames()[i])->damping;
-  for (int i = 0; i < n; ++i) f[i] = sim.jointDescription(arm.jointNames()[i])->friction;
+  {  // b and f from world_t, then the Client goes: unread, it would queue every state
+    rbsim::client::Client sim(options);
+    sim.publishWorld();
+    if (!sim.spinUntil([&] { return sim.world().has_value(); }, std::chrono::seconds(5))) return 3;
+    for (int i = 0; i < n; ++i) b[i] = sim.jointDescription(arm.jointNames()[i])->damping;
+    for (int i = 0; i < n; ++i) f[i] = sim.jointDescription(arm.jointNames()[i])->friction;
+  }
   arm.setDynamics(true);  // sent with the next step: M and h in every state from then on
   if (!arm.stepSync() || !arm.hasDynamics()) return failed();
   const double a = 0.3, w = std::numbers::pi, v = a * w, lead = 0.2, t0 = arm.simTime() + lead;
@@ -40,8 +41,7 @@ int main(int argc, char** argv) {
   const Eigen::VectorXd start = arm.q();
   double worst = 0.0;
   for (double t = -lead;; t = arm.simTime() - t0) {
-    // r(t): in the lead-in a quartic whose rate rises from 0 to v, without jumps; then the sine.
-    const double x = (t + lead) / lead, x2 = x * x;
+    const double x = (t + lead) / lead, x2 = x * x;  // r(t): a quartic (rate 0 to v), the sine
     const double r = t < 0 ? v * lead * x2 * x * (1 - x / 2) : v * lead / 2 + a * std::sin(w * t);
     const double rDot = t < 0 ? v * x2 * (3 - 2 * x) : v * std::cos(w * t);
     const double rDdot = t < 0 ? 6 * v * x * (1 - x) / lead : -a * w * w * std::sin(w * t);
