@@ -86,7 +86,13 @@ Replay::Replay(Session& session, CommandHandler& handler, std::string channelPre
       m_prefix(std::move(channelPrefix)),
       m_verify(verify),
       m_output(std::move(output)),
-      m_pending(std::make_unique<Pending>()) {}
+      m_pending(std::make_unique<Pending>()) {
+  // The replay takes the steps the log shows, never on a clock: to the
+  // command handler it is a paused server, so that a robot_command_t whose
+  // `steps` the recorded (paused) server accepted is accepted here too.
+  // The steps it asks for are the log's, taken by run().
+  m_session.pause();
+}
 
 Replay::~Replay() = default;
 

@@ -144,7 +144,7 @@ test("the joints' states reach the page: positions, limits, selection and hover"
     if (attempt === 2)
       assert.fail(`clicking the carriage selected '${await page.locator("#hud-selected").textContent()}'`);
   }
-  await page.waitForFunction(() => /^lift \(prismatic\) -0\.500 m, at lower limit$/
+  await page.waitForFunction(() => /^lift \(prismatic\) -0\.500 m, -?0\.000 m\/s, -?\d+\.\d\d N, at lower limit$/
     .test(document.getElementById("hud-joints").textContent), null, { timeout: 20000 });
   assert.match(await page.locator("#hud-selected").textContent(), /^carriage \(box/);
   await screenshot(page, "joints-selected");

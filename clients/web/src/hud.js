@@ -70,13 +70,21 @@ function jointPosition(joint, state) {
   return ` ${state.position >= 0 ? " " : ""}${state.position.toFixed(3)} ${unit}`;
 }
 
-// "name (type) position unit, at the lower limit" for each joint of a body
-// (JointsView.jointsOfBody); the position as the joints frame gives it.
+// An axis joint's rate and the effort its actuators applied (what a
+// robot's controller reads in robot_state_t): ", 0.120 rad/s, -41.20 N·m".
+function jointMotion(type, state) {
+  if (type !== "revolute" && type !== "prismatic") return "";
+  const revolute = type === "revolute";
+  return `, ${state.rate.toFixed(3)} ${revolute ? "rad/s" : "m/s"}, ${state.effort.toFixed(2)} ${revolute ? "N·m" : "N"}`;
+}
+
+// "name (type) position unit, rate, effort, at the lower limit" for each
+// joint of a body (JointsView.jointsOfBody), as the joints frame gives them.
 export function jointLines(joints) {
   return joints.map(({ name, type, state }) => {
     if (!state) return `${name} (${type})`;
     const limit = state.atLimit < 0 ? ", at lower limit" : state.atLimit > 0 ? ", at upper limit" : "";
     const inactive = state.active ? "" : ", not enforced (a body is frozen)";
-    return `${name} (${type})${jointPosition({ type }, state)}${limit}${inactive}`;
+    return `${name} (${type})${jointPosition({ type }, state)}${jointMotion(type, state)}${limit}${inactive}`;
   });
 }
