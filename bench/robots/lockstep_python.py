@@ -5,7 +5,8 @@ Pauses the server, then runs --cycles cycles of one step_sync with a full comman
 command on every joint: target, rate, stiffness, damping, feed-forward effort; with --dynamics
 the states carry M, h and the Jacobians, and the feed-forward is h). Prints cycles per second
 and the round trip's percentiles (from building the command to holding the state after the
-step, decoded). Not a test: run it inside a private network namespace, e.g.
+step, decoded), and the CPU time a cycle of this process (its loop's thread and LCM's) and of
+the server it started. Not a test: run it inside a private network namespace, e.g.
 
     tests/tools/in_private_network.sh /usr/bin/python3 bench/robots/lockstep_python.py \\
         --rbserver build/server/daemon/rbserver --cycles 5000
@@ -36,13 +37,14 @@ def run(arm, cycles, dynamics):
     kp, kd = np.full(n, 2000.0), np.full(n, 100.0)
     times = np.empty(cycles)
     state = arm.state
-    start, cpu = time.perf_counter(), time.process_time()
+    start, cpu, thread = time.perf_counter(), time.process_time(), time.thread_time()
     for i in range(cycles):
         t = time.perf_counter()
         tau_ff = state.bias if dynamics else np.zeros(n)
         state = arm.step_sync(q=q0, qd=0.0, kp=kp, kd=kd, tau_ff=tau_ff)
         times[i] = time.perf_counter() - t
-    return time.perf_counter() - start, time.process_time() - cpu, times, state
+    return (time.perf_counter() - start, time.process_time() - cpu, time.thread_time() - thread, times,
+            state)
 
 
 def cpu_seconds(pid):
@@ -78,7 +80,7 @@ def main(argv=None):
                 profiler.enable()
             first = arm.step
             server_cpu = cpu_seconds(server.pid) if server else None
-            total, cpu, times, state = run(arm, args.cycles, args.dynamics)
+            total, cpu, thread, times, state = run(arm, args.cycles, args.dynamics)
             if server:
                 server_cpu = cpu_seconds(server.pid) - server_cpu
             if args.profile:
@@ -88,9 +90,10 @@ def main(argv=None):
         assert state.step == first + args.cycles, (state.step, first, args.cycles)
         us = times * 1e6
         print("%d lock-step cycles (%s, dynamics %s): %.0f cycles/s; round trip p50 %.0f us, p99 %.0f us, "
-              "max %.0f us; this process's CPU %.0f us a cycle"
-              % (args.cycles, args.robot, "on" if args.dynamics else "off", args.cycles / total,
-                 np.percentile(us, 50), np.percentile(us, 99), us.max(), cpu / args.cycles * 1e6)
+              "max %.0f us; CPU a cycle: this process %.0f us (the loop's thread %.0f, LCM's receiving thread "
+              "the rest)" % (args.cycles, args.robot, "on" if args.dynamics else "off", args.cycles / total,
+                             np.percentile(us, 50), np.percentile(us, 99), us.max(), cpu / args.cycles * 1e6,
+                             thread / args.cycles * 1e6)
               + ("; the server's %.0f us" % (server_cpu / args.cycles * 1e6) if server else ""))
     finally:
         if server is not None:
