@@ -419,14 +419,15 @@ def cmd_robot_state(args):
     with _client(args) as sim:
         robots = RobotStates(sim)
         if args.dynamics:
+            after = robots.count(args.name)
             seq = _send_robot_command(sim, args.name, state_dynamics=1)
             ack = sim.wait_ack(seq, ROBOT_ACK_KIND, args.timeout)
             if not ack.accepted:
                 raise CliError("robot %s dynamics rejected: %s" % (args.name, ack.reason or "no reason given"),
                                EXIT_REJECTED)
             # A state that carries them (or says why it cannot), from the
-            # ones published after the server turned them on.
-            state = _robot_state(sim, robots, args.name, args.timeout, robots.count(args.name),
+            # ones published since the request.
+            state = _robot_state(sim, robots, args.name, args.timeout, after,
                                  lambda s: s.num_dofs > 0 or s.dynamics_note != "")
         else:
             state = _robot_state(sim, robots, args.name, args.timeout)
@@ -462,9 +463,9 @@ def cmd_robot_command(args):
             for option, field in ROBOT_VALUES:
                 if field in values:
                     entries[field] = _per_joint(option, values[field], count)
+        after = robots.count(args.name)
         seq = _send_robot_command(sim, args.name, args.at_step, names, entries, args.state_rate,
                                   steps=args.steps)
-        after = robots.count(args.name)
         ack = sim.wait_ack(seq, ROBOT_ACK_KIND, args.timeout)
         _report(ack, "robot %s command" % args.name)
         if args.steps > 0:

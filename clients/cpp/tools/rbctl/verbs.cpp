@@ -569,6 +569,7 @@ int runRobotState(Context& context, Arguments& arguments) {
   int status = kExitOk;
   const rbsim::robot_state_t* state = nullptr;
   if (dynamics) {
+    const uint64_t after = robots.count(name);
     rbsim::robot_command_t message = robotCommand(context.client, name);
     message.state_dynamics = 1;
     const auto ack = sendRobotCommand(context, message);
@@ -578,8 +579,8 @@ int runRobotState(Context& context, Arguments& arguments) {
       return kExitRejected;
     }
     // A state that carries them (or says why it cannot), from the ones
-    // published after the server turned them on.
-    state = waitForRobot(context, robots, name, status, context.timeout, robots.count(name),
+    // published since the request.
+    state = waitForRobot(context, robots, name, status, context.timeout, after,
                          [](const rbsim::robot_state_t& s) {
                            return s.num_dofs > 0 || !s.dynamics_note.empty();
                          });
