@@ -7,9 +7,11 @@
 
 #include <rbsim/command_t.hpp>
 #include <rbsim/joint_command_t.hpp>
+#include <rbsim/robot_command_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
 #include "bridge/message_decode.h"
+#include "bridge/robot_messages.h"
 #include "bridge/wire_convert.h"
 #include "config/config_loader.h"
 #include "persist/checkpoint_file.h"
@@ -111,6 +113,7 @@ CommandHandler::CommandHandler(Session& session, ServerSettings settings,
       m_wrenchChannel(m_settings.channelPrefix + "WRENCH"),
       m_commandChannel(m_settings.channelPrefix + "COMMAND"),
       m_jointCommandChannel(m_settings.channelPrefix + "JOINT_COMMAND"),
+      m_robotCommandChannel(m_settings.channelPrefix + "ROBOT_COMMAND"),
       m_rateLimiter(m_settings.clientRate, m_settings.clientBurst) {}
 
 std::optional<std::string> CommandHandler::sizeRefusal(std::size_t size) const {
@@ -132,6 +135,7 @@ std::optional<CommandOutcome> CommandHandler::handle(std::string_view channel, c
   if (channel == m_wrenchChannel) return handleWrench(data, size, receivedAt);
   if (channel == m_commandChannel) return handleCommand(data, size, receivedAt);
   if (channel == m_jointCommandChannel) return handleJointCommand(data, size, receivedAt);
+  if (channel == m_robotCommandChannel) return handleRobotCommand(data, size, receivedAt);
   return std::nullopt;
 }
 
@@ -174,6 +178,39 @@ CommandOutcome CommandHandler::handleJointCommand(const void* data, std::size_t 
   // a command takes effect at the start of its step however it was sent.
   m_session.jointCommands().add(*request);
   return accepted(std::move(ack), request->firstStep);
+}
+
+CommandOutcome CommandHandler::handleRobotCommand(const void* data, std::size_t size, int64_t receivedAt) {
+  const int8_t kind = rbsim::ack_t::KIND_ROBOT_COMMAND;
+  if (auto refusal = sizeRefusal(size)) return rejected(ackFor("", -1, kind, -1), *refusal);
+  rbsim::robot_command_t message;
+  if (!decodeWholeMessage(message, data, size))
+    return rejected(ackFor("", -1, kind, -1),
+                    "undecodable robot_command_t message (" + std::to_string(size) + " bytes)");
+  rbsim::ack_t ack = ackFor(message.client, message.seq, kind, 0);
+  if (auto refusal = admissionRefusal(message.client, receivedAt)) return rejected(std::move(ack), *refusal);
+  World& world = m_session.world();
+  const auto request = robotCommandRequestFrom(message, world, world.stepCount() + 1, m_settings.limits);
+  if (!request) return rejected(std::move(ack), request.error().message);
+  if (request->steps > 0) {
+    if (!m_session.paused())
+      return rejected(std::move(ack), "steps needs the server to be paused (send PAUSE first)");
+    if (request->steps > m_settings.maxStepsPerCommand)
+      return rejected(std::move(ack), "steps must be at most " + std::to_string(m_settings.maxStepsPerCommand));
+  }
+  // All of it or none: every entry was checked above. The scheduler sets
+  // them before one step, in entry order.
+  for (const JointCommandRequest& joint : request->joints) m_session.jointCommands().add(joint);
+  RobotPublishing& publishing = m_session.robotPublishing(message.robot);
+  if (request->stateRate > 0.0) publishing.stateRate = request->stateRate;
+  if (request->stateRate < 0.0) publishing.stateRate = 0.0;
+  if (request->stateDynamics >= 0) publishing.dynamics = request->stateDynamics == 1;
+  CommandOutcome outcome = accepted(std::move(ack), request->firstStep);
+  if (request->steps > 0) {
+    m_session.requestSteps(request->steps);
+    outcome.paceChanged = true;
+  }
+  return outcome;
 }
 
 CommandOutcome CommandHandler::handleCommand(const void* data, std::size_t size, int64_t receivedAt) {
@@ -263,6 +300,7 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
       std::vector<std::string> names;
       for (const BodyDef& def : spawn->bodies) names.push_back(def.name);
       m_session.addSpawnedVisuals(names, spawn->visuals);
+      m_session.addRobotPublishing(spawn->robotPublishing);
       m_session.noteWorldChanged();
       CommandOutcome outcome = accepted(std::move(ack), nextStep);
       outcome.publishWorld = true;

@@ -1,6 +1,6 @@
 #pragma once
 // The server's command path without LCM and without a clock: raw bytes of a
-// wrench_t, command_t or joint_command_t in, the ack_t and what the caller must do out. The
+// wrench_t, command_t, joint_command_t or robot_command_t in, the ack_t and what the caller must do out. The
 // same handler serves rbserver, a replay of a recorded session and fuzz
 // targets, so all three take exactly the same decisions.
 //
@@ -49,8 +49,8 @@ class CommandHandler {
   // session must outlive the handler.
   CommandHandler(Session& session, ServerSettings settings, std::string spawnMeshDirectory);
 
-  // A message received on `channel`: <prefix>WRENCH, <prefix>COMMAND or
-  // <prefix>JOINT_COMMAND.
+  // A message received on `channel`: <prefix>WRENCH, <prefix>COMMAND,
+  // <prefix>JOINT_COMMAND or <prefix>ROBOT_COMMAND.
   // Nullopt for any other channel (no ack is due). `receivedAt` (ns of a
   // monotonic clock) is the only notion of time the handler has.
   std::optional<CommandOutcome> handle(std::string_view channel, const void* data,
@@ -58,10 +58,12 @@ class CommandHandler {
   CommandOutcome handleWrench(const void* data, std::size_t size, int64_t receivedAt);
   CommandOutcome handleCommand(const void* data, std::size_t size, int64_t receivedAt);
   CommandOutcome handleJointCommand(const void* data, std::size_t size, int64_t receivedAt);
+  CommandOutcome handleRobotCommand(const void* data, std::size_t size, int64_t receivedAt);
 
   const std::string& wrenchChannel() const { return m_wrenchChannel; }
   const std::string& commandChannel() const { return m_commandChannel; }
   const std::string& jointCommandChannel() const { return m_jointCommandChannel; }
+  const std::string& robotCommandChannel() const { return m_robotCommandChannel; }
 
  private:
   CommandOutcome applyCommand(const rbsim::command_t& message, int64_t receivedAt);
@@ -76,6 +78,7 @@ class CommandHandler {
   std::string m_wrenchChannel;
   std::string m_commandChannel;
   std::string m_jointCommandChannel;
+  std::string m_robotCommandChannel;
   ClientRateLimiter m_rateLimiter;
 };
 

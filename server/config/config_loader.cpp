@@ -85,8 +85,9 @@ class ConfigParser {
 
   // `robotReport` (null: not wanted) gets the robots' load reports.
   // `visuals` (null: not wanted) gets how the robots' bodies look.
+  // `publishing` (null: not wanted) gets how the robots' states are published.
   Expected<WorldDef> parseWorld(const YamlNode& root, std::vector<std::string>* robotReport = nullptr,
-                                BodyVisuals* visuals = nullptr) const;
+                                BodyVisuals* visuals = nullptr, RobotPublishingMap* publishing = nullptr) const;
   // The world, then the server's sections, of one document.
   Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
@@ -120,7 +121,7 @@ class ConfigParser {
 };
 
 Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<std::string>* robotReport,
-                                            BodyVisuals* visuals) const {
+                                            BodyVisuals* visuals, RobotPublishingMap* publishing) const {
   Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   if (auto error = m_reader.checkKeys(*top, kTopLevelKeys, "the top level")) return *error;
@@ -151,14 +152,16 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<st
     std::vector<std::string> report;
     const BodyNameTaken taken = [&](const std::string& name) { return indexByName.count(name) > 0; };
     BodyVisuals looks;
+    RobotPublishingMap published;
     // The world file names the directory the viewer serves (default: its own).
     Expected<std::optional<std::filesystem::path>> served =
         readViewerMeshDirectory(m_reader, *top, m_baseDirectory);
     if (!served) return served.error();
     if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, RobotFilePaths::Anywhere, taken, world,
-                                 report, kWorldMeshRoute, served->value_or(m_baseDirectory), looks))
+                                 report, kWorldMeshRoute, served->value_or(m_baseDirectory), looks, published))
       return *error;
     if (visuals != nullptr) visuals->merge(looks);
+    if (publishing != nullptr) publishing->merge(published);
     for (std::size_t i = 0; i < world.bodies.size(); ++i) indexByName.emplace(world.bodies[i].name, i);
     if (robotReport != nullptr) robotReport->insert(robotReport->end(), report.begin(), report.end());
   }
@@ -225,7 +228,7 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
     WorldDef made;
     std::vector<std::string> report;
     if (auto error = parseRobots(m_reader, robots->value, m_baseDirectory, paths, taken, made, report,
-                                 kSpawnMeshRoute, m_baseDirectory, spawn.visuals))
+                                 kSpawnMeshRoute, m_baseDirectory, spawn.visuals, spawn.robotPublishing))
       return *error;
     for (BodyDef& body : made.bodies) {
       indexByName.emplace(body.name, spawn.bodies.size());
@@ -249,9 +252,11 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
 Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
   std::vector<std::string> robotReport;
   BodyVisuals visuals;
-  Expected<WorldDef> world = parseWorld(root, &robotReport, &visuals);
+  RobotPublishingMap publishing;
+  Expected<WorldDef> world = parseWorld(root, &robotReport, &visuals, &publishing);
   if (!world) return world.error();
-  Config config{std::move(*world), ServerSettings{}, std::move(robotReport), std::move(visuals)};
+  Config config{std::move(*world), ServerSettings{}, std::move(robotReport), std::move(visuals),
+                std::move(publishing)};
   // parseWorld has checked that the root is a mapping.
   const Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();

@@ -15,6 +15,7 @@
 #include "rbsim/physics/body_definition.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world_settings.h"
+#include "robot/robot_publishing.h"
 #include "robot/visual.h"
 
 namespace rbsim {
@@ -32,6 +33,8 @@ struct Config {
   // How the robots' bodies look (robot/visual.h), by body name: drawing
   // only, published in world_t beside the bodies.
   BodyVisuals visuals;
+  // How each robot's state is published (state_rate, state_dynamics).
+  RobotPublishingMap robotPublishing;
 };
 
 // Reads and parses the file at `path`, the world and the server's sections
@@ -72,6 +75,7 @@ struct SpawnDef {
   std::vector<ExcludedPair> excludedPairs;  // pairs of its robots' bodies that never collide
   std::vector<std::string> robotReport;  // what the robots were made into (robot/urdf_robot.h)
   BodyVisuals visuals;  // how its robots' bodies look, by body name (robot/visual.h)
+  RobotPublishingMap robotPublishing;  // how its robots' states are published
 };
 
 // Parses a spawn: either one body (a mapping in the schema of a `bodies:`

@@ -17,10 +17,11 @@ namespace rbsim {
 
 namespace {
 
-constexpr std::array<std::string_view, 15> kRobotKeys = {
+constexpr std::array<std::string_view, 18> kRobotKeys = {
     "name",           "urdf",          "position",           "orientation",   "rpy",
     "fixed_base",     "merge_fixed_links", "joint_positions", "joint_drives",  "package_paths",
-    "self_collision", "disable_collisions", "link_collision", "hull_tolerance", "hull_max_vertices"};
+    "self_collision", "disable_collisions", "link_collision", "hull_tolerance", "hull_max_vertices",
+    "gravity_compensation", "state_rate", "state_dynamics"};
 constexpr double kMaxLength = 1e6;           // m, as the bodies' positions
 constexpr double kMaxJointPosition = 1e6;    // rad or m
 constexpr std::size_t kMaxNameLength = 128;  // characters, as body names
@@ -84,7 +85,7 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
                                  const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
                                  const std::string& meshRoute, const std::filesystem::path& meshRouteDirectory,
-                                 BodyVisuals& visuals) {
+                                 BodyVisuals& visuals, RobotPublishingMap& publishing) {
   const bool confined = paths == RobotFilePaths::InsideBaseDirectory;
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();
@@ -189,6 +190,28 @@ std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
     }
     if (const YamlMap::Entry* drives = map->find("joint_drives"))
       if (auto error = applyJointDrives(reader, drives->value, *robot)) return *error;
+    Expected<bool> compensated = reader.boolean(*map, "gravity_compensation", false);
+    if (!compensated) return compensated.error();
+    if (*compensated) {
+      // Every actuated joint's drive, now and when a command turns it on
+      // (a command's drive keeps the joint's setting).
+      for (NamedJointDef& joint : robot->joints)
+        if (!joint.def.mimic.enabled &&
+            (joint.def.type == JointType::Revolute || joint.def.type == JointType::Prismatic))
+          joint.def.drive.gravityCompensation = true;
+      robot->report.push_back("gravity compensation on every joint's drive (gravity_compensation)");
+    }
+    RobotPublishing published;
+    if (const YamlMap::Entry* rate = map->find("state_rate")) {
+      // Hz; any rate at or above 1/dt means every step.
+      Expected<double> hertz = reader.number(rate->value, NumberRule::positive(1e9));
+      if (!hertz) return hertz.error();
+      published.stateRate = *hertz;
+    }
+    Expected<bool> dynamics = reader.boolean(*map, "state_dynamics", false);
+    if (!dynamics) return dynamics.error();
+    published.dynamics = *dynamics;
+    publishing[*name] = published;
     if (auto error = applyRobotCollisions(reader, *map, *name, *robot, world.excludedPairs)) return *error;
     for (const BodyDef& body : robot->bodies)
       if (taken(body.name))

@@ -19,6 +19,11 @@
 //       disable_collisions: [[link1, link3]]   # with self_collision: pairs that never collide
 //       link_collision: {gripper: {group: 2, mask: 1}}   # a link's collision group and mask
 //                                  # (config/collision_filter_config.h)
+//       gravity_compensation: true # every joint's drive adds the gravity torques
+//                                  # (JointDrive::gravityCompensation)
+//       state_rate: 1000           # Hz: robot_state_t this often (default: with
+//                                  # every world state); at most every step
+//       state_dynamics: true       # robot_state_t carries M, h, g, link Jacobians
 //
 // Errors name the world file's line and key, and the URDF's line.
 
@@ -29,6 +34,7 @@
 
 #include "config/yaml_reader.h"
 #include "rbsim/physics/world_settings.h"
+#include "robot/robot_publishing.h"
 #include "robot/visual.h"
 
 namespace rbsim {
@@ -46,11 +52,12 @@ enum class RobotFilePaths { Anywhere, InsideBaseDirectory };
 // its load report (robot/urdf_robot.h) to `report`. Relative paths are
 // relative to `baseDirectory`. The viewer's bridge serves visual meshes
 // from `meshRouteDirectory` under `meshRoute` (robot/visual.h): a visual
-// mesh inside it is published with its URL there.
+// mesh inside it is published with its URL there. `publishing` gets how
+// each robot's state is published (state_rate, state_dynamics).
 std::optional<Error> parseRobots(const YamlReader& reader, const YamlNode& node,
                                  const std::filesystem::path& baseDirectory, RobotFilePaths paths,
                                  const BodyNameTaken& taken, WorldDef& world, std::vector<std::string>& report,
                                  const std::string& meshRoute, const std::filesystem::path& meshRouteDirectory,
-                                 BodyVisuals& visuals);
+                                 BodyVisuals& visuals, RobotPublishingMap& publishing);
 
 }  // namespace rbsim

@@ -15,6 +15,7 @@
 #include <rbsim/status_t.hpp>
 #include <rbsim/wrench_t.hpp>
 
+#include "bridge/robot_messages.h"
 #include "bridge/wire_convert.h"
 #include "daemon/log.h"
 #include "persist/checkpoint_file.h"
@@ -37,13 +38,15 @@ Nanoseconds periodOf(double hertz) {
 
 }  // namespace
 
-Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals)
+Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals,
+               RobotPublishingMap robotPublishing)
     : m_settings(std::move(settings)),
       m_session(std::move(initialWorld), m_settings.startPaused),
       m_commands(m_session, m_settings, std::move(spawnMeshDirectory)),
       m_clock(m_session.world().settings().dt, m_settings.realTimeFactor, m_settings.catchUp,
               m_settings.maxBurst) {
   m_session.setVisuals(std::move(visuals));
+  m_session.addRobotPublishing(robotPublishing);
   const double dt = world().settings().dt;
   m_stateEverySteps =
       m_settings.stateRate <= 0.0
@@ -82,6 +85,7 @@ Expected<bool> Server::open() {
   m_lcm->subscribe(m_commands.wrenchChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.commandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(m_commands.jointCommandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
+  m_lcm->subscribe(m_commands.robotCommandChannel(), &Server::onInput, this)->setQueueCapacity(10000);
   m_lcm->subscribe(channel("STATUS"), &Server::onStatus, this);
   if (m_settings.checkpointEvery > 0.0) {
     if (m_settings.checkpointDirectory.empty())
@@ -254,7 +258,9 @@ void Server::stepOnce() {
 
   checkpointIfDue();
   const bool lastRequested = requested && m_session.stepsRequested() == 0;
-  if (world().stepCount() % m_stateEverySteps == 0 || lastRequested) publishState();
+  const bool worldState = world().stepCount() % m_stateEverySteps == 0 || lastRequested;
+  if (worldState) publishState(false);
+  publishRobotStatesAfterStep(worldState, lastRequested);
   if (m_contactsEverySteps > 0 && (world().stepCount() % m_contactsEverySteps == 0 || lastRequested))
     publishContacts();
   if (!requested) m_clock.endStep(monotonicNow());
@@ -269,6 +275,7 @@ void Server::acknowledge(rbsim::ack_t ack) {
     ++m_counters.rejected;
     const char* kind = ack.kind == rbsim::ack_t::KIND_WRENCH          ? "wrench"
                        : ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND ? "joint command"
+                       : ack.kind == rbsim::ack_t::KIND_ROBOT_COMMAND ? "robot command"
                                                                       : "command";
     logDebug("rejected " + std::string(kind) + " from '" +
              ack.client + "' seq " + std::to_string(ack.seq) + ": " + ack.reason);
@@ -312,13 +319,40 @@ void Server::record(const std::string& channelName, const void* data, std::size_
   m_recorder.write(channelName, data, size, utime);
 }
 
-void Server::publishState() {
+void Server::publishState(bool withRobots) {
   for (const auto& page : worldStatePages(world(), wallMicroseconds(), m_session.worldRevision()))
     publish(channel("STATE"), page);
   // The joints of the same step, after its bodies (none for a world without).
   if (world().jointCount() > 0)
     for (const auto& page : jointStatePages(world(), wallMicroseconds(), m_session.worldRevision()))
       publish(channel("JOINTS"), page);
+  if (!withRobots) return;
+  for (const std::string& robot : robotNames(world())) {
+    const auto found = m_session.robotPublishing().find(robot);
+    publishRobotState(robot, found != m_session.robotPublishing().end() && found->second.dynamics);
+  }
+}
+
+void Server::publishRobotStatesAfterStep(bool worldStatePublished, bool lastRequested) {
+  const double dt = world().settings().dt;
+  for (const std::string& robot : robotNames(world())) {
+    RobotPublishing publishing;
+    if (const auto found = m_session.robotPublishing().find(robot); found != m_session.robotPublishing().end())
+      publishing = found->second;
+    bool due = lastRequested;
+    if (publishing.stateRate > 0.0) {
+      const int64_t every = std::max<int64_t>(1, std::llround(1.0 / (publishing.stateRate * dt)));
+      due = due || world().stepCount() % every == 0;
+    } else {
+      due = due || worldStatePublished;
+    }
+    if (due) publishRobotState(robot, publishing.dynamics);
+  }
+}
+
+void Server::publishRobotState(const std::string& robot, bool dynamics) {
+  publish(channel("ROBOT_STATE"),
+          robotStateMessage(world(), robot, dynamics, wallMicroseconds(), m_session.worldRevision()));
 }
 
 void Server::publishContacts() {

@@ -31,7 +31,8 @@ class Server {
   // `initialWorld` is what RESET returns to; mesh files of spawned bodies
   // must lie under `spawnMeshDirectory`; `visuals` is how the world
   // file's robots look (published in world_t, session/session.h).
-  Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals = {});
+  Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals = {},
+         RobotPublishingMap robotPublishing = {});
 
   // Connects to LCM, subscribes, opens the record file. A bad URL or an
   // unwritable record file is an error, before any stepping.
@@ -70,7 +71,13 @@ class Server {
                 const rbsim::status_t* status);
   void acknowledge(rbsim::ack_t ack);
 
-  void publishState();
+  // The world's state and joints, then (withRobots) every robot's state.
+  void publishState(bool withRobots = true);
+  // Robot states after a step: those published with the world state when
+  // it went out (worldStatePublished), those at their own rate when due,
+  // and all after the last step a STEP or robot_command_t asked for.
+  void publishRobotStatesAfterStep(bool worldStatePublished, bool lastRequested);
+  void publishRobotState(const std::string& robot, bool dynamics);
   void publishStatus(Nanoseconds now);
   void publishWorld();
   void publishContacts();

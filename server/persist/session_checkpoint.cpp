@@ -11,7 +11,9 @@ namespace rbsim {
 namespace {
 
 constexpr uint32_t kMagic = 0x53534252u;  // "RBSS"
-constexpr uint32_t kVersion = 3;          // 2: a wrench's point frame; 3: joint commands scheduled ahead
+// 2: a wrench's point frame; 3: joint commands scheduled ahead; 4: their
+// target rate and feed-forward (robot_command_t)
+constexpr uint32_t kVersion = 4;
 constexpr uint32_t kMaxTextLength = 4096;
 
 void writeRequest(const WrenchRequest& r, ByteWriter& out) {
@@ -68,6 +70,8 @@ void writeJointCommand(const JointCommandRequest& r, ByteWriter& out) {
   out.f64(r.maxEffort);
   out.f64(r.stiffness);
   out.f64(r.damping);
+  out.f64(r.targetRate);
+  out.f64(r.feedForward);
   out.i64(r.firstStep);
 }
 
@@ -84,12 +88,15 @@ std::vector<JointCommandRequest> readJointCommands(ByteReader& in) {
     r.maxEffort = in.f64("joint command max effort");
     r.stiffness = in.f64("joint command stiffness");
     r.damping = in.f64("joint command damping");
+    r.targetRate = in.f64("joint command target rate");
+    r.feedForward = in.f64("joint command feed-forward");
     r.firstStep = in.i64("joint command step");
     // Checked as when accepted: a mode, finite numbers (an uncapped
     // drive's max effort is infinite), gains not negative, a step ahead.
     if (mode > static_cast<uint8_t>(JointCommandMode::Effort) || !std::isfinite(r.target) ||
         std::isnan(r.maxEffort) || r.maxEffort < 0.0 || !std::isfinite(r.stiffness) || r.stiffness < 0.0 ||
-        !std::isfinite(r.damping) || r.damping < 0.0 || r.firstStep < 1)
+        !std::isfinite(r.damping) || r.damping < 0.0 || !std::isfinite(r.targetRate) ||
+        !std::isfinite(r.feedForward) || r.firstStep < 1)
       in.fail("a joint command of client '" + r.client + "' has an invalid mode, value or step");
     r.mode = static_cast<JointCommandMode>(mode);
     out.push_back(r);

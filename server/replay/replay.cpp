@@ -9,6 +9,7 @@
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
 #include <rbsim/handled_t.hpp>
+#include <rbsim/robot_command_t.hpp>
 #include <rbsim/joint_command_t.hpp>
 #include <rbsim/joints_t.hpp>
 #include <rbsim/world_state_t.hpp>
@@ -39,7 +40,9 @@ std::vector<uint8_t> encode(const Message& message) {
 
 // Which acks stand for a change of the simulated world.
 bool changesTheWorld(const rbsim::ack_t& ack) {
-  if (ack.kind == rbsim::ack_t::KIND_WRENCH || ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND) return true;
+  if (ack.kind == rbsim::ack_t::KIND_WRENCH || ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND ||
+      ack.kind == rbsim::ack_t::KIND_ROBOT_COMMAND)
+    return true;
   return ack.kind == rbsim::ack_t::KIND_COMMAND &&
          (ack.request == rbsim::command_t::SPAWN || ack.request == rbsim::command_t::REMOVE ||
           ack.request == rbsim::command_t::RESET);
@@ -48,6 +51,7 @@ bool changesTheWorld(const rbsim::ack_t& ack) {
 std::string describe(const rbsim::ack_t& ack) {
   const char* kind = ack.kind == rbsim::ack_t::KIND_WRENCH          ? "wrench"
                      : ack.kind == rbsim::ack_t::KIND_JOINT_COMMAND ? "joint command"
+                     : ack.kind == rbsim::ack_t::KIND_ROBOT_COMMAND ? "robot command"
                                                                     : "command";
   return std::string(kind) + " seq " +
          std::to_string(ack.seq) + " from '" + ack.client + "'";
@@ -82,7 +86,13 @@ Replay::Replay(Session& session, CommandHandler& handler, std::string channelPre
       m_prefix(std::move(channelPrefix)),
       m_verify(verify),
       m_output(std::move(output)),
-      m_pending(std::make_unique<Pending>()) {}
+      m_pending(std::make_unique<Pending>()) {
+  // The replay takes the steps the log shows, never on a clock: to the
+  // command handler it is a paused server, so that a robot_command_t whose
+  // `steps` the recorded (paused) server accepted is accepted here too.
+  // The steps it asks for are the log's, taken by run().
+  m_session.pause();
+}
 
 Replay::~Replay() = default;
 
@@ -92,7 +102,7 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
   m_report = {};
   emitWorld(0);
   const std::string wrench = m_prefix + "WRENCH", command = m_prefix + "COMMAND",
-                    jointCommand = m_prefix + "JOINT_COMMAND",
+                    jointCommand = m_prefix + "JOINT_COMMAND", robotCommand = m_prefix + "ROBOT_COMMAND",
                     handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE",
                     joints = m_prefix + "JOINTS";
   while (!m_report.difference) {
@@ -107,7 +117,7 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
     }
     m_eventTimestamp = e.timestamp;
     Expected<bool> done = true;
-    if (e.channel == wrench || e.channel == command || e.channel == jointCommand) {
+    if (e.channel == wrench || e.channel == command || e.channel == jointCommand || e.channel == robotCommand) {
       done = onInput(e);
     } else if (e.channel == handled) {
       done = onHandled(e);
@@ -141,6 +151,12 @@ Expected<bool> Replay::onInput(const LogEvent& event) {
     if (const auto j = decodeWhole<rbsim::joint_command_t>(event.data)) {
       key = {rbsim::ack_t::KIND_JOINT_COMMAND, j->client, j->seq};
       input.applyAtStep = j->apply_at_step;
+    }
+  } else if (event.channel == m_prefix + "ROBOT_COMMAND") {
+    std::get<0>(key) = rbsim::ack_t::KIND_ROBOT_COMMAND;
+    if (const auto r = decodeWhole<rbsim::robot_command_t>(event.data)) {
+      key = {rbsim::ack_t::KIND_ROBOT_COMMAND, r->client, r->seq};
+      input.applyAtStep = r->apply_at_step;
     }
   } else {
     std::get<0>(key) = rbsim::ack_t::KIND_COMMAND;

@@ -13,6 +13,7 @@ JointActuation actuationOf(const JointCommandRequest& request) {
       out.motor.enabled = true;
       out.motor.targetRate = request.target;
       out.motor.maxEffort = request.maxEffort;
+      out.effort = request.feedForward;
       break;
     case JointCommandMode::Position:
       out.drive.enabled = true;
@@ -20,6 +21,8 @@ JointActuation actuationOf(const JointCommandRequest& request) {
       out.drive.stiffness = request.stiffness;
       out.drive.damping = request.damping;
       out.drive.maxEffort = request.maxEffort;
+      out.drive.targetRate = request.targetRate;
+      out.effort = request.feedForward;
       break;
     case JointCommandMode::Effort:
       out.effort = request.target;

@@ -31,6 +31,12 @@ struct JointCommandRequest {
   double maxEffort = 0.0;  // N·m or N; Position: infinity for uncapped
   double stiffness = 0.0;  // Position: N·m/rad or N/m
   double damping = 0.0;    // Position: N·m·s/rad or N·s/m
+  // Position: the rate the damping pulls toward, rad/s or m/s (a
+  // trajectory's velocity: robot_command_t); 0 holds the joint still.
+  double targetRate = 0.0;
+  // Position and Velocity: an effort added to the drive's or the motor's
+  // (a controller's feed-forward: robot_command_t), N·m or N.
+  double feedForward = 0.0;
   int64_t firstStep = 0;   // the step before which it is set
 };
 

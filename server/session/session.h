@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rbsim/physics/world.h"
+#include "robot/robot_publishing.h"
 #include "robot/visual.h"
 #include "session/joint_command_scheduler.h"
 #include "session/wrench_scheduler.h"
@@ -67,6 +68,17 @@ class Session {
     m_visuals.merge(visuals);
   }
 
+  // How each robot's state goes out (robot/robot_publishing.h), by robot
+  // name: the world file's and the spawns' robots, changed by
+  // robot_command_t. Kept beside the world as the visuals are: RESET and a
+  // checkpoint leave it; a robot without an entry publishes with the world
+  // state, without dynamics.
+  const RobotPublishingMap& robotPublishing() const { return m_robotPublishing; }
+  RobotPublishing& robotPublishing(const std::string& robot) { return m_robotPublishing[robot]; }
+  void addRobotPublishing(const RobotPublishingMap& publishing) {
+    for (const auto& [robot, settings] : publishing) m_robotPublishing[robot] = settings;
+  }
+
   // world_t revision: bumped at every change of the set of bodies.
   int64_t worldRevision() const { return m_worldRevision; }
   void noteWorldChanged() { ++m_worldRevision; }
@@ -80,6 +92,7 @@ class Session {
   int64_t m_stepsRequested = 0;
   int64_t m_worldRevision = 1;
   BodyVisuals m_visuals;
+  RobotPublishingMap m_robotPublishing;
 };
 
 }  // namespace rbsim

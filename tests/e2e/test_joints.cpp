@@ -2,7 +2,8 @@
 // every joint, consistent with the bodies' poses on <prefix>STATE; joint
 // commands through the C++ client, their acks and their effect against
 // closed forms; rejections with reasons; the joints in world_t; a recorded
-// session with joint commands replayed bit for bit.
+// session with joint commands replayed bit for bit, and one with robot
+// commands (config/worlds/robot_arm.yaml).
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,8 @@
 #include <thread>
 #include <rbsim/ack_t.hpp>
 #include <rbsim/joint_command_t.hpp>
+#include <rbsim/robot_command_t.hpp>
+#include <rbsim/robot_state_t.hpp>
 
 #include "e2e_paths.h"
 #include "event_log.h"
@@ -395,6 +398,94 @@ TEST_F(JointReplay, ASessionWithJointCommandsReplaysBitIdentically) {
     if (lossReported) std::printf("note: lcm-logger lost a message: %s", fromBus.output.c_str());
     EXPECT_TRUE(*fromBus.status == 0 || lossReported) << fromBus.output;
   }
+}
+
+using RobotReplay = ServerTest;
+
+// Robot commands of every mode (in joint order and by name, scheduled
+// ahead, lock-step 'steps' while paused, while running, one refused) in a
+// recorded session of the seven-joint arm: --replay --verify re-simulates
+// it bit for bit, robot states included in what the server recorded.
+TEST_F(RobotReplay, ASessionWithRobotCommandsReplaysBitIdentically) {
+  const std::string kArmWorld = std::string(kConfigWorldsDir) + "/robot_arm.yaml";
+  const std::string record = scratchPath("robot.lcmlog");
+  startServer(kArmWorld, {"--record", record, "--paused", "--state-rate", "0"});
+  int64_t seq = 1000;
+  const auto send = [&](rbsim::robot_command_t m) {
+    m.client = client().clientId();
+    m.seq = ++seq;
+    m.robot = "arm";
+    const auto entries = static_cast<std::size_t>(m.num_joints);
+    m.mode.resize(entries, rbsim::robot_command_t::MODE_KEEP);
+    for (auto* field : {&m.position, &m.velocity, &m.effort, &m.stiffness, &m.damping, &m.max_effort})
+      field->resize(entries, 0.0);
+    client().lcm().publish("RBSIM_ROBOT_COMMAND", &m);
+    const auto ack = client().waitForAck(m.seq, static_cast<client::AckKind>(rbsim::ack_t::KIND_ROBOT_COMMAND), 5s);
+    if (!ack) throw std::runtime_error("no ack for robot command " + std::to_string(m.seq));
+    return *ack;
+  };
+  rbsim::robot_command_t hold{};
+  hold.apply_at_step = -1;
+  hold.state_dynamics = -1;
+  hold.num_joints = 7;
+  hold.mode.assign(7, rbsim::robot_command_t::MODE_POSITION);
+  hold.position = {0.2, 0.7, -0.1, 1.1, 0.3, 0.6, -0.2};
+  hold.velocity = {0.5, 0.0, -0.3, 0.0, 0.2, 0.0, 0.1};
+  hold.effort = {0.0, -20.0, 0.0, -8.0, 0.0, -1.0, 0.0};
+  hold.stiffness.assign(7, 800.0);
+  hold.damping.assign(7, 40.0);
+  hold.max_effort.assign(7, 0.0);
+  hold.steps = 20;
+  const rbsim::ack_t first = send(hold);
+  ASSERT_TRUE(first.accepted) << first.reason;
+  EXPECT_EQ(first.kind, rbsim::ack_t::KIND_ROBOT_COMMAND);
+  waitForStep(first.effective_step + 19);
+
+  rbsim::robot_command_t named{};
+  named.apply_at_step = currentStep() + 5;
+  named.state_dynamics = 1;
+  named.num_joints = named.num_names = 2;
+  named.joint_names = {"joint4", "arm/joint6"};
+  named.mode = {rbsim::robot_command_t::MODE_EFFORT, rbsim::robot_command_t::MODE_VELOCITY};
+  named.effort = {-5.0, 0.5};
+  named.velocity = {0.0, -0.4};
+  named.max_effort = {0.0, 30.0};
+  ASSERT_TRUE(send(named).accepted);
+  rbsim::robot_command_t wrong = named;
+  wrong.apply_at_step = -1;
+  wrong.joint_names = {"joint4", "joint9"};
+  const rbsim::ack_t refused = send(wrong);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.reason.find("has no joint 'joint9'"), std::string::npos) << refused.reason;
+  stepAndWait(30);
+  expectAccepted(client().resume());
+  spinFor(std::chrono::milliseconds(120));
+  hold.steps = 0;
+  hold.mode[2] = rbsim::robot_command_t::MODE_OFF;
+  ASSERT_TRUE(send(hold).accepted);
+  spinFor(std::chrono::milliseconds(100));
+  const auto status = stopServer(10s);
+  ASSERT_TRUE(status.has_value());
+  ASSERT_EQ(*status, 0);
+
+  // The record holds the robot states the server sent, with their dynamics
+  // once asked for.
+  int robotStates = 0, withDynamics = 0;
+  for (const LoggedEvent& event : readEventLog(record).events) {
+    if (event.channel != "RBSIM_ROBOT_STATE") continue;
+    const auto state = decodeAs<rbsim::robot_state_t>(event);
+    ASSERT_TRUE(state.has_value());
+    ++robotStates;
+    if (state->num_dofs == 7) ++withDynamics;
+  }
+  EXPECT_GT(robotStates, 50);
+  EXPECT_GT(withDynamics, 20);
+
+  const ProcessResult replay =
+      runProcess({kRbserver, "--config", kArmWorld, "--replay", record, "--verify"}, scratchPath("verify.log"), 60s);
+  ASSERT_TRUE(replay.status.has_value());
+  EXPECT_EQ(*replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("replay identical"), std::string::npos) << replay.output;
 }
 
 }  // namespace

@@ -7,9 +7,10 @@
 // Records (input_records.h), by tag % 4:
 //   0 payload  on <prefix>WRENCH
 //   1 payload  on <prefix>COMMAND
-//   2 payload  on <prefix>JOINT_COMMAND if tag & 4, else on another channel
-//              (no ack is due); the small world has no joints, so this
-//              exercises decoding, admission and the rejections
+//   2 payload  on <prefix>JOINT_COMMAND if tag & 4, else on
+//              <prefix>ROBOT_COMMAND if tag & 8, else on another channel
+//              (no ack is due); the small world has no joints, so these
+//              exercise decoding, admission and the rejections
 //   3 count    take up to count % 8 steps (at most kMaxSteps per input:
 //              stepping dominates the cost, and a fuzz input should run in
 //              milliseconds; long sessions are the replay tests' business)
@@ -69,6 +70,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string channel = tag % 4 == 0   ? handler.wrenchChannel()
                                 : tag % 4 == 1 ? handler.commandChannel()
                                 : (tag & 4) != 0 ? handler.jointCommandChannel()
+                                : (tag & 8) != 0 ? handler.robotCommandChannel()
                                                  : std::string("RBSIM_STATE");
     const auto outcome = handler.handle(channel, message.data, message.size, ++receivedAt);
     if (!outcome) continue;

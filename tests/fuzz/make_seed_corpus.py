@@ -2,7 +2,7 @@
 """Writes the seed corpora of the fuzz targets into tests/fuzz/corpus/<target>/.
 
 Seeds are small valid inputs the mutations start from: encoded wrench_t,
-command_t and joint_command_t messages (one per mode and command), the repository's worlds and
+command_t, joint_command_t and robot_command_t messages (one per mode and command), the repository's worlds and
 meshes, a few bodies in YAML and point sets for the hull builder. The output
 is checked in; rerun this after changing a message type or a seed:
 
@@ -51,7 +51,7 @@ def log_event(number, channel, data):
 
 def messages(types_dir):
     sys.path.insert(0, types_dir)
-    from rbsim import ack_t, command_t, handled_t, joint_command_t, world_state_t, wrench_t  # noqa: E402 (lcm-gen)
+    from rbsim import ack_t, command_t, handled_t, joint_command_t, robot_command_t, world_state_t, wrench_t  # noqa: E402 (lcm-gen)
 
     modes = {"one_step": 0, "duration": 1, "persistent": 2, "clear": 3}
     for mode_name, mode in modes.items():
@@ -80,6 +80,25 @@ def messages(types_dir):
         j.target, j.max_effort, j.stiffness, j.damping, j.apply_at_step = (
             target, max_effort, stiffness, damping, at_step)
         write("joint_command_message", name, j.encode())
+
+    # Robot commands on fuzz_robot_command_message's robot "bot" (shoulder,
+    # slide, finger that follows the shoulder; a weld and a ball joint).
+    def robot_command(name, modes, names=(), **fields):
+        r = robot_command_t()
+        r.utime, r.client, r.seq, r.robot, r.apply_at_step = 1, "fuzz", 1, "bot", -1
+        r.num_joints, r.mode = len(modes), list(modes)
+        r.num_names, r.joint_names = len(names), list(names)
+        for field in ("position", "velocity", "effort", "stiffness", "damping", "max_effort"):
+            setattr(r, field, [0.0] * len(modes))
+        r.state_dynamics = -1
+        for key, value in fields.items():
+            setattr(r, key, value)
+        write("robot_command_message", name, r.encode())
+    robot_command("order", (2, 3, -1), position=[0.3, 0.0, 0.0], velocity=[0.1, 0.0, 0.0],
+                  effort=[1.0, -2.0, 0.0], stiffness=[300.0, 0.0, 0.0], damping=[20.0, 0.0, 0.0])
+    robot_command("named_velocity", (1,), names=("slide",), velocity=[0.05], max_effort=[30.0])
+    robot_command("settings_only", (), state_rate=1000.0, state_dynamics=1, steps=2)
+    robot_command("follower", (-1, -1, 2), stiffness=[0.0, 0.0, 10.0])
 
     def command(name, code, **fields):
         c = command_t()

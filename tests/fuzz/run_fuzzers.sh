@@ -57,7 +57,7 @@ dictionary_for() {
     stl_mesh) echo "$fuzz/dictionaries/stl.dict" ;;
     dae_mesh) echo "$fuzz/dictionaries/dae.dict" ;;
     urdf_robot) echo "$fuzz/dictionaries/urdf.dict" ;;
-    wrench_message | command_message | joint_command_message | command_handler | replay_log) echo "$fuzz/dictionaries/lcm.dict" ;;
+    wrench_message | command_message | joint_command_message | robot_command_message | command_handler | replay_log) echo "$fuzz/dictionaries/lcm.dict" ;;
   esac
 }
 

@@ -16,11 +16,15 @@ struct Affine {
   double at(double w) const { return alpha + beta * w; }
 };
 
-// The drive's impulse before its cap, −h (k (e + s w) + c w), as an affine
-// function of w.
+// The drive's impulse before its cap, −h (k (e + s w) + c (w − v)), as an
+// affine function of w.
 Affine uncappedDrive(const AxisLaw& law) {
-  return {-law.h * law.driveStiffness * law.driveError,
-          -law.h * (law.driveStiffness * law.driveLookahead + law.driveDamping)};
+  Affine drive{-law.h * law.driveStiffness * law.driveError,
+               -law.h * (law.driveStiffness * law.driveLookahead + law.driveDamping)};
+  // Only when there is one, so that a drive without a target rate keeps
+  // the bits it had before target rates were.
+  if (law.driveTargetRate != 0.0) drive.alpha += law.h * law.driveDamping * law.driveTargetRate;
+  return drive;
 }
 
 // The drive's impulse at rate w: capped, and none that pushes faster than

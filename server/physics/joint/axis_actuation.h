@@ -6,10 +6,11 @@
 // (more rate, less push):
 //   motor     w = target while |Λ| < cap; Λ = ±cap otherwise (a bounded
 //             velocity constraint, as Box2D's and Jolt's motors are);
-//   drive     Λ = clamp(−h (k (e + s w) + c w), ±cap): the spring at the
-//             position e + s w (e = position − target now, s the time the
-//             rate w will move it for before the spring is next looked at)
-//             and the damper at the rate w, both implicit (backward
+//   drive     Λ = clamp(−h (k (e + s w) + c (w − v)), ±cap): the spring
+//             at the position e + s w (e = position − target now, s the
+//             time the rate w will move it for before the spring is next
+//             looked at) and the damper at the rate w relative to the
+//             target rate v (a trajectory's), both implicit (backward
 //             Euler), so that no stiffness makes the step unstable;
 //             Catto's soft constraints ("Soft Step", Box2D v3) are the
 //             same law;
@@ -40,6 +41,7 @@ struct AxisLaw {
   double driveLookahead = 0.0;  // s: s above
   double driveStiffness = 0.0;  // N·m/rad or N/m
   double driveDamping = 0.0;    // N·m·s/rad or N·s/m
+  double driveTargetRate = 0.0;  // rad/s or m/s: v below
   double driveCap = std::numeric_limits<double>::infinity();  // N·m·s or N·s over h
   double driveRateLimit = std::numeric_limits<double>::infinity();  // rad/s or m/s, > 0: R above
   double damping = 0.0;      // N·m·s/rad or N·s/m

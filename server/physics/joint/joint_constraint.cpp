@@ -91,6 +91,7 @@ int JointConstraint::rowCount() const {
 std::string invalidDriveReason(const JointDrive& drive) {
   const auto nonNegative = [](double x) { return std::isfinite(x) && x >= 0.0; };
   if (!std::isfinite(drive.target)) return "the drive's target is not finite";
+  if (!std::isfinite(drive.targetRate)) return "the drive's target rate is not finite";
   if (!nonNegative(drive.stiffness) || !nonNegative(drive.damping))
     return "the drive's stiffness and damping must be finite and non-negative";
   if (!nonNegative(drive.frequency) || !nonNegative(drive.dampingRatio))

@@ -476,6 +476,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
       law.driveStiffness = drive.stiffness;
       law.driveDamping = drive.damping;
     }
+    law.driveTargetRate = drive.targetRate;
   }
 
   constexpr int kSweeps = 200;

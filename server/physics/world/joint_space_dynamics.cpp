@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "rbsim/physics/body_view.h"
 #include "rbsim/physics/joint_definition.h"
@@ -38,9 +39,43 @@ Expected<JointSpaceDynamics> JointSpaceDynamics::ofRobot(const World& world, std
 
   JointSpaceDynamics out;
   out.m_gravity = world.settings().gravity;
+  // The base: the parent no joint of the robot carries (the world: "").
+  // One that moves floats, and must be free: held by no other joint.
+  std::optional<std::string> base;
+  for (const std::string& child : children) {
+    const std::string& parent = carrier.at(child).parent;
+    if (carrier.count(parent) != 0) continue;
+    if (base && *base != parent)
+      return Error{robot + ": two bases, '" + (base->empty() ? "the world" : *base) + "' and '" +
+                   (parent.empty() ? "the world" : parent) + "': not one tree"};
+    base = parent;
+  }
+  if (!base) return Error{robot + ": its joints close a loop: not a tree"};
+  const BodyId baseId = base->empty() ? BodyId{} : world.findBody(*base);
+  if (!baseId.isNull() && !world.body(baseId).isStatic()) {
+    for (int j = 0; j < world.jointCount(); ++j) {
+      const JointDef& def = world.jointDefinitionAt(j);
+      const bool ours = def.name.compare(0, prefix.size(), prefix) == 0;
+      if (!ours && (def.bodyA == baseId || def.bodyB == baseId))
+        return Error{robot + ": its base '" + *base + "' moves and is held by joint '" + def.name +
+                     "', which is not the robot's: a floating base must be free"};
+    }
+    const BodyView body = world.body(baseId);
+    out.m_floating = true;
+    out.m_baseName = *base;
+    out.m_baseOrigin = body.bodyToWorld(body.description().shapeTranslation);
+    Link link;
+    link.name = *base;
+    link.anchor = out.m_baseOrigin;
+    link.center = body.position();
+    link.mass = body.mass();
+    link.inertia = body.inertiaWorld();
+    out.m_links.push_back(link);
+  }
   // Parents before children: a body is placed once its parent is (or the
   // parent is the base: the world, a static body).
   std::map<std::string, int, std::less<>> linkOf;
+  if (out.m_floating) linkOf.emplace(out.m_baseName, 0);
   std::vector<char> placed(children.size(), 0);
   for (std::size_t round = 0; round < children.size(); ++round) {
     bool progress = false;
@@ -55,9 +90,6 @@ Expected<JointSpaceDynamics> JointSpaceDynamics::ofRobot(const World& world, std
           parent = link->second;
         } else if (carrier.count(carried.parent)) {
           continue;  // its parent is the robot's and not placed yet
-        } else if (!world.body(def.bodyA).isStatic()) {
-          return Error{robot + ": its base '" + carried.parent +
-                       "' moves (a floating base): joint-space dynamics of floating-base robots are not built yet"};
         }
       }
       const JointState state = world.jointStateAt(carried.joint);
@@ -81,21 +113,27 @@ Expected<JointSpaceDynamics> JointSpaceDynamics::ofRobot(const World& world, std
   }
   if (std::find(placed.begin(), placed.end(), 0) != placed.end())
     return Error{robot + ": its joints close a loop: not a tree"};
-  // Coordinates in the world's joint order.
+  // Coordinates in the world's joint order, after a floating base's six.
+  const int first = out.m_floating ? 6 : 0;
   for (const std::string& child : children) {
     Link& link = out.m_links[static_cast<std::size_t>(linkOf.at(child))];
     if (link.coordinate < 0) continue;
     const int joint = carrier.at(child).joint;
-    link.coordinate = static_cast<int>(out.m_jointNames.size());
+    link.coordinate = first + static_cast<int>(out.m_jointNames.size());
     out.m_jointNames.push_back(world.jointDefinitionAt(joint).name);
   }
   const auto n = static_cast<Eigen::Index>(out.m_jointNames.size());
   out.m_q.resize(n);
-  out.m_qd.resize(n);
+  out.m_qd.resize(first + n);
+  if (out.m_floating) {
+    const BodyView body = world.body(baseId);
+    out.m_qd.head<3>() = body.velocityAtPoint(out.m_baseOrigin);
+    out.m_qd.segment<3>(3) = body.angularVelocity();
+  }
   for (const Link& link : out.m_links) {
     if (link.coordinate < 0) continue;
     const JointState state = world.jointStateAt(carrier.at(link.name).joint);
-    out.m_q[link.coordinate] = state.position;
+    out.m_q[link.coordinate - first] = state.position;
     out.m_qd[link.coordinate] = state.rate;
   }
   return out;
@@ -109,6 +147,15 @@ Eigen::VectorXd JointSpaceDynamics::newtonEuler(const Eigen::VectorXd& qd, const
   std::vector<Vec3> omega(count), alpha(count), accel(count);
   for (std::size_t b = 0; b < count; ++b) {
     const Link& link = m_links[b];
+    if (m_floating && b == 0) {
+      // The floating base: its origin's acceleration and its angular
+      // velocity and acceleration are coordinates.
+      const Vec3 r = link.center - link.anchor;
+      omega[0] = qd.segment<3>(3);
+      alpha[0] = qdd.segment<3>(3);
+      accel[0] = qdd.head<3>() + alpha[0].cross(r) + omega[0].cross(omega[0].cross(r));
+      continue;
+    }
     Vec3 w = Vec3::Zero(), dw = Vec3::Zero(), a = Vec3::Zero(), parentCenter = link.anchor;
     if (link.parent >= 0) {
       const auto p = static_cast<std::size_t>(link.parent);
@@ -138,7 +185,7 @@ Eigen::VectorXd JointSpaceDynamics::newtonEuler(const Eigen::VectorXd& qd, const
   }
   // Backward: the wrench each joint passes to its subtree, about its anchor.
   std::vector<Vec3> force(count, Vec3::Zero()), moment(count, Vec3::Zero());
-  Eigen::VectorXd tau = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_jointNames.size()));
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(qd.size());
   for (std::size_t b = count; b-- > 0;) {
     const Link& link = m_links[b];
     const Vec3 f = link.mass * (accel[b] - gravityScale * m_gravity);
@@ -146,6 +193,11 @@ Eigen::VectorXd JointSpaceDynamics::newtonEuler(const Eigen::VectorXd& qd, const
     force[b] += f;
     moment[b] += n + (link.center - link.anchor).cross(f);
     if (link.coordinate >= 0) tau[link.coordinate] = link.prismatic ? link.axis.dot(force[b]) : link.axis.dot(moment[b]);
+    if (m_floating && b == 0) {
+      // The whole robot's wrench, about the base frame's origin.
+      tau.head<3>() = force[0];
+      tau.segment<3>(3) = moment[0];
+    }
     if (link.parent >= 0) {
       const auto p = static_cast<std::size_t>(link.parent);
       force[p] += force[b];
@@ -169,7 +221,16 @@ Eigen::VectorXd JointSpaceDynamics::inverseDynamics(const Eigen::VectorXd& qdd) 
 }
 
 void JointSpaceDynamics::pointJacobian(int link, const Vec3& point, Eigen::MatrixXd& out) const {
-  out.setZero(6, static_cast<Eigen::Index>(m_jointNames.size()));
+  out.setZero(6, m_qd.size());
+  if (m_floating) {
+    // Every body rides on the base: v = v_o + ω × (p − o), ω = ω_base.
+    out.block<3, 3>(0, 0).setIdentity();
+    const Vec3 r = point - m_baseOrigin;
+    Mat3 cross;
+    cross << 0.0, r.z(), -r.y(), -r.z(), 0.0, r.x(), r.y(), -r.x(), 0.0;  // ω ↦ ω × r
+    out.block<3, 3>(0, 3) = cross;
+    out.block<3, 3>(3, 3).setIdentity();
+  }
   for (int at = link; at >= 0; at = m_links[static_cast<std::size_t>(at)].parent) {
     const Link& joint = m_links[static_cast<std::size_t>(at)];
     if (joint.coordinate < 0) continue;
@@ -184,7 +245,7 @@ void JointSpaceDynamics::pointJacobian(int link, const Vec3& point, Eigen::Matri
 
 Eigen::MatrixXd JointSpaceDynamics::massMatrix() const {
   // Σ over the bodies of J_vᵀ m J_v + J_ωᵀ I J_ω, J of the centre of mass.
-  const auto n = static_cast<Eigen::Index>(m_jointNames.size());
+  const Eigen::Index n = m_qd.size();
   Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
   Eigen::MatrixXd jacobian;
   for (std::size_t b = 0; b < m_links.size(); ++b) {

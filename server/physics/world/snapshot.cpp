@@ -310,6 +310,7 @@ void writeJoint(const JointConstraint& joint, ByteWriter& out) {
   out.f64(def.mimic.offset);
   out.f64(joint.mimicError);
   out.boolean(def.drive.gravityCompensation);
+  out.f64(def.drive.targetRate);
 }
 
 // Reads what writeJoint wrote; the bodies' ids get `worldTag`. Checks only
@@ -369,6 +370,7 @@ JointConstraint readJoint(ByteReader& in, uint32_t worldTag) {
   def.mimic.offset = in.f64("joint mimic offset");
   joint.mimicError = in.f64("joint mimic error");
   def.drive.gravityCompensation = in.boolean("joint drive gravity compensation flag");
+  def.drive.targetRate = in.f64("joint drive target rate");
   return joint;
 }
 

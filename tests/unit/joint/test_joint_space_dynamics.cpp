@@ -5,7 +5,11 @@
 // symmetric positive definite and equal column by column to Newton–Euler,
 // the Jacobian giving the bodies' own velocities, and the efforts of
 // inverse dynamics reproducing the accelerations asked for in one step, to
-// the step's first order in dt.
+// the step's first order in dt. A floating base (a free trunk with two
+// legs): M ν is the whole robot's momentum and angular momentum, the base
+// rows of g are gravity's wrench on it, the Jacobian gives every body's
+// velocity, and M ν̇ + h = (0, τ) predicts the free flight the simulation
+// takes, to the step's first order.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -207,7 +211,123 @@ TEST(JointSpaceDynamics, InverseDynamicsEffortsGiveTheAccelerationsAskedFor) {
   EXPECT_LT(errors[1], 0.6 * errors[0]) << "first order: " << errors[1] << " at 0.5 ms vs " << errors[0];
 }
 
-TEST(JointSpaceDynamics, RefusesWhatIsNotAFixedBaseTree) {
+// A floating robot: a free trunk whose frame is not at its centre of mass
+// (given mass properties), tumbling and drifting, with a leg on a skew
+// hinge and a slider below it, and a second leg on a hinge; set moving by
+// efforts.
+World floatingRobot(double dt) {
+  WorldSettings settings;
+  settings.dt = dt;
+  settings.gravity = Vec3(0, 0, -kG);
+  settings.contact.sleeping = false;
+  World world(settings);
+  BodyDef trunk;
+  trunk.name = "q/trunk";
+  trunk.shape = BoxShape{Vec3(0.3, 0.12, 0.08)};
+  trunk.mass = 6.0;
+  trunk.inertia = Vec3(0.04, 0.12, 0.14).asDiagonal().toDenseMatrix();
+  trunk.centerOfMass = Vec3(0.05, -0.02, 0.01);
+  trunk.position = Vec3(0, 0, 1);
+  trunk.orientation = Quaternion::fromAxisAngle(Vec3(1, 1, 0).normalized(), 0.3);
+  trunk.linearVelocity = Vec3(0.4, -0.2, 1.0);
+  trunk.angularVelocity = Vec3(0.5, -1.0, 0.7);
+  trunk.collides = false;
+  const BodyId body = world.createBody(trunk).value();
+  const Vec3 hipA(0.25, 0.1, 0.95);
+  const BodyId thigh = addBody(world, "q/thigh", BoxShape{Vec3(0.03, 0.04, 0.12)}, 1.0, hipA + Vec3(0, 0, -0.12));
+  const BodyId shin = addBody(world, "q/shin", BoxShape{Vec3(0.02, 0.02, 0.1)}, 0.5, hipA + Vec3(0, 0, -0.32));
+  const BodyId other = addBody(world, "q/other", BoxShape{Vec3(0.03, 0.03, 0.15)}, 0.8, Vec3(-0.25, -0.1, 0.8));
+  addJoint(world, hinge("q/hip", body, thigh, hipA, Vec3(0.2, 1, 0.1).normalized()));
+  addJoint(world, testing::slider("q/knee", thigh, shin, hipA + Vec3(0, 0, -0.24), Vec3(0, 0.1, 1).normalized()));
+  addJoint(world, hinge("q/hip2", body, other, Vec3(-0.25, -0.1, 0.95), Vec3::UnitX()));
+  const char* names[] = {"q/hip", "q/knee", "q/hip2"};
+  const double efforts[] = {1.5, 4.0, -1.0};
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(world.setJointEffort(world.findJoint(names[k]), efforts[k]).ok());
+  const int steps = static_cast<int>(std::lround(0.1 / dt));
+  for (int k = 0; k < steps; ++k) world.step();
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(world.setJointEffort(world.findJoint(names[k]), 0.0).ok());
+  return world;
+}
+
+TEST(JointSpaceDynamics, AFloatingBasesMomentumAndGravityAreTheWholeRobots) {
+  const World world = floatingRobot(1e-3);
+  const Expected<JointSpaceDynamics> dynamics = JointSpaceDynamics::ofRobot(world, "q/");
+  ASSERT_TRUE(dynamics.ok()) << dynamics.error().message;
+  ASSERT_TRUE(dynamics->floatingBase());
+  EXPECT_EQ(dynamics->baseName(), "q/trunk");
+  ASSERT_EQ(dynamics->dofCount(), 9);
+  EXPECT_EQ(dynamics->jointNames().size(), 3u);
+  const BodyView trunk = world.body(world.findBody("q/trunk"));
+  EXPECT_GT((dynamics->baseOrigin() - trunk.position()).norm(), 0.04) << "the frame's origin, not the centre of mass";
+
+  // M ν: the robot's momentum, and its angular momentum about the base origin.
+  const Eigen::VectorXd generalized = dynamics->massMatrix() * dynamics->velocities();
+  Vec3 momentum = Vec3::Zero(), angular = Vec3::Zero(), weight = Vec3::Zero(), moment = Vec3::Zero();
+  double mass = 0.0;
+  for (const std::string& name : dynamics->bodyNames()) {
+    const BodyView body = world.body(world.findBody(name));
+    const Vec3 r = body.position() - dynamics->baseOrigin();
+    momentum += body.linearMomentum();
+    angular += body.angularMomentum() + r.cross(body.linearMomentum());
+    weight += body.mass() * world.settings().gravity;
+    moment += r.cross(body.mass() * world.settings().gravity);
+    mass += body.mass();
+  }
+  EXPECT_EQ(dynamics->bodyNames().size(), 4u);
+  EXPECT_LT((generalized.head<3>() - momentum).norm(), 1e-9 * momentum.norm()) << generalized.head<3>().transpose();
+  EXPECT_LT((generalized.segment<3>(3) - angular).norm(), 1e-9 * angular.norm());
+  EXPECT_LT((dynamics->massMatrix().topLeftCorner<3, 3>() - mass * Mat3::Identity()).norm(), 1e-12);
+  // g's base rows: the wrench that holds the whole robot up.
+  const Eigen::VectorXd gravity = dynamics->gravityTorques();
+  EXPECT_LT((gravity.head<3>() + weight).norm(), 1e-9 * weight.norm());
+  EXPECT_LT((gravity.segment<3>(3) + moment).norm(), 1e-9 * (1 + moment.norm()));
+  // Symmetric positive definite, and the Jacobian gives each body's velocity.
+  const Eigen::MatrixXd M = dynamics->massMatrix();
+  EXPECT_LT((M - M.transpose()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(M.llt().info(), Eigen::Success);
+  for (const std::string& name : dynamics->bodyNames()) {
+    const BodyView body = world.body(world.findBody(name));
+    const Vec3 point = body.bodyToWorld(Vec3(0.02, 0.03, -0.04));
+    const Eigen::VectorXd twist = *dynamics->jacobian(name, point) * dynamics->velocities();
+    EXPECT_LT((twist.head<3>() - body.velocityAtPoint(point)).norm(), 1e-9) << name;
+    EXPECT_LT((twist.tail<3>() - body.angularVelocity()).norm(), 1e-9) << name;
+  }
+}
+
+TEST(JointSpaceDynamics, AFloatingRobotFliesAsMNuDotPlusHEqualsTheJointEffortsSay) {
+  // ν̇ = M⁻¹((0, τ) − h) against the simulation's velocity change over one
+  // step, to the step's first order.
+  const Eigen::Vector3d tau(2.0, -5.0, 1.0);
+  double errors[2], largest[2];
+  int k = 0;
+  for (const double dt : {1e-3, 5e-4}) {
+    World world = floatingRobot(dt);
+    const Expected<JointSpaceDynamics> before = JointSpaceDynamics::ofRobot(world, "q/");
+    ASSERT_TRUE(before.ok()) << before.error().message;
+    Eigen::VectorXd applied = Eigen::VectorXd::Zero(9);
+    applied.tail<3>() = tau;
+    const Eigen::VectorXd predicted = before->massMatrix().llt().solve(applied - before->biasForces());
+    for (int j = 0; j < 3; ++j)
+      ASSERT_TRUE(world.setJointEffort(world.findJoint(before->jointNames()[static_cast<std::size_t>(j)]), tau[j]).ok());
+    world.step();
+    const Expected<JointSpaceDynamics> after = JointSpaceDynamics::ofRobot(world, "q/");
+    ASSERT_TRUE(after.ok());
+    // The base origin's velocity: of the material point that was the origin.
+    Eigen::VectorXd measured = (after->velocities() - before->velocities()) / dt;
+    const BodyView trunk = world.body(world.findBody("q/trunk"));
+    measured.head<3>() = (trunk.velocityAtPoint(after->baseOrigin()) - before->velocities().head<3>()) / dt;
+    largest[k] = predicted.cwiseAbs().maxCoeff();
+    errors[k++] = (measured - predicted).cwiseAbs().maxCoeff();
+    EXPECT_GT(predicted.tail<3>().cwiseAbs().maxCoeff(), 1.0) << "the efforts accelerate the joints";
+  }
+  std::printf("floating base: worst acceleration error %.4g at 1 ms, %.4g at 0.5 ms, of accelerations up to %.4g\n",
+              errors[0], errors[1], largest[0]);
+  EXPECT_LT(errors[0], 0.01 * largest[0]) << "0.34 % measured";
+  EXPECT_GT(errors[1], 0.4 * errors[0]) << "first order";
+  EXPECT_LT(errors[1], 0.6 * errors[0]) << "first order";
+}
+
+TEST(JointSpaceDynamics, RefusesWhatIsNotATree) {
   WorldSettings settings;
   World world(settings);
   EXPECT_NE(JointSpaceDynamics::ofRobot(world, "r/").error().message.find("the world has no joint named so"),
@@ -215,7 +335,13 @@ TEST(JointSpaceDynamics, RefusesWhatIsNotAFixedBaseTree) {
   const BodyId trunk = addBody(world, "f/trunk", BoxShape{Vec3(0.2, 0.1, 0.1)}, 5.0, Vec3(0, 0, 1));
   const BodyId leg = addBody(world, "f/leg", BoxShape{Vec3(0.05, 0.05, 0.2)}, 1.0, Vec3(0, 0, 0.7));
   addJoint(world, hinge("f/hip", trunk, leg, Vec3(0, 0, 0.9), Vec3::UnitY()));
-  EXPECT_NE(JointSpaceDynamics::ofRobot(world, "f/").error().message.find("a floating base"), std::string::npos);
+  EXPECT_TRUE(JointSpaceDynamics::ofRobot(world, "f/").ok()) << "a free trunk: a floating base";
+  addJoint(world, hinge("tether", BodyId{}, trunk, Vec3(0, 0, 1.1), Vec3::UnitX()));
+  EXPECT_NE(JointSpaceDynamics::ofRobot(world, "f/").error().message.find("a floating base must be free"),
+            std::string::npos);
+  const BodyId arm = addBody(world, "f/arm", BoxShape{Vec3(0.05, 0.05, 0.2)}, 1.0, Vec3(1, 0, 0.7));
+  addJoint(world, hinge("f/shoulder", BodyId{}, arm, Vec3(1, 0, 0.9), Vec3::UnitY()));
+  EXPECT_NE(JointSpaceDynamics::ofRobot(world, "f/").error().message.find("two bases"), std::string::npos);
   JointDef ball;
   ball.name = "b/ball";
   ball.type = JointType::Spherical;

@@ -252,6 +252,38 @@ TEST(RobotConfig, TheLoadReportSaysWhichDrivesTheWorldFileGave) {
                    "max effort 9 N·m"));
 }
 
+// gravity_compensation, state_rate and state_dynamics on a robot: the
+// first reaches every axis joint's drive (its own and those commands turn
+// on later), the other two say how its robot_state_t goes out.
+TEST(RobotConfig, ARobotsGravityCompensationAndStatePublishing) {
+  const Expected<Config> config = parseConfig(
+      "robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    gravity_compensation: true\n"
+      "    state_rate: 1000\n    state_dynamics: true\n    joint_drives: {shoulder: {stiffness: 20}}\n"
+      "  - {name: other, urdf: two_link_arm.urdf, position: [2, 0, 0]}\n",
+      kUrdfDir + "/w.yaml", kUrdfDir);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  for (const NamedJointDef& joint : config->world.joints) {
+    const bool ours = joint.def.name.rfind("arm/", 0) == 0;
+    EXPECT_EQ(joint.def.drive.gravityCompensation, ours) << joint.def.name;
+  }
+  EXPECT_TRUE(config->world.joints[0].def.drive.enabled);
+  EXPECT_FALSE(config->world.joints[1].def.drive.enabled) << "set, for when a command turns the drive on";
+  ASSERT_EQ(config->robotPublishing.count("arm"), 1u);
+  EXPECT_EQ(config->robotPublishing.at("arm").stateRate, 1000.0);
+  EXPECT_TRUE(config->robotPublishing.at("arm").dynamics);
+  ASSERT_EQ(config->robotPublishing.count("other"), 1u);
+  EXPECT_EQ(config->robotPublishing.at("other").stateRate, 0.0) << "with the world state";
+  EXPECT_FALSE(config->robotPublishing.at("other").dynamics);
+  EXPECT_NE(std::find(config->robotReport.begin(), config->robotReport.end(),
+                      "gravity compensation on every joint's drive (gravity_compensation)"),
+            config->robotReport.end());
+
+  const std::string rate = errorOf("robots:\n  - {name: arm, urdf: two_link_arm.urdf, state_rate: 0}\n");
+  EXPECT_NE(rate.find("robots[0].state_rate"), std::string::npos) << rate;
+  const std::string flag = errorOf("robots:\n  - {name: arm, urdf: two_link_arm.urdf, state_dynamics: 1}\n");
+  EXPECT_NE(flag.find("robots[0].state_dynamics"), std::string::npos) << flag;
+}
+
 TEST(RobotConfig, JointDrivesNameTheRobotsAxisJoints) {
   const std::string unknown = errorOf(
       "robots:\n  - name: arm\n    urdf: two_link_arm.urdf\n    joint_drives:\n      wrist: {stiffness: 1}\n");

@@ -54,8 +54,10 @@ struct JointMotor {
 
 // Revolute and prismatic joints: a position drive pulls the joint coordinate
 // to `target` as a spring and damper along the axis (a servo, a PD
-// controller): effort = −stiffness (position − target) − damping rate,
-// capped at `maxEffort`. The spring and damper are implicit in the step
+// controller): effort = −stiffness (position − target) − damping (rate −
+// targetRate), capped at `maxEffort`; a target rate lets the damper follow
+// a trajectory's velocity instead of holding the joint still (a PD
+// controller's q̇_d). The spring and damper are implicit in the step
 // (as Box2D's and Jolt's soft constraints), so any stiffness is stable.
 // On a distance joint the drive is a spring between the anchors: `target`
 // is its rest length (m, >= 0), and the joint has no rigid length (only
@@ -80,6 +82,7 @@ struct JointDrive {
   // joint whose bodies close a loop back to its own side. Within the
   // actuator's effort limit, with the direct effort.
   bool gravityCompensation = false;
+  double targetRate = 0.0;  // rad/s or m/s, finite (last: the aggregate initialisers above stay valid)
 };
 
 // Revolute and prismatic joints: what the joint's actuator can give at

@@ -228,8 +228,9 @@ class World {
   // actuator limits (JointDef::actuatorLimits); 8: a body's collision
   // group and mask (BodyDef::collisionFilter) and the excluded pairs
   // (setPairCollision); 9: a joint's mimic (JointDef::mimic) and its
-  // coupling's error; 10: a drive's gravity compensation.
-  static constexpr uint32_t kSnapshotVersion = 10;
+  // coupling's error; 10: a drive's gravity compensation; 11: a drive's
+  // target rate.
+  static constexpr uint32_t kSnapshotVersion = 11;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
