@@ -12,7 +12,7 @@ import json
 import os
 import re
 
-from harness import REPO, run, run_cli, session
+from harness import REPO, np, run, run_cli, session
 
 ARM = os.path.join(REPO, "config", "worlds", "robot_arm.yaml")
 PANDA = os.path.join(REPO, "config", "worlds", "panda.yaml")
@@ -73,14 +73,19 @@ def cli_robot(workdir):
         assert abs(after["position"][0] - target) <= JOINT1_FRICTION / stiffness, (after["position"][0], target)
         assert sim.wait_joints(step=after["step"])["arm/joint1"].position == after["position"][0]
 
-        # The dynamics: M symmetric, positive on its diagonal, one row per joint.
+        # The dynamics, printed as the JSON has them: M symmetric positive
+        # definite, one row per joint; at rest (every rate 0) h is gravity's alone.
         out = _ok("robot", "state", "arm", "--dynamics")
-        rows = [list(map(float, line.split()[2:])) for line in out.splitlines() if line.startswith("mass_matrix ")]
+        rows = [line.split()[2:] for line in out.splitlines() if line.startswith("mass_matrix ")]
         assert len(rows) == 7 and all(len(r) == 7 for r in rows), out
-        for i in range(7):
-            assert rows[i][i] > 0, out
-            for j in range(7):
-                assert abs(rows[i][j] - rows[j][i]) <= 1e-9 * max(abs(rows[i][j]), 1e-12), (i, j, out)
+        dynamics = json.loads(_ok("robot", "state", "arm", "--dynamics", "--json"))
+        assert dynamics["step"] == after["step"] and dynamics["num_dofs"] == 7, dynamics
+        assert rows == [["%.10g" % v for v in row] for row in dynamics["mass_matrix"]], out
+        mass = np.array(dynamics["mass_matrix"])
+        assert np.max(np.abs(mass - mass.T)) <= 1e-12 * np.max(np.abs(mass)), mass
+        np.linalg.cholesky(mass)  # raises unless positive definite
+        assert dynamics["velocity"] == [0.0] * 7 and dynamics["bias"] == dynamics["gravity"], dynamics
+        assert len(dynamics["link_jacobian"]) == dynamics["num_links"] == 7, dynamics
 
         _ok("resume")
         _fails(1, r"robot arm command rejected: ", "robot", "command", "arm", "--steps", "1")
