@@ -206,6 +206,11 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
            {"remove"},
            {"pause", "now"},
            {"--timeout"},
+           {"robot"},
+           {"robot", "state"},
+           {"robot", "command", "puck", "--joint", "a", "--effort", "1"},
+           {"robot", "command", "puck", "--joint", "a,b", "--mode", "effort", "--effort", "1,2,3"},
+           {"robot", "command", "puck", "--steps", "-2"},
        }) {
     const ProcessResult bad = rbctl(arguments);
     expectExitStatus(bad, 2);
@@ -218,7 +223,7 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
   const ProcessResult help = rbctlBare({"--help"});
   expectExitStatus(help, 0);
   for (const char* verb : {"state", "status", "bodies", "wrench", "pause", "resume", "step",
-                           "reset", "spawn", "remove"}) {
+                           "reset", "spawn", "remove", "joints", "joint", "robot"}) {
     EXPECT_NE(help.output.find(std::string("  ") + verb + " "), std::string::npos) << verb;
     const ProcessResult usage = rbctlBare({verb, "--help"});
     expectExitStatus(usage, 0);
