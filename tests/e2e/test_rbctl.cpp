@@ -247,9 +247,8 @@ TEST_F(Rbctl, RobotStateAndCommand) {
   const ProcessResult state = rbctl({"robot", "state", "arm"});
   expectExitStatus(state, 0);
   const int64_t step = integerAfter(state.output, "step");
-  waitFor("the joints of the state's step", [&] {
-    return client().latestJoints() && client().latestJoints()->step >= step;
-  });
+  waitFor("the joints of the state's step",
+          [&] { return client().latestJoints() && client().latestJoints()->step >= step; });
   const std::regex jointLine("joint (\\S+) position (\\S+) velocity \\S+ effort \\S+");
   std::vector<std::string> names;
   std::istringstream lines(state.output);
@@ -266,8 +265,9 @@ TEST_F(Rbctl, RobotStateAndCommand) {
   EXPECT_EQ(names, (std::vector<std::string>{"arm/joint1", "arm/joint2", "arm/joint3", "arm/joint4",
                                              "arm/joint5", "arm/joint6", "arm/joint7"}))
       << state.output;
-  EXPECT_NE(state.output.find("\nbase arm/base_link fixed true position 0 0 0 orientation 1 0 0 0 "),
-            std::string::npos)
+  EXPECT_NE(
+      state.output.find("\nbase arm/base_link fixed true position 0 0 0 orientation 1 0 0 0 "),
+      std::string::npos)
       << state.output;
 
   // Refused whole, naming the joint and the closest names; an unknown robot
@@ -296,7 +296,8 @@ TEST_F(Rbctl, RobotStateAndCommand) {
              targetText, "--stiffness", "2000", "--damping", "100", "--steps", "1000"});
   expectExitStatus(command, 0);
   EXPECT_EQ(integerAfter(command.output, "effective_step"), before + 1) << command.output;
-  EXPECT_NE(command.output.find("\nstep " + std::to_string(before + 1000) + "\n"), std::string::npos)
+  EXPECT_NE(command.output.find("\nstep " + std::to_string(before + 1000) + "\n"),
+            std::string::npos)
       << command.output;
   waitForStep(before + 1000);
   waitFor("the joints after the steps",
@@ -321,9 +322,9 @@ TEST_F(Rbctl, RobotFollowerTakesOnlyKeep) {
   startServer(std::string(kConfigWorldsDir) + "/panda.yaml", {"--paused"});
   const ProcessResult state = rbctl({"robot", "state", "panda"});
   expectExitStatus(state, 0);
-  EXPECT_TRUE(std::regex_search(state.output,
-                                std::regex("\njoint panda/panda_finger_joint2 position \\S+ velocity "
-                                           "\\S+ effort \\S+ leader panda/panda_finger_joint1\n")))
+  EXPECT_TRUE(std::regex_search(
+      state.output, std::regex("\njoint panda/panda_finger_joint2 position \\S+ velocity "
+                               "\\S+ effort \\S+ leader panda/panda_finger_joint1\n")))
       << state.output;
   const ProcessResult follower =
       rbctl({"robot", "command", "panda", "--joint", "panda_finger_joint2", "--mode", "position",

@@ -164,8 +164,8 @@ void printRobotState(std::FILE* out, const rbsim::robot_state_t& s, bool dynamic
                s.robot.c_str(), static_cast<long long>(s.step), s.sim_time,
                static_cast<long long>(s.world_revision), s.num_joints);
   for (int i = 0; i < s.num_joints; ++i) {
-    std::fprintf(out, "joint %s position %.10g velocity %.10g effort %.10g", s.joint_names[i].c_str(),
-                 s.position[i], s.velocity[i], s.effort[i]);
+    std::fprintf(out, "joint %s position %.10g velocity %.10g effort %.10g",
+                 s.joint_names[i].c_str(), s.position[i], s.velocity[i], s.effort[i]);
     // A mimic follower: its leader moves it.
     if (s.leader[i] >= 0 && s.leader[i] < s.num_joints)
       std::fprintf(out, " leader %s", s.joint_names[s.leader[i]].c_str());

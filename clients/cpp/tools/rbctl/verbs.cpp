@@ -40,8 +40,8 @@ std::size_t boundedDistance(std::string_view a, std::string_view b, std::size_t 
     std::size_t smallest = row[0];
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t above = row[j];
-      row[j] = std::min({above + 1, row[j - 1] + 1,
-                         diagonal + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1)});
+      row[j] = std::min(
+          {above + 1, row[j - 1] + 1, diagonal + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1)});
       diagonal = above;
       smallest = std::min(smallest, row[j]);
     }
@@ -433,8 +433,7 @@ class RobotStates {
  public:
   explicit RobotStates(Client& client)
       : m_client(client), m_channel(client.channel("ROBOT_STATE")) {
-    m_subscription =
-        client.lcm().subscribe(regexEscaped(m_channel), &RobotStates::onMessage, this);
+    m_subscription = client.lcm().subscribe(regexEscaped(m_channel), &RobotStates::onMessage, this);
     if (m_subscription != nullptr) m_subscription->setQueueCapacity(1000);
   }
   ~RobotStates() {
@@ -535,7 +534,8 @@ rbsim::robot_command_t robotCommand(const Client& client, const std::string& rob
 
 // Publishes `message` and waits for its ack; nullopt (after saying so) when
 // none came or it could not be sent.
-std::optional<rbsim::ack_t> sendRobotCommand(Context& context, const rbsim::robot_command_t& message) {
+std::optional<rbsim::ack_t> sendRobotCommand(Context& context,
+                                             const rbsim::robot_command_t& message) {
   if (context.client.lcm().publish(context.client.channel("ROBOT_COMMAND"), &message) != 0) {
     std::fprintf(stderr, "rbctl: could not publish on %s\n",
                  context.client.channel("ROBOT_COMMAND").c_str());
@@ -575,15 +575,15 @@ int runRobotState(Context& context, Arguments& arguments) {
     const auto ack = sendRobotCommand(context, message);
     if (!ack) return kExitNoAnswer;
     if (!ack->accepted) {
-      std::fprintf(stderr, "rbctl: robot %s dynamics rejected: %s\n", name.c_str(), ack->reason.c_str());
+      std::fprintf(stderr, "rbctl: robot %s dynamics rejected: %s\n", name.c_str(),
+                   ack->reason.c_str());
       return kExitRejected;
     }
     // A state that carries them (or says why it cannot), from the ones
     // published since the request.
-    state = waitForRobot(context, robots, name, status, context.timeout, after,
-                         [](const rbsim::robot_state_t& s) {
-                           return s.num_dofs > 0 || !s.dynamics_note.empty();
-                         });
+    state = waitForRobot(
+        context, robots, name, status, context.timeout, after,
+        [](const rbsim::robot_state_t& s) { return s.num_dofs > 0 || !s.dynamics_note.empty(); });
   } else {
     state = waitForRobot(context, robots, name, status, context.timeout);
   }
@@ -603,7 +603,8 @@ std::vector<std::string> commaList(const std::string& option, const std::string&
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    items.push_back(
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (items.back().empty())
       throw UsageError(option + ": expected " + what + " separated by commas, got '" + text + "'");
     if (comma == std::string::npos) return items;
@@ -613,7 +614,8 @@ std::vector<std::string> commaList(const std::string& option, const std::string&
 
 // `values` for `count` joints: one value for all, or one each.
 template <class T>
-std::vector<T> perJoint(const std::string& option, const std::vector<T>& values, std::size_t count) {
+std::vector<T> perJoint(const std::string& option, const std::vector<T>& values,
+                        std::size_t count) {
   if (values.size() == 1) return std::vector<T>(count, values.front());
   if (values.size() != count)
     throw UsageError(option + ": " + std::to_string(values.size()) + " values for " +
@@ -689,7 +691,8 @@ int runRobotCommand(Context& context, Arguments& arguments) {
   if ((!names.empty() || !values.empty()) && !modeText)
     throw UsageError("give --mode for the joints commanded");
   for (const std::string& mode : modes)
-    if ((mode == "velocity" || mode == "position" || mode == "effort") && values.count("--" + mode) == 0)
+    if ((mode == "velocity" || mode == "position" || mode == "effort") &&
+        values.count("--" + mode) == 0)
       throw UsageError("--mode " + mode + " needs --" + mode);
   if (steps < 0) throw UsageError("--steps: expected N >= 0, got " + std::to_string(steps));
   if (steps > INT32_MAX) throw UsageError("--steps: at most " + std::to_string(INT32_MAX));
@@ -735,9 +738,9 @@ int runRobotCommand(Context& context, Arguments& arguments) {
   // The server publishes the robot's state after the last step.
   const int64_t last = ack->effective_step + steps - 1;
   int status = kExitOk;
-  const auto* state = waitForRobot(
-      context, robots, name, status, context.timeout + Client::Timeout(steps), after,
-      [&](const rbsim::robot_state_t& s) { return s.step >= last; });
+  const auto* state =
+      waitForRobot(context, robots, name, status, context.timeout + Client::Timeout(steps), after,
+                   [&](const rbsim::robot_state_t& s) { return s.step >= last; });
   if (state == nullptr) return status;
   std::printf("step %lld\n", static_cast<long long>(state->step));
   return kExitOk;
@@ -766,7 +769,8 @@ const std::vector<Verb>& verbs() {
        "  --json        one JSON object: step, sim_time, world_revision, bodies\n",
        runState},
       {"status", "print the latest heartbeat",
-       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields\n"
+       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its "
+       "fields\n"
        "(--json: as one JSON object).\n",
        runStatus},
       {"bodies", "print the world description (bodies, shapes, masses)",
