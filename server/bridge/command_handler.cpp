@@ -286,7 +286,12 @@ CommandOutcome CommandHandler::applyCommand(const rbsim::command_t& message, int
         if (id.isNull()) return std::nullopt;
         return !world.body(id).isStatic();
       };
-      const auto spawn = parseSpawnDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory, existing);
+      const auto worldBodies = [&world] {
+        std::vector<std::string> all;
+        for (BodyView body : world.bodies()) all.push_back(body.name());
+        return all;
+      };
+      const auto spawn = parseSpawnDef(message.spawn_yaml, "spawn_yaml", m_spawnMeshDirectory, existing, worldBodies);
       if (!spawn) return reject(spawn.error().message);
       if (static_cast<int64_t>(world.bodyCount()) + static_cast<int64_t>(spawn->bodies.size()) > m_settings.maxBodies)
         return reject("the world has " + std::to_string(world.bodyCount()) + " bodies; " +

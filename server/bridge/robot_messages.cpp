@@ -6,7 +6,7 @@
 
 #include <rbsim/joint_command_t.hpp>
 
-#include "bridge/closest_names.h"
+#include "config/closest_names.h"
 #include "bridge/wire_convert.h"
 #include "rbsim/physics/joint_space_dynamics.h"
 

@@ -1,6 +1,6 @@
 #include "bridge/wire_convert.h"
 
-#include "bridge/closest_names.h"
+#include "config/closest_names.h"
 
 #include <algorithm>
 #include <cmath>

@@ -91,7 +91,8 @@ class ConfigParser {
   // The world, then the server's sections, of one document.
   Expected<Config> parseConfig(const YamlNode& root) const;
   Expected<BodyDef> parseBody(const YamlNode& node) const;
-  Expected<SpawnDef> parseSpawn(const YamlNode& root, const JointBodyLookup& existing) const;
+  Expected<SpawnDef> parseSpawn(const YamlNode& root, const JointBodyLookup& existing,
+                                const JointBodyNames& existingNames = {}) const;
 
  private:
   // A `bodies:` list, appended to `bodies` (indexByName: name -> index in
@@ -171,7 +172,12 @@ Expected<WorldDef> ConfigParser::parseWorld(const YamlNode& root, std::vector<st
       if (found == indexByName.end()) return std::nullopt;
       return !world.bodies[found->second].isStatic;
     };
-    if (auto error = parseJoints(m_reader, joints->value, lookup, world.joints)) return *error;
+    const JointBodyNames names = [&] {
+      std::vector<std::string> all;
+      for (const auto& entry : indexByName) all.push_back(entry.first);
+      return all;
+    };
+    if (auto error = parseJoints(m_reader, joints->value, lookup, world.joints, names)) return *error;
   }
   return world;
 }
@@ -199,7 +205,8 @@ std::optional<Error> ConfigParser::parseBodies(const YamlNode& node, const Joint
   return std::nullopt;
 }
 
-Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBodyLookup& existing) const {
+Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBodyLookup& existing,
+                                            const JointBodyNames& existingNames) const {
   Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   SpawnDef spawn;
@@ -244,7 +251,12 @@ Expected<SpawnDef> ConfigParser::parseSpawn(const YamlNode& root, const JointBod
       if (found != indexByName.end()) return !spawn.bodies[found->second].isStatic;
       return existing(name);
     };
-    if (auto error = parseJoints(m_reader, joints->value, lookup, spawn.joints)) return *error;
+    const JointBodyNames names = [&] {
+      std::vector<std::string> all = existingNames ? existingNames() : std::vector<std::string>{};
+      for (const auto& entry : indexByName) all.push_back(entry.first);
+      return all;
+    };
+    if (auto error = parseJoints(m_reader, joints->value, lookup, spawn.joints, names)) return *error;
   }
   return spawn;
 }
@@ -672,10 +684,11 @@ Expected<BodyDef> parseBodyDef(const std::string& yamlText, const std::string& s
 }
 
 Expected<SpawnDef> parseSpawnDef(const std::string& yamlText, const std::string& sourceName,
-                                 const std::string& meshDirectory, const JointBodyLookup& existing) {
+                                 const std::string& meshDirectory, const JointBodyLookup& existing,
+                                 const JointBodyNames& existingNames) {
   const ConfigParser parser(sourceName, meshDirectory, ConfigParser::MeshPaths::InsideBaseDirectory);
   return parseDocument<SpawnDef>(yamlText, sourceName,
-                                 [&](const YamlNode& root) { return parser.parseSpawn(root, existing); });
+                                 [&](const YamlNode& root) { return parser.parseSpawn(root, existing, existingNames); });
 }
 
 Expected<Config> parseConfig(const std::string& yamlText, const std::string& sourceName,

@@ -88,7 +88,10 @@ struct SpawnDef {
 // symbolic link leading out (meshio/contained_path.h has the rules), and
 // ROS_PACKAGE_PATH is not consulted. Messages name files as the sender did,
 // never by the host's path.
+// `existingNames` lists the world's bodies for "did you mean" when a joint
+// names no body (may be empty).
 Expected<SpawnDef> parseSpawnDef(const std::string& yamlText, const std::string& sourceName,
-                                 const std::string& meshDirectory, const JointBodyLookup& existing);
+                                 const std::string& meshDirectory, const JointBodyLookup& existing,
+                                 const JointBodyNames& existingNames = {});
 
 }  // namespace rbsim

@@ -1,5 +1,7 @@
 #include "config/joint_config.h"
 
+#include "config/closest_names.h"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -50,7 +52,8 @@ constexpr std::array<TypeName, 5> kTypes = {{{"fixed", JointType::Fixed},
 
 class JointParser {
  public:
-  JointParser(const YamlReader& reader, const JointBodyLookup& bodies) : m_reader(reader), m_bodies(bodies) {}
+  JointParser(const YamlReader& reader, const JointBodyLookup& bodies, const JointBodyNames& bodyNames = {})
+      : m_reader(reader), m_bodies(bodies), m_bodyNames(bodyNames) {}
 
   Expected<NamedJointDef> parse(const YamlNode& node) const {
     Expected<YamlMap> map = m_reader.map(node);
@@ -117,7 +120,8 @@ class JointParser {
       if (*body != "world") {
         const std::optional<bool> bodyMoves = m_bodies(*body);
         if (!bodyMoves)
-          return m_reader.error(*bodyNode, "no body named \"" + *body + "\" (a body's name, or world)");
+          return m_reader.error(*bodyNode, "no body named \"" + *body + "\" (a body's name, or world)" +
+                                               (m_bodyNames ? didYouMean(*body, m_bodyNames()) : std::string()));
         moves[sideB ? 1 : 0] = *bodyMoves;
       }
       (sideB ? out.bodyB : out.bodyA) = *body;
@@ -361,6 +365,7 @@ class JointParser {
 
   const YamlReader& m_reader;
   const JointBodyLookup& m_bodies;
+  JointBodyNames m_bodyNames;
 };
 
 }  // namespace
@@ -371,10 +376,10 @@ Expected<JointDrive> parseJointDrive(const YamlReader& reader, const YamlNode& n
 }
 
 std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
-                                 std::vector<NamedJointDef>& joints) {
+                                 std::vector<NamedJointDef>& joints, const JointBodyNames& bodyNames) {
   Expected<std::vector<YamlNode>> items = reader.list(node);
   if (!items) return items.error();
-  const JointParser parser(reader, bodies);
+  const JointParser parser(reader, bodies, bodyNames);
   std::map<std::string, std::size_t, std::less<>> indexByName;
   for (std::size_t i = 0; i < items->size(); ++i) {
     Expected<NamedJointDef> joint = parser.parse((*items)[i]);

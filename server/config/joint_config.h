@@ -16,6 +16,9 @@ namespace rbsim {
 // Which bodies a joint may name: for a name, whether that body moves (false:
 // static), or nullopt when there is no body of that name.
 using JointBodyLookup = std::function<std::optional<bool>(const std::string& name)>;
+// The names of the bodies a joint may name, for "did you mean" when one
+// names none of them (may be empty: no suggestions).
+using JointBodyNames = std::function<std::vector<std::string>()>;
 
 // Reads the list `node` into `joints`; `bodies` says which bodies there are
 // (a world file's, or a spawn's with the world's). Errors: an unknown key or
@@ -25,7 +28,7 @@ using JointBodyLookup = std::function<std::optional<bool>(const std::string& nam
 // and a drive on one joint, a drive with both stiffness and frequency, and
 // negative gains, damping or friction.
 std::optional<Error> parseJoints(const YamlReader& reader, const YamlNode& node, const JointBodyLookup& bodies,
-                                 std::vector<NamedJointDef>& joints);
+                                 std::vector<NamedJointDef>& joints, const JointBodyNames& bodyNames = {});
 
 // A joint's `drive:` map as a joint in `joints:` takes it: {target,
 // stiffness, damping} or {target, frequency, damping_ratio}, and

@@ -5,6 +5,7 @@ namespace rbsim::e2e {
 const char* const kRbserver = RBSIM_E2E_RBSERVER;
 const char* const kRbctl = RBSIM_E2E_RBCTL;
 const char* const kPdExample = RBSIM_E2E_PD_EXAMPLE;
+const char* const kComputedTorqueExample = RBSIM_E2E_COMPUTED_TORQUE_EXAMPLE;
 const char* const kSpyLauncher = RBSIM_E2E_SPY_LAUNCHER;
 const char* const kTypesJar = RBSIM_E2E_TYPES_JAR;
 const char* const kJarTool = RBSIM_E2E_JAR_TOOL;

@@ -9,6 +9,7 @@ namespace rbsim::e2e {
 extern const char* const kRbserver;
 extern const char* const kRbctl;
 extern const char* const kPdExample;
+extern const char* const kComputedTorqueExample;
 extern const char* const kSpyLauncher;
 extern const char* const kTypesJar;  // "" without a JDK
 extern const char* const kJarTool;   // "" without a JDK

@@ -9,6 +9,8 @@
 #include <rbsim/wrench_t.hpp>
 #include <string_view>
 
+#include "wire_helpers.h"
+
 namespace rbsim::client {
 
 static_assert(static_cast<int8_t>(Frame::World) == rbsim::wrench_t::FRAME_WORLD);
@@ -22,6 +24,7 @@ static_assert(static_cast<int8_t>(WrenchMode::ClearAllClients) ==
 static_assert(static_cast<int8_t>(AckKind::Wrench) == rbsim::ack_t::KIND_WRENCH);
 static_assert(static_cast<int8_t>(AckKind::Command) == rbsim::ack_t::KIND_COMMAND);
 static_assert(static_cast<int8_t>(AckKind::JointCommand) == rbsim::ack_t::KIND_JOINT_COMMAND);
+static_assert(static_cast<int8_t>(AckKind::RobotCommand) == rbsim::ack_t::KIND_ROBOT_COMMAND);
 static_assert(static_cast<int8_t>(JointMode::Off) == rbsim::joint_command_t::MODE_OFF);
 static_assert(static_cast<int8_t>(JointMode::Velocity) == rbsim::joint_command_t::MODE_VELOCITY);
 static_assert(static_cast<int8_t>(JointMode::Position) == rbsim::joint_command_t::MODE_POSITION);
@@ -29,12 +32,10 @@ static_assert(static_cast<int8_t>(JointMode::Effort) == rbsim::joint_command_t::
 
 namespace {
 
-// LCM's default per-subscription queue holds 30 messages and drops the rest
-// silently (docs/lcm.md, "Subscriptions"); a burst of STEPs at state rate 0 publishes far
-// more before the caller gets to handle them.
-constexpr int kQueueCapacity = 10000;
-// Acks kept for waitForAck, per client.
-constexpr std::size_t kMaxKeptAcks = 4096;
+using detail::kQueueCapacity;
+using detail::regexEscaped;
+using detail::wallMicroseconds;
+
 // handle() stops draining after this many messages so that a fast publisher
 // cannot keep it from returning.
 constexpr int kMaxBatch = 100000;
@@ -42,23 +43,6 @@ constexpr int kMaxBatch = 100000;
 // comes, for predicates that watch something other than LCM (a child
 // process, a signal flag).
 constexpr Client::Timeout kMaxWaitSlice{50};
-
-int64_t wallMicroseconds() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-// LCM subscribes to a POSIX extended regex anchored at both ends
-// (docs/lcm.md, "Subscriptions"): a prefix such as "A.B_" must match itself only.
-std::string regexEscaped(const std::string& channel) {
-  std::string out;
-  for (const char c : channel) {
-    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) out += '\\';
-    out += c;
-  }
-  return out;
-}
 
 void copyVec3(double (&out)[3], const Vec3& in) {
   std::copy(in.begin(), in.end(), out);
@@ -231,8 +215,7 @@ void Client::onStatusMessage(const lcm::ReceiveBuffer*, const std::string&,
 void Client::onAckMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ack_t* ack) {
   if (ack->client == m_clientId) {
     if (!ack->instance_id.empty()) m_instances.insert(ack->instance_id);
-    m_acks[{ack->kind, ack->seq}] = *ack;
-    if (m_acks.size() > kMaxKeptAcks) m_acks.erase(m_acks.begin());
+    m_acks.add(*ack);
   }
   notify(m_ackCallbacks, *ack);
 }
@@ -352,10 +335,10 @@ Request Client::commandJoint(const JointCommand& command) {
 
 std::optional<rbsim::ack_t> Client::waitForAck(int64_t seq, AckKind kind, Timeout timeout) {
   const std::pair<int8_t, int64_t> key{static_cast<int8_t>(kind), seq};
-  spinUntil([&] { return m_acks.count(key) > 0; }, timeout);
-  const auto found = m_acks.find(key);
-  if (found == m_acks.end()) return std::nullopt;
-  return found->second;
+  spinUntil([&] { return m_acks.find(key) != nullptr; }, timeout);
+  const rbsim::ack_t* found = m_acks.find(key);
+  if (found == nullptr) return std::nullopt;
+  return *found;
 }
 
 std::optional<rbsim::ack_t> Client::waitForAck(const Request& request, Timeout timeout) {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "bridge/closest_names.h"
+#include "config/closest_names.h"
 
 namespace rbsim {
 namespace {

@@ -167,7 +167,16 @@ TEST(SpawnJoints, ARefusedSpawnAddsNothingAndSaysWhere) {
     return outcome.ack.reason;
   };
   EXPECT_EQ(refused("joints:\n  - {name: j, type: spherical, body_a: world, body_b: ghost, anchor: [0, 0, 0]}\n"),
-            "spawn_yaml:2:55: joints[0].body_b: no body named \"ghost\" (a body's name, or world)");
+            "spawn_yaml:2:55: joints[0].body_b: no body named \"ghost\" (a body's name, or world) (did you mean "
+            "'post'?)");
+  // A name close to one of the world's or the spawn's own bodies: said.
+  EXPECT_EQ(refused("bodies:\n  - {name: lid, shape: {type: sphere, radius: 0.1}, mass: 1}\njoints:\n"
+                    "  - {name: j, type: spherical, body_a: Boxx, body_b: lidd, anchor: [0, 0, 0]}\n"),
+            "spawn_yaml:4:40: joints[0].body_a: no body named \"Boxx\" (a body's name, or world) (did you mean 'box'?)");
+  EXPECT_NE(refused("bodies:\n  - {name: lid, shape: {type: sphere, radius: 0.1}, mass: 1}\njoints:\n"
+                    "  - {name: j, type: spherical, body_a: box, body_b: lidd, anchor: [0, 0, 0]}\n")
+                .find("no body named \"lidd\" (a body's name, or world) (did you mean 'lid'?)"),
+            std::string::npos);
   EXPECT_EQ(refused("bodies:\n  - {name: box, shape: {type: sphere, radius: 0.1}, mass: 1}\n"),
             "spawn_yaml:2:12: bodies[0].name: the world already has a body named \"box\"");
   EXPECT_EQ(refused("{name: box, shape: {type: sphere, radius: 0.1}, mass: 1}"),

@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "rbsim/client/ack_store.h"
 #include "rbsim/client/client_defaults.h"
 #include "rbsim/client/joint_command.h"
 #include "rbsim/client/page_assembler.h"
@@ -50,7 +51,7 @@ struct ClientOptions {
 };
 
 // Which channel a request went on, as ack_t::kind says.
-enum class AckKind : int8_t { Wrench = 1, Command = 2, JointCommand = 3 };
+enum class AckKind : int8_t { Wrench = 1, Command = 2, JointCommand = 3, RobotCommand = 4 };
 
 // A request sent: what its ack will carry. `sent` is false when LCM could not
 // publish it (no ack will come).
@@ -218,9 +219,8 @@ class Client {
   uint64_t m_statusCount = 0;
   uint64_t m_worldCount = 0;
 
-  // This client's acks by (kind, seq); the oldest are dropped past a bound so
-  // that a client streaming wrenches without waiting does not grow forever.
-  std::map<std::pair<int8_t, int64_t>, rbsim::ack_t> m_acks;
+  // This client's acks by (kind, seq).
+  AckStore m_acks;
 
   CallbackId m_nextCallbackId = 1;
   std::vector<Registered<StateCallback>> m_stateCallbacks;

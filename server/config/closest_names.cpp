@@ -1,4 +1,4 @@
-#include "bridge/closest_names.h"
+#include "config/closest_names.h"
 
 #include <algorithm>
 #include <cctype>
