@@ -10,11 +10,13 @@
 #include <rbsim/robot_command_t.hpp>
 #include <rbsim/robot_state_t.hpp>
 #include <rbsim/wrench_t.hpp>
+#include <set>
 #include <string_view>
 #include <utility>
 
 #include "printing.h"
 #include "rbsim/client/lookup.h"
+#include "rbsim/client/robot.h"
 
 namespace rbsim::rbctl {
 
@@ -414,9 +416,6 @@ int runRemove(Context& context, Arguments& arguments) {
 
 // --- robot ---------------------------------------------------------------
 
-// ack_t::KIND_ROBOT_COMMAND: the answer to a robot_command_t.
-constexpr auto kRobotAckKind = static_cast<client::AckKind>(rbsim::ack_t::KIND_ROBOT_COMMAND);
-
 // Escapes a channel name for LCM's subscription pattern (a POSIX regex).
 std::string regexEscaped(const std::string& text) {
   std::string out;
@@ -427,123 +426,76 @@ std::string regexEscaped(const std::string& text) {
   return out;
 }
 
-// The robot_state_t messages on <prefix>ROBOT_STATE, the newest of each
-// robot, received inside the client's handle() from construction on.
-class RobotStates {
+// What a robot verb hears besides its robot (on the Robot's own LCM
+// connection, so that the Robot's waits receive it too): the robots whose
+// states come on <prefix>ROBOT_STATE, and whether the server was heard at
+// all (its world states or statuses, not decoded).
+class Hearing {
  public:
-  explicit RobotStates(Client& client)
-      : m_client(client), m_channel(client.channel("ROBOT_STATE")) {
-    m_subscription = client.lcm().subscribe(regexEscaped(m_channel), &RobotStates::onMessage, this);
-    if (m_subscription != nullptr) m_subscription->setQueueCapacity(1000);
+  Hearing(lcm::LCM& lcm, const std::string& prefix) : m_channel(prefix + "ROBOT_STATE") {
+    lcm.subscribe(regexEscaped(m_channel), &Hearing::onRobotState, this);
+    // LCM anchors the pattern at both ends, around the group.
+    lcm.subscribe(
+        "(" + regexEscaped(prefix + "STATE") + "|" + regexEscaped(prefix + "STATUS") + ")",
+        &Hearing::onServer, this);
   }
-  ~RobotStates() {
-    if (m_subscription != nullptr) m_client.lcm().unsubscribe(m_subscription);
-  }
-  RobotStates(const RobotStates&) = delete;
-  RobotStates& operator=(const RobotStates&) = delete;
-
   const std::string& channel() const { return m_channel; }
-  uint64_t count(const std::string& robot) const {
-    const auto found = m_counts.find(robot);
-    return found == m_counts.end() ? 0 : found->second;
-  }
-  std::vector<std::string> heard() const {
-    std::vector<std::string> names;
-    for (const auto& [name, state] : m_latest) names.push_back(name);
-    return names;
-  }
-  // The newest state of `robot` once more than `after` arrived and it
-  // satisfies `ready`, or nullptr after `timeout`.
-  const rbsim::robot_state_t* wait(
-      const std::string& robot, Client::Timeout timeout, uint64_t after = 0,
-      const std::function<bool(const rbsim::robot_state_t&)>& ready = nullptr) {
-    const auto done = [&] {
-      const auto found = m_latest.find(robot);
-      return found != m_latest.end() && count(robot) > after && (!ready || ready(found->second));
-    };
-    if (!m_client.spinUntil(done, timeout)) return nullptr;
-    return &m_latest.at(robot);
-  }
+  const std::set<std::string>& robots() const { return m_robots; }
+  bool server() const { return m_server || !m_robots.empty(); }
 
  private:
-  void onMessage(const lcm::ReceiveBuffer*, const std::string&, const rbsim::robot_state_t* state) {
-    m_latest[state->robot] = *state;
-    ++m_counts[state->robot];
+  void onRobotState(const lcm::ReceiveBuffer*, const std::string&,
+                    const rbsim::robot_state_t* state) {
+    m_robots.insert(state->robot);
   }
+  void onServer(const lcm::ReceiveBuffer*, const std::string&) { m_server = true; }
 
-  Client& m_client;
   std::string m_channel;
-  lcm::Subscription* m_subscription = nullptr;
-  std::map<std::string, rbsim::robot_state_t> m_latest;
-  std::map<std::string, uint64_t> m_counts;
+  std::set<std::string> m_robots;
+  bool m_server = false;
 };
 
-// The state of robot `name` (see RobotStates::wait); when it does not come,
-// prints why and sets `status`: rejected (1) when the server was heard,
-// naming the robots it publishes, else no answer (3).
-const rbsim::robot_state_t* waitForRobot(
-    Context& context, RobotStates& robots, const std::string& name, int& status,
-    Client::Timeout timeout, uint64_t after = 0,
-    const std::function<bool(const rbsim::robot_state_t&)>& ready = nullptr) {
-  if (const auto* state = robots.wait(name, timeout, after, ready)) return state;
+// Handles the Robot's messages until `done()` or `timeout`; returns done().
+bool spinRobot(client::Robot& robot, const std::function<bool()>& done, Client::Timeout timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    const auto left =
+        std::chrono::ceil<Client::Timeout>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || robot.handle(std::min(left, Client::Timeout(50))) < 0) return done();
+  }
+  return true;
+}
+
+// Says why no (suitable) state of `robot` came within `timeout` and returns
+// the exit status: rejected (1) when the server was heard, naming the robots
+// it publishes; no answer (3) when nothing was, or states of the robot came
+// but not the one waited for.
+int robotMissing(Context& context, const Hearing& hearing, const client::Robot& robot,
+                 Client::Timeout timeout, uint64_t after = 0) {
   const double seconds = static_cast<double>(timeout.count()) * 1e-3;
-  const std::vector<std::string> heard = robots.heard();
-  status = kExitRejected;
-  if (robots.count(name) > after) {  // it came, but never as asked
-    std::fprintf(stderr, "rbctl: no state of robot '%s' as expected on %s within %.3g s\n",
-                 name.c_str(), robots.channel().c_str(), seconds);
-    status = kExitNoAnswer;
-  } else if (!heard.empty()) {
+  const char* name = robot.name().c_str();
+  if (robot.stateCount() > after) {
+    std::fprintf(stderr, "rbctl: no state of robot '%s' as expected on %s within %.3g s\n", name,
+                 hearing.channel().c_str(), seconds);
+    return kExitNoAnswer;
+  }
+  if (!hearing.robots().empty()) {
+    const std::vector<std::string> heard(hearing.robots().begin(), hearing.robots().end());
     std::string list;
-    for (const std::string& robot : heard) list += (list.empty() ? "" : ", ") + robot;
+    for (const std::string& other : heard) list += (list.empty() ? "" : ", ") + other;
     std::fprintf(stderr, "rbctl: no robot named '%s' on %s within %.3g s%s; robots heard: %s\n",
-                 name.c_str(), robots.channel().c_str(), seconds, didYouMean(name, heard).c_str(),
+                 name, hearing.channel().c_str(), seconds, didYouMean(robot.name(), heard).c_str(),
                  list.c_str());
-  } else if (context.client.latestState() || context.client.latestStatus()) {
+    return kExitRejected;
+  }
+  if (hearing.server()) {
     std::fprintf(stderr,
                  "rbctl: no robot named '%s': no robot states on %s within %.3g s (robots heard: "
                  "none)\n",
-                 name.c_str(), robots.channel().c_str(), seconds);
-  } else {
-    status = noAnswer(context, "robot state on " + robots.channel());
+                 name, hearing.channel().c_str(), seconds);
+    return kExitRejected;
   }
-  return nullptr;
-}
-
-// A robot_command_t that changes nothing: no joints, state rate and
-// dynamics as they are, no steps, from the next step.
-rbsim::robot_command_t robotCommand(const Client& client, const std::string& robot) {
-  rbsim::robot_command_t message{};
-  const int64_t now = std::chrono::duration_cast<std::chrono::microseconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
-  message.utime = now;
-  message.client = client.clientId();
-  // The wall clock in µs: increasing across runs, as the library's own
-  // sequence numbers are for a named client id.
-  message.seq = now;
-  message.robot = robot;
-  message.apply_at_step = -1;
-  message.num_joints = 0;
-  message.num_names = 0;
-  message.state_rate = 0.0;
-  message.state_dynamics = -1;
-  message.steps = 0;
-  return message;
-}
-
-// Publishes `message` and waits for its ack; nullopt (after saying so) when
-// none came or it could not be sent.
-std::optional<rbsim::ack_t> sendRobotCommand(Context& context,
-                                             const rbsim::robot_command_t& message) {
-  if (context.client.lcm().publish(context.client.channel("ROBOT_COMMAND"), &message) != 0) {
-    std::fprintf(stderr, "rbctl: could not publish on %s\n",
-                 context.client.channel("ROBOT_COMMAND").c_str());
-    return std::nullopt;
-  }
-  const auto ack = context.client.waitForAck(message.seq, kRobotAckKind, context.timeout);
-  if (!ack) noAnswer(context, "acknowledgement of the robot command");
-  return ack;
+  return noAnswer(context, "robot state on " + hearing.channel());
 }
 
 int runRobotState(Context& context, Arguments& arguments) {
@@ -565,33 +517,26 @@ int runRobotState(Context& context, Arguments& arguments) {
     }
   }
   if (name.empty()) throw UsageError("robot state: missing NAME");
-  RobotStates robots(context.client);
-  int status = kExitOk;
-  const rbsim::robot_state_t* state = nullptr;
+  client::Robot robot(name, context.options);
+  Hearing hearing(robot.lcm(), context.client.channelPrefix());
   if (dynamics) {
-    const uint64_t after = robots.count(name);
-    rbsim::robot_command_t message = robotCommand(context.client, name);
-    message.state_dynamics = 1;
-    const auto ack = sendRobotCommand(context, message);
-    if (!ack) return kExitNoAnswer;
+    robot.setDynamics(true);
+    const auto ack = robot.waitForAck(robot.send(), context.timeout);
+    if (!ack) return noAnswer(context, "acknowledgement of the robot command");
     if (!ack->accepted) {
       std::fprintf(stderr, "rbctl: robot %s dynamics rejected: %s\n", name.c_str(),
                    ack->reason.c_str());
       return kExitRejected;
     }
-    // A state that carries them (or says why it cannot), from the ones
-    // published since the request.
-    state = waitForRobot(
-        context, robots, name, status, context.timeout, after,
-        [](const rbsim::robot_state_t& s) { return s.num_dofs > 0 || !s.dynamics_note.empty(); });
-  } else {
-    state = waitForRobot(context, robots, name, status, context.timeout);
   }
-  if (state == nullptr) return status;
+  // With --dynamics a state that carries them (or says why it cannot): the
+  // Robot holds only states that came since it was made, before the request.
+  if (!robot.waitForState(context.timeout, dynamics))
+    return robotMissing(context, hearing, robot, context.timeout);
   if (json) {
-    printRobotStateJson(stdout, *state, dynamics);
+    printRobotStateJson(stdout, *robot.state(), dynamics);
   } else {
-    printRobotState(stdout, *state, dynamics);
+    printRobotState(stdout, *robot.state(), dynamics);
   }
   return kExitOk;
 }
@@ -697,34 +642,34 @@ int runRobotCommand(Context& context, Arguments& arguments) {
   if (steps < 0) throw UsageError("--steps: expected N >= 0, got " + std::to_string(steps));
   if (steps > INT32_MAX) throw UsageError("--steps: at most " + std::to_string(INT32_MAX));
 
-  RobotStates robots(context.client);
-  rbsim::robot_command_t message = robotCommand(context.client, name);
-  message.apply_at_step = atStep;
-  message.state_rate = stateRate;
-  message.steps = static_cast<int32_t>(steps);
+  client::Robot robot(name, context.options);
+  Hearing hearing(robot.lcm(), context.client.channelPrefix());
   if (modeText) {
     std::size_t count = names.size();
     if (names.empty()) {
       // No --joint: every joint of the robot, in its order, so its count.
-      int status = kExitOk;
-      const auto* state = waitForRobot(context, robots, name, status, context.timeout);
-      if (state == nullptr) return status;
-      count = static_cast<std::size_t>(state->num_joints);
+      if (!robot.waitForState(context.timeout))
+        return robotMissing(context, hearing, robot, context.timeout);
+      count = static_cast<std::size_t>(robot.numJoints());
     }
+    rbsim::robot_command_t entries{};
     for (const std::string& mode : perJoint("--mode", modes, count))
-      message.mode.push_back(parseRobotMode(mode));
+      entries.mode.push_back(parseRobotMode(mode));
     for (const auto& [option, field] : kRobotValues) {
       const auto given = values.find(option);
-      message.*field = given == values.end() ? std::vector<double>(count, 0.0)
+      entries.*field = given == values.end() ? std::vector<double>(count, 0.0)
                                              : perJoint(option, given->second, count);
     }
-    message.num_joints = static_cast<int32_t>(count);
-    message.joint_names = names;
-    message.num_names = static_cast<int32_t>(names.size());
+    entries.num_joints = static_cast<int32_t>(count);
+    entries.joint_names = names;
+    entries.num_names = static_cast<int32_t>(names.size());
+    robot.commandRaw(entries);
   }
-  const uint64_t after = robots.count(name);
-  const auto ack = sendRobotCommand(context, message);
-  if (!ack) return kExitNoAnswer;
+  robot.setStateRate(stateRate);
+  const uint64_t before = robot.stateCount();
+  const auto ack =
+      robot.waitForAck(robot.send(atStep, static_cast<int32_t>(steps)), context.timeout);
+  if (!ack) return noAnswer(context, "acknowledgement of the robot command");
   const std::string what = "robot " + name + " command";
   if (!ack->accepted) {
     std::fprintf(stderr, "rbctl: %s rejected: %s\n", what.c_str(), ack->reason.c_str());
@@ -737,12 +682,11 @@ int runRobotCommand(Context& context, Arguments& arguments) {
   if (steps == 0) return kExitOk;
   // The server publishes the robot's state after the last step.
   const int64_t last = ack->effective_step + steps - 1;
-  int status = kExitOk;
-  const auto* state =
-      waitForRobot(context, robots, name, status, context.timeout + Client::Timeout(steps), after,
-                   [&](const rbsim::robot_state_t& s) { return s.step >= last; });
-  if (state == nullptr) return status;
-  std::printf("step %lld\n", static_cast<long long>(state->step));
+  const Client::Timeout wait = context.timeout + Client::Timeout(steps);
+  if (!spinRobot(
+          robot, [&] { return robot.stateCount() > before && robot.state()->step >= last; }, wait))
+    return robotMissing(context, hearing, robot, wait, before);
+  std::printf("step %lld\n", static_cast<long long>(robot.state()->step));
   return kExitOk;
 }
 
