@@ -23,12 +23,18 @@ foreach(header IN LISTS headers)
     "if\\(__([A-Za-z0-9_]+)_len__ > maxlen - pos\\) return -1;"
     "if(__\\1_len__ <= 0 || __\\1_len__ > maxlen - pos ||\n       memchr((const char*)buf + offset + pos, 0, __\\1_len__) !=\n           (const char*)buf + offset + pos + __\\1_len__ - 1) return -1;"
     text "${text}")
+  # The same for each string of a string array (robot_command_t.joint_names:
+  # a length of INT32_MIN overflowed in `__elem_len - 1`, fuzz_robot_command_message).
+  string(REGEX REPLACE
+    "if\\(__elem_len > maxlen - pos\\) return -1;"
+    "if(__elem_len <= 0 || __elem_len > maxlen - pos ||\n           memchr((const char*)buf + offset + pos, 0, __elem_len) !=\n               (const char*)buf + offset + pos + __elem_len - 1) return -1;"
+    text "${text}")
   string(REGEX REPLACE
     "this->([A-Za-z0-9_]+)\\.resize\\(this->([A-Za-z0-9_]+)\\);"
     "if(this->\\2 < 0 || this->\\2 > maxlen - pos) return -1;\n    this->\\1.resize(this->\\2);"
     text "${text}")
   # A different lcm-gen would slip through unhardened: stop the build instead.
-  if(text MATCHES "if\\(__[A-Za-z0-9_]+_len__ > maxlen - pos\\)")
+  if(text MATCHES "if\\(__[A-Za-z0-9_]+_len__ > maxlen - pos\\)" OR text MATCHES "if\\(__elem_len > maxlen - pos\\)")
     message(FATAL_ERROR "harden_decoders: an unguarded string length remains in ${header}")
   endif()
   file(WRITE "${header}" "${text}")

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -204,6 +206,11 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
            {"remove"},
            {"pause", "now"},
            {"--timeout"},
+           {"robot"},
+           {"robot", "state"},
+           {"robot", "command", "puck", "--joint", "a", "--effort", "1"},
+           {"robot", "command", "puck", "--joint", "a,b", "--mode", "effort", "--effort", "1,2,3"},
+           {"robot", "command", "puck", "--steps", "-2"},
        }) {
     const ProcessResult bad = rbctl(arguments);
     expectExitStatus(bad, 2);
@@ -216,7 +223,7 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
   const ProcessResult help = rbctlBare({"--help"});
   expectExitStatus(help, 0);
   for (const char* verb : {"state", "status", "bodies", "wrench", "pause", "resume", "step",
-                           "reset", "spawn", "remove"}) {
+                           "reset", "spawn", "remove", "joints", "joint", "robot"}) {
     EXPECT_NE(help.output.find(std::string("  ") + verb + " "), std::string::npos) << verb;
     const ProcessResult usage = rbctlBare({verb, "--help"});
     expectExitStatus(usage, 0);
@@ -228,6 +235,106 @@ TEST_F(Rbctl, RejectionsTimeoutsAndBadArguments) {
   // None of it disturbed the server.
   const int64_t now = currentStep();
   waitFor("the server to keep stepping", [&] { return currentStep() >= now + 30; });
+}
+
+// rbctl's robot verb on the seven-joint arm (config/worlds/robot_arm.yaml:
+// robot "arm", each joint held by a servo), checked against what the
+// server publishes on JOINTS and against the servo's statics.
+TEST_F(Rbctl, RobotStateAndCommand) {
+  startServer(std::string(kConfigWorldsDir) + "/robot_arm.yaml", {"--paused", "--state-rate", "0"});
+
+  // The state: the seven joints in order, as the JOINTS channel has them.
+  const ProcessResult state = rbctl({"robot", "state", "arm"});
+  expectExitStatus(state, 0);
+  const int64_t step = integerAfter(state.output, "step");
+  waitFor("the joints of the state's step",
+          [&] { return client().latestJoints() && client().latestJoints()->step >= step; });
+  const std::regex jointLine("joint (\\S+) position (\\S+) velocity \\S+ effort \\S+");
+  std::vector<std::string> names;
+  std::istringstream lines(state.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (!std::regex_match(line, match, jointLine)) continue;
+    names.push_back(match[1]);
+    const rbsim::joint_state_t* published = client().jointState(match[1]);
+    ASSERT_NE(published, nullptr) << line;
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%.10g", published->position);
+    EXPECT_EQ(match[2].str(), expected) << line;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"arm/joint1", "arm/joint2", "arm/joint3", "arm/joint4",
+                                             "arm/joint5", "arm/joint6", "arm/joint7"}))
+      << state.output;
+  EXPECT_NE(
+      state.output.find("\nbase arm/base_link fixed true position 0 0 0 orientation 1 0 0 0 "),
+      std::string::npos)
+      << state.output;
+
+  // Refused whole, naming the joint and the closest names; an unknown robot
+  // named with the robots heard.
+  const ProcessResult unknownJoint =
+      rbctl({"robot", "command", "arm", "--joint", "joint9", "--mode", "off"});
+  expectExitStatus(unknownJoint, 1);
+  EXPECT_NE(unknownJoint.output.find("joint9"), std::string::npos) << unknownJoint.output;
+  EXPECT_NE(unknownJoint.output.find("did you mean"), std::string::npos) << unknownJoint.output;
+  const ProcessResult unknownRobot = rbctl({"robot", "state", "ram", "--timeout", "0.5"});
+  expectExitStatus(unknownRobot, 1);
+  EXPECT_NE(unknownRobot.output.find("(did you mean 'arm'?); robots heard: arm"), std::string::npos)
+      << unknownRobot.output;
+
+  // A position command on joint 1 (about the vertical: gravity does not
+  // load it) with a second of steps: the servo settles within hundredths of
+  // a second, after which only the joint's dry friction (arm7.urdf: 0.3 N m)
+  // holds it off the target, by at most friction / stiffness.
+  const int64_t before = currentStep();
+  const double target = client().jointState("arm/joint1")->position + 0.2;
+  const double stiffness = 2000.0;
+  char targetText[32];
+  std::snprintf(targetText, sizeof targetText, "%.17g", target);
+  const ProcessResult command =
+      rbctl({"robot", "command", "arm", "--joint", "joint1", "--mode", "position", "--position",
+             targetText, "--stiffness", "2000", "--damping", "100", "--steps", "1000"});
+  expectExitStatus(command, 0);
+  EXPECT_EQ(integerAfter(command.output, "effective_step"), before + 1) << command.output;
+  EXPECT_NE(command.output.find("\nstep " + std::to_string(before + 1000) + "\n"),
+            std::string::npos)
+      << command.output;
+  waitForStep(before + 1000);
+  waitFor("the joints after the steps",
+          [&] { return client().latestJoints()->step == before + 1000; });
+  EXPECT_LE(std::abs(client().jointState("arm/joint1")->position - target), 0.3 / stiffness);
+  // Exactly N steps: paused after them.
+  spinFor(300ms);
+  EXPECT_EQ(currentStep(), before + 1000);
+
+  // --steps is for a paused server.
+  expectExitStatus(rbctl({"resume"}), 0);
+  const ProcessResult running = rbctl({"robot", "command", "arm", "--steps", "1"});
+  expectExitStatus(running, 1);
+  EXPECT_NE(running.output.find("robot arm command rejected: "), std::string::npos)
+      << running.output;
+}
+
+// A mimic follower (config/worlds/panda.yaml: the second finger follows the
+// first) takes no command of its own: refused naming it; given keep,
+// beside its leader's target, accepted.
+TEST_F(Rbctl, RobotFollowerTakesOnlyKeep) {
+  startServer(std::string(kConfigWorldsDir) + "/panda.yaml", {"--paused"});
+  const ProcessResult state = rbctl({"robot", "state", "panda"});
+  expectExitStatus(state, 0);
+  EXPECT_TRUE(std::regex_search(
+      state.output, std::regex("\njoint panda/panda_finger_joint2 position \\S+ velocity "
+                               "\\S+ effort \\S+ leader panda/panda_finger_joint1\n")))
+      << state.output;
+  const ProcessResult follower =
+      rbctl({"robot", "command", "panda", "--joint", "panda_finger_joint2", "--mode", "position",
+             "--position", "0.01", "--stiffness", "100", "--damping", "1"});
+  expectExitStatus(follower, 1);
+  EXPECT_NE(follower.output.find("panda_finger_joint2"), std::string::npos) << follower.output;
+  expectExitStatus(rbctl({"robot", "command", "panda", "--joint",
+                          "panda_finger_joint1,panda_finger_joint2", "--mode", "position,keep",
+                          "--position", "0.01", "--stiffness", "2000", "--damping", "60"}),
+                   0);
 }
 
 }  // namespace

@@ -15,6 +15,11 @@
     python3 -m rbsim joints                     print the joints and their state
     python3 -m rbsim joint NAME off|velocity|position|effort [TARGET]
                            [--max-effort E] [--stiffness K] [--damping D] [--at-step K]
+    python3 -m rbsim robot state NAME [--json] [--dynamics]
+    python3 -m rbsim robot command NAME [--joint J[,J...]]... [--mode M[,M...]]
+                           [--position Q,...] [--velocity V,...] [--effort E,...]
+                           [--stiffness K,...] [--damping D,...] [--max-effort E,...]
+                           [--at-step K] [--state-rate HZ] [--steps N]
     python3 -m rbsim plot LOG -o OUT.png [--bodies NAME ...]
 
 The verbs, options, defaults, outputs and exit statuses are those of rbctl,
@@ -28,6 +33,8 @@ within --timeout, 4 LCM could not be opened (or another error).
 import argparse
 import os
 import sys
+import threading
+import time
 
 EXIT_OK, EXIT_REJECTED, EXIT_USAGE, EXIT_TIMEOUT, EXIT_ERROR = 0, 1, 2, 3, 4
 
@@ -52,6 +59,18 @@ def _client(args):
     client = Client(url=args.url, prefix=args.prefix, client_id=args.client_id)
     _clients.append(client)
     return client
+
+
+def did_you_mean(name, known):
+    """" (did you mean 'a', 'b' or 'c'?)" with the names of ``known``
+    closest to ``name``, as the server's refusals put it (the rule of
+    rbsim.errors.closest_names), or ""."""
+    from .errors import closest_names
+
+    names = ["'%s'" % n for n in closest_names(name, known)]
+    if not names:
+        return ""
+    return " (did you mean %s?)" % (names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1])
 
 
 def _report(ack, what):
@@ -80,8 +99,8 @@ def cmd_state(args):
         state = sim.wait_state(args.timeout)
     unknown = [n for n in args.body or [] if n not in state]
     if unknown:
-        raise CliError("no body named '%s' in the state of step %d" % (unknown[0], state.step),
-                       EXIT_REJECTED)
+        raise CliError("no body named '%s' in the state of step %d%s" % (
+            unknown[0], state.step, did_you_mean(unknown[0], state.names())), EXIT_REJECTED)
     names = set(args.body or [])
     if args.json:
         print(printing.state_json(state, names))
@@ -245,6 +264,218 @@ def cmd_plot(args):
         args.quantity, ", %d incomplete steps" % len(log.incomplete_steps) if log.incomplete_steps else ""))
 
 
+# -- robot -------------------------------------------------------------------------------
+
+# ack_t.KIND_ROBOT_COMMAND: the answer to a robot_command_t.
+ROBOT_ACK_KIND = 4
+# robot_command_t's modes by the names of --mode (docs/cli.md).
+ROBOT_MODES = {"keep": -1, "off": 0, "velocity": 1, "position": 2, "effort": 3}
+# The per-joint values of `robot command`: option, robot_command_t field.
+ROBOT_VALUES = (("--position", "position"), ("--velocity", "velocity"), ("--effort", "effort"),
+                ("--stiffness", "stiffness"), ("--damping", "damping"), ("--max-effort", "max_effort"))
+# The modes whose target must be given: the value of the same name (the
+# other values default to 0).
+ROBOT_MODES_WITH_TARGET = ("velocity", "position", "effort")
+
+
+class RobotStates:
+    """The robot_state_t messages on <prefix>ROBOT_STATE, the newest of each
+    robot, received on the client's LCM thread from the moment it exists."""
+
+    def __init__(self, sim):
+        from . import robot_state_t
+
+        self._type = robot_state_t
+        self._cond = threading.Condition()
+        self._latest = {}  # robot -> its newest robot_state_t
+        self._counts = {}  # robot -> how many arrived
+        self.channel = sim.channel("ROBOT_STATE")
+        sim.lcm.subscribe(self.channel, self._on_message, queue_capacity=1000)
+
+    def _on_message(self, _channel, data, _utime):
+        try:
+            message = self._type.decode(data)
+        except Exception:  # not a robot_state_t: not ours to report
+            return
+        with self._cond:
+            self._latest[message.robot] = message
+            self._counts[message.robot] = self._counts.get(message.robot, 0) + 1
+            self._cond.notify_all()
+
+    def heard(self):
+        """The robots whose states arrived, sorted."""
+        with self._cond:
+            return sorted(self._latest)
+
+    def count(self, robot):
+        with self._cond:
+            return self._counts.get(robot, 0)
+
+    def wait(self, robot, timeout, after=0, ready=lambda state: True):
+        """The newest state of ``robot`` once more than ``after`` arrived and
+        it satisfies ``ready``, or None after ``timeout`` s."""
+        deadline = time.monotonic() + timeout
+        with self._cond:
+            while True:
+                state = self._latest.get(robot)
+                if state is not None and self._counts[robot] > after and ready(state):
+                    return state
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    return None
+                self._cond.wait(remaining)
+
+
+def _no_robot(sim, robots, name, timeout):
+    """The error for a robot whose state did not come: rejected (exit 1) when
+    the server was heard, naming the robots it publishes; else no answer."""
+    heard = robots.heard()
+    if heard:
+        return CliError("no robot named '%s' on %s within %.3g s%s; robots heard: %s" % (
+            name, robots.channel, timeout, did_you_mean(name, heard), ", ".join(heard)), EXIT_REJECTED)
+    if sim.state is not None or sim.status is not None:
+        return CliError("no robot named '%s': no robot states on %s within %.3g s (robots heard: none)"
+                        % (name, robots.channel, timeout), EXIT_REJECTED)
+    return TimeoutError("no robot state on %s within %.3g s (is rbserver running on %s with prefix %s?)"
+                        % (robots.channel, timeout, sim.url, sim.prefix))
+
+
+def _robot_state(sim, robots, name, timeout, after=0, ready=lambda state: True):
+    state = robots.wait(name, timeout, after, ready)
+    if state is None:
+        if robots.count(name) > after:  # it came, but never as asked
+            raise TimeoutError("no state of robot '%s' as expected on %s within %.3g s"
+                               % (name, robots.channel, timeout))
+        raise _no_robot(sim, robots, name, timeout)
+    return state
+
+
+def _send_robot_command(sim, robot, apply_at_step=-1, names=(), entries=None, state_rate=0.0,
+                        state_dynamics=-1, steps=0):
+    """Publishes one robot_command_t; returns its seq. ``entries``: field ->
+    per-joint list (mode and the values), all of one length."""
+    from . import robot_command_t
+
+    message = robot_command_t()
+    message.utime = int(time.time() * 1e6)
+    message.client = sim.client_id
+    message.seq = sim._next_seq()
+    message.robot = robot
+    message.apply_at_step = int(apply_at_step)
+    entries = entries or {}
+    message.num_joints = len(entries.get("mode", []))
+    message.num_names = len(names)
+    message.joint_names = list(names)
+    message.mode = list(entries.get("mode", []))
+    for _option, field in ROBOT_VALUES:
+        setattr(message, field, list(entries.get(field, [0.0] * message.num_joints)))
+    message.state_rate = float(state_rate)
+    message.state_dynamics = int(state_dynamics)
+    message.steps = int(steps)
+    sim.lcm.publish(sim.channel("ROBOT_COMMAND"), message.encode())
+    return message.seq
+
+
+def _comma_list(option, text, convert, what):
+    items = text.split(",")
+    if any(item == "" for item in items):
+        raise CliError("%s: expected %s separated by commas, got '%s'" % (option, what, text), EXIT_USAGE)
+    return [convert(item) for item in items]
+
+
+def _finite(option):
+    def convert(item):
+        try:
+            value = float(item)
+        except ValueError:
+            value = float("nan")
+        if value != value or value in (float("inf"), float("-inf")):
+            raise CliError("%s: expected a finite number, got '%s'" % (option, item), EXIT_USAGE)
+        return value
+
+    return convert
+
+
+def _robot_mode(item):
+    mode = ROBOT_MODES.get(item)
+    if mode is None:
+        raise CliError("--mode: expected keep, off, velocity, position or effort, got '%s'" % item, EXIT_USAGE)
+    return item
+
+
+def _per_joint(option, values, count):
+    """``values`` for ``count`` joints: one value for all, or one each."""
+    if len(values) == 1:
+        return values * count
+    if len(values) != count:
+        raise CliError("%s: %d values for %d joints (give one for all, or one per joint)"
+                       % (option, len(values), count), EXIT_USAGE)
+    return values
+
+
+def cmd_robot_state(args):
+    from . import printing
+
+    with _client(args) as sim:
+        robots = RobotStates(sim)
+        if args.dynamics:
+            after = robots.count(args.name)
+            seq = _send_robot_command(sim, args.name, state_dynamics=1)
+            ack = sim.wait_ack(seq, ROBOT_ACK_KIND, args.timeout)
+            if not ack.accepted:
+                raise CliError("robot %s dynamics rejected: %s" % (args.name, ack.reason or "no reason given"),
+                               EXIT_REJECTED)
+            # A state that carries them (or says why it cannot), from the
+            # ones published since the request.
+            state = _robot_state(sim, robots, args.name, args.timeout, after,
+                                 lambda s: s.num_dofs > 0 or s.dynamics_note != "")
+        else:
+            state = _robot_state(sim, robots, args.name, args.timeout)
+    if args.json:
+        print(printing.robot_state_json(state, args.dynamics))
+    else:
+        print("\n".join(printing.robot_state_lines(state, args.dynamics)))
+
+
+def cmd_robot_command(args):
+    # Everything that does not depend on the robot is checked first, as rbctl does.
+    names = [n for text in args.joint or [] for n in _comma_list("--joint", text, str, "joint names")]
+    modes = _comma_list("--mode", args.mode, _robot_mode, "modes") if args.mode is not None else None
+    values = {}
+    for option, field in ROBOT_VALUES:
+        text = getattr(args, field)
+        if text is not None:
+            values[field] = _comma_list(option, text, _finite(option), "numbers")
+    if (names or values) and modes is None:
+        raise CliError("give --mode for the joints commanded", EXIT_USAGE)
+    for mode in modes or []:
+        if mode in ROBOT_MODES_WITH_TARGET and mode not in values:
+            raise CliError("--mode %s needs --%s" % (mode, mode), EXIT_USAGE)
+    if args.steps < 0:
+        raise CliError("--steps: expected N >= 0, got %d" % args.steps, EXIT_USAGE)
+    with _client(args) as sim:
+        robots = RobotStates(sim)
+        entries = None
+        if modes is not None:
+            # No --joint: every joint of the robot, in its order, so its count.
+            count = len(names) if names else _robot_state(sim, robots, args.name, args.timeout).num_joints
+            entries = {"mode": [ROBOT_MODES[m] for m in _per_joint("--mode", modes, count)]}
+            for option, field in ROBOT_VALUES:
+                if field in values:
+                    entries[field] = _per_joint(option, values[field], count)
+        after = robots.count(args.name)
+        seq = _send_robot_command(sim, args.name, args.at_step, names, entries, args.state_rate,
+                                  steps=args.steps)
+        ack = sim.wait_ack(seq, ROBOT_ACK_KIND, args.timeout)
+        _report(ack, "robot %s command" % args.name)
+        if args.steps > 0:
+            # The server publishes the robot's state after the last step.
+            last = ack.effective_step + args.steps - 1
+            state = _robot_state(sim, robots, args.name, args.timeout + 1e-3 * args.steps, after,
+                                 lambda s: s.step >= last)
+            print("step %d" % state.step)
+
+
 # -- parser ------------------------------------------------------------------------------
 
 
@@ -370,6 +601,64 @@ def build_parser():
     sub.add_argument("--at-step", type=int, default=-1, metavar="K",
                      help="the step from which it acts (default -1: the next)")
 
+    robot = verbs.add_parser("robot", help="a robot's joints in one message: its state (robot_state_t) "
+                             "or a command for all of them (robot_command_t)",
+                             description="A robot's joints in one message (its joints are named "
+                             "'<robot>/...'): robot state prints its robot_state_t, robot command "
+                             "sends one robot_command_t.")
+    _global_options(robot, suppress=True)
+    robot_verbs = robot.add_subparsers(dest="robot_verb", metavar="state|command")
+    robot_verbs.required = True
+
+    def robot_verb(name, function, help_text):
+        sub = robot_verbs.add_parser(name, help=help_text, description=help_text)
+        _global_options(sub, suppress=True)
+        sub.set_defaults(function=function)
+        sub.add_argument("name", metavar="NAME", help="the robot's name")
+        return sub
+
+    sub = robot_verb("state", cmd_robot_state, "print the next state of robot NAME (robot_state_t): "
+                     "its joints (full names, rad or m, rad/s or m/s, N*m or N; a mimic follower "
+                     "names its leader) and its base's pose and twist (world frame)")
+    sub.add_argument("--json", action="store_true", help="print JSON (the wire field names)")
+    sub.add_argument("--dynamics", action="store_true",
+                     help="turn the robot's dynamics on first (they stay on) and print them too: "
+                          "the mass matrix M, the bias h and gravity g (and in JSON the links' "
+                          "poses and Jacobians)")
+
+    sub = robot_verb("command", cmd_robot_command,
+                     "send one robot_command_t to robot NAME: applied whole at one step or refused "
+                     "whole (exit 1); values are comma lists, one per joint (one value: all joints)")
+    sub.add_argument("--joint", action="append", metavar="J[,J...]",
+                     help="the joints commanded, '<joint>' or '<robot>/<joint>' (repeatable; "
+                          "default: every joint of the robot, in its order)")
+    sub.add_argument("--mode", default=None, metavar="M[,M...]",
+                     help="keep (a mimic follower's), off, velocity, position or effort; needed "
+                          "to command joints")
+    sub.add_argument("--position", default=None, metavar="Q,...",
+                     help="position: the target coordinate, rad or m (needed by position)")
+    sub.add_argument("--velocity", default=None, metavar="V,...",
+                     help="velocity: the target rate, rad/s or m/s (needed by velocity); position: "
+                          "the rate the damping pulls to (default 0)")
+    sub.add_argument("--effort", default=None, metavar="E,...",
+                     help="effort: N*m or N (needed by effort); position and velocity: the "
+                          "feed-forward effort added (default 0)")
+    sub.add_argument("--stiffness", default=None, metavar="K,...",
+                     help="position: N*m/rad or N/m (default 0; not both 0 with --damping)")
+    sub.add_argument("--damping", default=None, metavar="D,...",
+                     help="position: N*m*s/rad or N*s/m (default 0)")
+    sub.add_argument("--max-effort", dest="max_effort", default=None, metavar="E,...",
+                     help="N*m or N: velocity: the motor's largest effort (default 0: the joint's "
+                          "effort limit); position: the drive's cap (default 0: uncapped)")
+    sub.add_argument("--at-step", type=int, default=-1, metavar="K",
+                     help="the step from which it acts (default -1: the next)")
+    sub.add_argument("--state-rate", type=float, default=0.0, metavar="HZ",
+                     help="how often the server publishes the robot's state from now on (default 0: "
+                          "as it is; -1: with every world state)")
+    sub.add_argument("--steps", type=int, default=0, metavar="N",
+                     help="while paused: take N steps after applying it and wait for the robot's "
+                          "state after the last (default 0)")
+
     sub = verb("plot", cmd_plot, "plot an LCM log: one panel per dynamic body against simulated time, "
                                  "wrenches and commands marked")
     sub.add_argument("log", help="LCM log (lcm-logger or rbserver --record)")
@@ -382,8 +671,24 @@ def build_parser():
     return parser
 
 
+# Options whose value is a comma list of numbers: argparse would take a
+# value such as "-0.5,1" for an option, so it is joined to its option.
+_NUMBER_LIST_OPTIONS = ("--position", "--velocity", "--effort", "--stiffness", "--damping", "--max-effort")
+
+
+def _join_number_lists(argv):
+    out = []
+    for argument in argv:
+        if (out and out[-1] in _NUMBER_LIST_OPTIONS and argument[:1] == "-"
+                and argument[1:2] in tuple("0123456789.")):
+            out[-1] += "=" + argument
+        else:
+            out.append(argument)
+    return out
+
+
 def main(argv=None):
-    args = build_parser().parse_args(argv)
+    args = build_parser().parse_args(_join_number_lists(sys.argv[1:] if argv is None else argv))
     try:
         args.function(args)
         for client in _clients:

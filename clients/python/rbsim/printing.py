@@ -1,4 +1,4 @@
-"""What ``python3 -m rbsim state|status|bodies`` print: the very lines and
+"""What ``python3 -m rbsim state|status|bodies|joints|robot state`` print: the very lines and
 JSON of ``rbctl`` (clients/cpp/tools/rbctl/printing.cpp), so that one script
 reads either CLI (docs/cli.md). Text: one record per line, "key value"
 pairs, numbers with 10 significant digits; JSON: the wire field names.
@@ -7,8 +7,8 @@ pairs, numbers with 10 significant digits; JSON: the wire field names.
 import json
 from typing import Collection, Iterable, List
 
-__all__ = ["state_lines", "status_lines", "world_lines", "joint_lines", "state_json", "status_json",
-           "world_json", "joints_json", "number", "orientation_values"]
+__all__ = ["state_lines", "status_lines", "world_lines", "joint_lines", "robot_state_lines", "state_json",
+           "status_json", "world_json", "joints_json", "robot_state_json", "number", "orientation_values"]
 
 # Below this a quaternion component is rounding noise of a unit quaternion,
 # beyond what 10 significant digits of the others can show: printed as 0.
@@ -193,3 +193,56 @@ def world_json(world) -> str:
                     "collision_mask": b.collision_mask, "frozen": b.frozen}
                    for b in world.bodies],
     })
+
+
+def robot_state_lines(state, dynamics: bool = False) -> List[str]:
+    """``state``: a robot_state_t; ``dynamics``: with its dynamics (M, h, g
+    and the links' poses: the Jacobians are in the JSON only)."""
+    lines = ["robot %s step %d sim_time %s world_revision %d joints %d" % (
+        state.robot, state.step, number(state.sim_time), state.world_revision, state.num_joints)]
+    for i in range(state.num_joints):
+        line = "joint %s position %s velocity %s effort %s" % (
+            state.joint_names[i], number(state.position[i]), number(state.velocity[i]), number(state.effort[i]))
+        if 0 <= state.leader[i] < state.num_joints:  # a mimic follower: its leader moves it
+            line += " leader %s" % state.joint_names[state.leader[i]]
+        lines.append(line)
+    lines.append("base %s fixed %s%s%s%s%s" % (
+        state.base, "true" if state.base_fixed else "false", _vector("position", state.base_position),
+        _vector("orientation", orientation_values(state.base_orientation)),
+        _vector("linear_velocity", state.base_linear_velocity),
+        _vector("angular_velocity", state.base_angular_velocity)))
+    if dynamics:
+        line = "dynamics dofs %d links %d" % (state.num_dofs, state.num_links)
+        if state.dynamics_note:
+            line += " note " + state.dynamics_note
+        lines.append(line)
+        for i, row in enumerate(state.mass_matrix):
+            lines.append("mass_matrix %d%s" % (i, "".join(" " + number(v) for v in row)))
+        if state.num_dofs > 0:
+            lines.append("bias" + "".join(" " + number(v) for v in state.bias))
+            lines.append("gravity" + "".join(" " + number(v) for v in state.gravity))
+        for i in range(state.num_links):
+            lines.append("link %s%s%s" % (state.link_names[i], _vector("position", state.link_position[i]),
+                                          _vector("orientation", orientation_values(state.link_orientation[i]))))
+    return lines
+
+
+def robot_state_json(state, dynamics: bool = False) -> str:
+    """The state with the wire field names (all but utime); the dynamics'
+    fields only with ``dynamics``."""
+    out = {"step": state.step, "sim_time": state.sim_time, "world_revision": state.world_revision,
+           "robot": state.robot, "num_joints": state.num_joints, "joint_names": list(state.joint_names),
+           "leader": list(state.leader), "position": list(state.position), "velocity": list(state.velocity),
+           "effort": list(state.effort), "base": state.base, "base_position": list(state.base_position),
+           "base_orientation": orientation_values(state.base_orientation),
+           "base_linear_velocity": list(state.base_linear_velocity),
+           "base_angular_velocity": list(state.base_angular_velocity), "base_fixed": bool(state.base_fixed)}
+    if dynamics:
+        out.update({"num_dofs": state.num_dofs, "dynamics_note": state.dynamics_note,
+                    "mass_matrix": [list(row) for row in state.mass_matrix], "bias": list(state.bias),
+                    "gravity": list(state.gravity), "num_links": state.num_links,
+                    "link_names": list(state.link_names),
+                    "link_position": [list(p) for p in state.link_position],
+                    "link_orientation": [orientation_values(q) for q in state.link_orientation],
+                    "link_jacobian": [[list(row) for row in jacobian] for jacobian in state.link_jacobian]})
+    return _dumps(out)

@@ -2,12 +2,14 @@
 
 For each CLI: a fresh server on the spec's world, then the spec's cases in
 order, each checked for its exit status and the lines it names; the same for
-the joint cases on the spec's joint world; then across the two CLIs: the
-cases marked same_stdout / same_json print the same, and those marked
-sends_same_wrench (sends_same_joint_command) put the same wrench_t
-(joint_command_t) on the bus (all fields but client, seq and utime), which
-also checks that the two client libraries agree on every default. Every option of the spec must be in each CLI's
-`VERB --help`.
+the joint cases on the spec's joint world and the robot cases on its robot
+world; then across the two CLIs: the cases marked same_stdout / same_json
+print the same, and those marked sends_same_wrench (sends_same_joint_command,
+sends_same_robot_command) put the same wrench_t (joint_command_t,
+robot_command_t) on the bus (all fields but client, seq and utime), which
+also checks that the two client libraries agree on every default. Every
+option of the spec must be in each CLI's `VERB --help` (a verb of two words,
+such as "robot state", is asked as `robot state --help`).
 """
 
 import json
@@ -17,7 +19,7 @@ import subprocess
 import threading
 
 from harness import BUILD, PYTHON, REPO, Server, run, subprocess_env
-from rbsim import joint_command_t, wrench_t
+from rbsim import joint_command_t, robot_command_t, wrench_t
 from rbsim.lcm_ctypes import Lcm
 
 SPEC = os.path.join(REPO, "docs", "cli_spec.json")
@@ -51,8 +53,8 @@ def _wrench_fields(message):
 
 
 def _run_cases(cli, spec, workdir, world_key="world", cases_key="cases"):
-    """Runs every case against a fresh server; returns [(proc, [wrench_t or
-    joint_command_t sent])]."""
+    """Runs every case against a fresh server; returns [(proc, [wrench_t,
+    joint_command_t or robot_command_t sent])]."""
     case_dir = os.path.join(workdir, cli, cases_key)
     os.makedirs(case_dir, exist_ok=True)
     world = os.path.join(REPO, spec[world_key])
@@ -67,9 +69,14 @@ def _run_cases(cli, spec, workdir, world_key="world", cases_key="cases"):
         with lock:
             sent.append(joint_command_t.decode(data))
 
+    def on_robot_command(_channel, data, _utime):
+        with lock:
+            sent.append(robot_command_t.decode(data))
+
     lcm = Lcm(None)
     lcm.subscribe("RBSIM_WRENCH", on_wrench)
     lcm.subscribe("RBSIM_JOINT_COMMAND", on_joint_command)
+    lcm.subscribe("RBSIM_ROBOT_COMMAND", on_robot_command)
     lcm.start()
     server = Server(workdir, world, *spec["server_args"])
     results = []
@@ -115,7 +122,7 @@ def cli_conformance(workdir):
     # Every option of the spec is in each CLI's help for its verb.
     for cli in CLIS:
         for verb, description in spec["verbs"].items():
-            proc = _run(cli, [verb, "--help"], workdir)
+            proc = _run(cli, verb.split() + ["--help"], workdir)
             assert proc.returncode == 0, "%s %s --help: exit %d" % (cli, verb, proc.returncode)
             for option in description["options"]:
                 if option not in proc.stdout:
@@ -124,14 +131,16 @@ def cli_conformance(workdir):
         for option in spec["global_options"]:
             if option["option"] not in top:
                 failures.append("%s --help does not mention %s" % (cli, option["option"]))
-        for verb in spec["verbs"]:
+        for verb in {v.split()[0] for v in spec["verbs"]}:
             if verb not in top:
                 failures.append("%s --help does not list the verb %s" % (cli, verb))
 
-    for world_key, cases_key in (("world", "cases"), ("joint_world", "joint_cases")):
+    for world_key, cases_key in (("world", "cases"), ("joint_world", "joint_cases"),
+                                 ("robot_world", "robot_cases")):
         failures += _compare_clis(spec, workdir, world_key, cases_key)
     assert not failures, "\n\n".join(failures)
-    print("%d cases, %d joint cases, both CLIs" % (len(spec["cases"]), len(spec["joint_cases"])))
+    print("%d cases, %d joint cases, %d robot cases, both CLIs" % (
+        len(spec["cases"]), len(spec["joint_cases"]), len(spec["robot_cases"])))
 
 
 def _compare_clis(spec, workdir, world_key, cases_key):
@@ -149,7 +158,8 @@ def _compare_clis(spec, workdir, world_key, cases_key):
         if case.get("same_json") and a.returncode == 0 and b.returncode == 0:
             if json.loads(a.stdout) != json.loads(b.stdout):
                 failures.append("%s: JSON differs:\n%s---\n%s" % (label, a.stdout, b.stdout))
-        if case.get("sends_same_wrench") or case.get("sends_same_joint_command"):
+        if (case.get("sends_same_wrench") or case.get("sends_same_joint_command")
+                or case.get("sends_same_robot_command")):
             fa, fb = [_wrench_fields(w) for w in wa], [_wrench_fields(w) for w in wb]
             if len(fa) != 1 or fa != fb:
                 failures.append("%s: messages sent differ:\nrbctl  %s\npython %s" % (label, fa, fb))

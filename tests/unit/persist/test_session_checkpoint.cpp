@@ -82,6 +82,8 @@ TEST(SessionCheckpoint, JointCommandsScheduledAheadRoundTrip) {
   hold.maxEffort = std::numeric_limits<double>::infinity();  // uncapped
   hold.stiffness = 5.0;
   hold.damping = 0.5;
+  hold.targetRate = 0.25;   // a robot command's entry: the drive's target rate
+  hold.feedForward = -0.1;  // and its feed-forward effort
   hold.firstStep = 300;
   original.jointCommands().add(hold);
   for (int i = 0; i < 10; ++i) original.step();
@@ -92,6 +94,8 @@ TEST(SessionCheckpoint, JointCommandsScheduledAheadRoundTrip) {
   ASSERT_EQ(state->jointCommands.size(), 2u);
   EXPECT_EQ(state->jointCommands[1].mode, JointCommandMode::Position);
   EXPECT_TRUE(std::isinf(state->jointCommands[1].maxEffort));
+  EXPECT_EQ(state->jointCommands[1].targetRate, 0.25);
+  EXPECT_EQ(state->jointCommands[1].feedForward, -0.1);
   Session restored(original.initialWorld(), false);
   restored.resumeFrom(std::move(state->world), std::move(state->wrenches), state->worldRevision, state->paused,
                       state->stepsRequested, std::move(state->jointCommands));

@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rbctl: %s\n", client::explainLcmOpenFailure(client.url()).c_str());
     return kExitNoConnection;
   }
-  Context context{client, client::Client::Timeout(std::llround(options.timeout * 1000.0))};
+  Context context{client, client::Client::Timeout(std::llround(options.timeout * 1000.0)),
+                  clientOptions};
   Arguments verbArguments(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
   try {
     const int status = verb->run(context, verbArguments);

@@ -15,7 +15,7 @@ using nlohmann::json;
 // beyond what 10 significant digits of the others can show: printed as 0.
 constexpr double kQuaternionNoise = 1e-12;
 
-std::array<double, 4> cleanOrientation(const double (&q)[4]) {
+std::array<double, 4> cleanOrientation(const double* q) {
   std::array<double, 4> out{};
   for (int i = 0; i < 4; ++i) out[i] = std::abs(q[i]) < kQuaternionNoise ? 0.0 : q[i];
   return out;
@@ -157,6 +157,82 @@ void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joint
                    state->rate, state->effort, state->at_limit, state->active ? "true" : "false");
     std::fputc('\n', out);
   }
+}
+
+void printRobotState(std::FILE* out, const rbsim::robot_state_t& s, bool dynamics) {
+  std::fprintf(out, "robot %s step %lld sim_time %.10g world_revision %lld joints %d\n",
+               s.robot.c_str(), static_cast<long long>(s.step), s.sim_time,
+               static_cast<long long>(s.world_revision), s.num_joints);
+  for (int i = 0; i < s.num_joints; ++i) {
+    std::fprintf(out, "joint %s position %.10g velocity %.10g effort %.10g",
+                 s.joint_names[i].c_str(), s.position[i], s.velocity[i], s.effort[i]);
+    // A mimic follower: its leader moves it.
+    if (s.leader[i] >= 0 && s.leader[i] < s.num_joints)
+      std::fprintf(out, " leader %s", s.joint_names[s.leader[i]].c_str());
+    std::fputc('\n', out);
+  }
+  std::fprintf(out, "base %s fixed %s", s.base.c_str(), s.base_fixed ? "true" : "false");
+  printVector(out, "position", s.base_position, 3);
+  printVector(out, "orientation", cleanOrientation(s.base_orientation).data(), 4);
+  printVector(out, "linear_velocity", s.base_linear_velocity, 3);
+  printVector(out, "angular_velocity", s.base_angular_velocity, 3);
+  std::fputc('\n', out);
+  if (!dynamics) return;
+  std::fprintf(out, "dynamics dofs %d links %d", s.num_dofs, s.num_links);
+  if (!s.dynamics_note.empty()) std::fprintf(out, " note %s", s.dynamics_note.c_str());
+  std::fputc('\n', out);
+  for (std::size_t i = 0; i < s.mass_matrix.size(); ++i) {
+    std::fprintf(out, "mass_matrix %zu", i);
+    for (const double v : s.mass_matrix[i]) std::fprintf(out, " %.10g", v);
+    std::fputc('\n', out);
+  }
+  if (s.num_dofs > 0) {
+    std::fprintf(out, "bias");
+    for (const double v : s.bias) std::fprintf(out, " %.10g", v);
+    std::fprintf(out, "\ngravity");
+    for (const double v : s.gravity) std::fprintf(out, " %.10g", v);
+    std::fputc('\n', out);
+  }
+  for (int i = 0; i < s.num_links; ++i) {
+    std::fprintf(out, "link %s", s.link_names[i].c_str());
+    printVector(out, "position", s.link_position[i].data(), 3);
+    printVector(out, "orientation", cleanOrientation(s.link_orientation[i].data()).data(), 4);
+    std::fputc('\n', out);
+  }
+}
+
+void printRobotStateJson(std::FILE* out, const rbsim::robot_state_t& s, bool dynamics) {
+  json document = {{"step", s.step},
+                   {"sim_time", s.sim_time},
+                   {"world_revision", s.world_revision},
+                   {"robot", s.robot},
+                   {"num_joints", s.num_joints},
+                   {"joint_names", s.joint_names},
+                   {"leader", s.leader},
+                   {"position", s.position},
+                   {"velocity", s.velocity},
+                   {"effort", s.effort},
+                   {"base", s.base},
+                   {"base_position", array(s.base_position)},
+                   {"base_orientation", cleanOrientation(s.base_orientation)},
+                   {"base_linear_velocity", array(s.base_linear_velocity)},
+                   {"base_angular_velocity", array(s.base_angular_velocity)},
+                   {"base_fixed", static_cast<bool>(s.base_fixed)}};
+  if (dynamics) {
+    json orientations = json::array();
+    for (const auto& q : s.link_orientation) orientations.push_back(cleanOrientation(q.data()));
+    document["num_dofs"] = s.num_dofs;
+    document["dynamics_note"] = s.dynamics_note;
+    document["mass_matrix"] = s.mass_matrix;
+    document["bias"] = s.bias;
+    document["gravity"] = s.gravity;
+    document["num_links"] = s.num_links;
+    document["link_names"] = s.link_names;
+    document["link_position"] = s.link_position;
+    document["link_orientation"] = orientations;
+    document["link_jacobian"] = s.link_jacobian;
+  }
+  std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
 void printStateJson(std::FILE* out, const rbsim::world_state_t& state,

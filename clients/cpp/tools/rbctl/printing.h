@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <rbsim/joints_t.hpp>
+#include <rbsim/robot_state_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
 #include <rbsim/world_t.hpp>
@@ -28,5 +29,11 @@ void printJointsJson(std::FILE* out, const rbsim::world_t& world, const rbsim::j
 // The world's joints (type, bodies, axis, limits) with their state in
 // `joints` (of the same world revision; nullptr when the world has none).
 void printJoints(std::FILE* out, const rbsim::world_t& world, const rbsim::joints_t* joints);
+// One robot's state: its joints and base; with `dynamics` also M, h, g and
+// the links' poses (the Jacobians are in the JSON only).
+void printRobotState(std::FILE* out, const rbsim::robot_state_t& state, bool dynamics);
+// The state with the wire field names (all but utime), the dynamics' fields
+// only with `dynamics`.
+void printRobotStateJson(std::FILE* out, const rbsim::robot_state_t& state, bool dynamics);
 
 }  // namespace rbsim::rbctl

@@ -1,12 +1,22 @@
 #include "verbs.h"
 
 #include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <map>
+#include <rbsim/robot_command_t.hpp>
+#include <rbsim/robot_state_t.hpp>
 #include <rbsim/wrench_t.hpp>
+#include <set>
+#include <string_view>
+#include <utility>
 
 #include "printing.h"
 #include "rbsim/client/lookup.h"
+#include "rbsim/client/robot.h"
 
 namespace rbsim::rbctl {
 
@@ -16,6 +26,56 @@ using client::Client;
 
 double seconds(Client::Timeout timeout) {
   return static_cast<double>(timeout.count()) * 1e-3;
+}
+
+// The distance of a and b ignoring ASCII case, or anything above `bound`
+// once it is sure to exceed it (a row's smallest entry never shrinks).
+std::size_t boundedDistance(std::string_view a, std::string_view b, std::size_t bound) {
+  const auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+  const std::size_t gap = a.size() > b.size() ? a.size() - b.size() : b.size() - a.size();
+  if (gap > bound) return bound + 1;
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    std::size_t smallest = row[0];
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min(
+          {above + 1, row[j - 1] + 1, diagonal + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1)});
+      diagonal = above;
+      smallest = std::min(smallest, row[j]);
+    }
+    if (smallest > bound) return bound + 1;
+  }
+  return row[b.size()];
+}
+
+// " (did you mean 'a', 'b' or 'c'?)" with up to three of `known` within
+// max(2, length / 3) edits of `name` ignoring case, closest first, ties
+// alphabetically, or "": the server's rule for its refusals
+// (server/bridge/closest_names.cpp) and the Python CLI's.
+std::string didYouMean(const std::string& name, std::vector<std::string> known) {
+  constexpr std::size_t kMaxSuggestedNameLength = 128;  // a guess at a longer one tells little
+  if (name.size() > kMaxSuggestedNameLength) return "";
+  const std::size_t bound = std::max<std::size_t>(2, name.size() / 3);
+  std::sort(known.begin(), known.end());
+  known.erase(std::unique(known.begin(), known.end()), known.end());
+  std::vector<std::pair<std::size_t, std::string>> near;
+  for (const std::string& candidate : known) {
+    const std::size_t distance = boundedDistance(name, candidate, bound);
+    if (distance <= bound) near.emplace_back(distance, candidate);
+  }
+  std::sort(near.begin(), near.end());
+  if (near.size() > 3) near.resize(3);
+  if (near.empty()) return "";
+  std::string text = " (did you mean ";
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    if (i > 0) text += i + 1 == near.size() ? " or " : ", ";
+    text += "'" + near[i].second + "'";
+  }
+  return text + "?)";
 }
 
 int noAnswer(const Context& context, const std::string& what) {
@@ -90,8 +150,10 @@ int runState(Context& context, Arguments& arguments) {
   const auto& state = *context.client.latestState();
   for (const std::string& body : bodies) {
     if (client::findBody(state, body) == nullptr) {
-      std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld\n", body.c_str(),
-                   static_cast<long long>(state.step));
+      std::vector<std::string> known;
+      for (const auto& b : state.bodies) known.push_back(b.name);
+      std::fprintf(stderr, "rbctl: no body named '%s' in the state of step %lld%s\n", body.c_str(),
+                   static_cast<long long>(state.step), didYouMean(body, known).c_str());
       return kExitRejected;
     }
   }
@@ -352,6 +414,290 @@ int runRemove(Context& context, Arguments& arguments) {
   return report(context, context.client.remove(name), "remove " + name);
 }
 
+// --- robot ---------------------------------------------------------------
+
+// Escapes a channel name for LCM's subscription pattern (a POSIX regex).
+std::string regexEscaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+// What a robot verb hears besides its robot (on the Robot's own LCM
+// connection, so that the Robot's waits receive it too): the robots whose
+// states come on <prefix>ROBOT_STATE, and whether the server was heard at
+// all (its world states or statuses, not decoded).
+class Hearing {
+ public:
+  Hearing(lcm::LCM& lcm, const std::string& prefix) : m_channel(prefix + "ROBOT_STATE") {
+    lcm.subscribe(regexEscaped(m_channel), &Hearing::onRobotState, this);
+    // LCM anchors the pattern at both ends, around the group.
+    lcm.subscribe(
+        "(" + regexEscaped(prefix + "STATE") + "|" + regexEscaped(prefix + "STATUS") + ")",
+        &Hearing::onServer, this);
+  }
+  const std::string& channel() const { return m_channel; }
+  const std::set<std::string>& robots() const { return m_robots; }
+  bool server() const { return m_server || !m_robots.empty(); }
+
+ private:
+  void onRobotState(const lcm::ReceiveBuffer*, const std::string&,
+                    const rbsim::robot_state_t* state) {
+    m_robots.insert(state->robot);
+  }
+  void onServer(const lcm::ReceiveBuffer*, const std::string&) { m_server = true; }
+
+  std::string m_channel;
+  std::set<std::string> m_robots;
+  bool m_server = false;
+};
+
+// Handles the Robot's messages until `done()` or `timeout`; returns done().
+bool spinRobot(client::Robot& robot, const std::function<bool()>& done, Client::Timeout timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    const auto left =
+        std::chrono::ceil<Client::Timeout>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || robot.handle(std::min(left, Client::Timeout(50))) < 0) return done();
+  }
+  return true;
+}
+
+// Says why no (suitable) state of `robot` came within `timeout` and returns
+// the exit status: rejected (1) when the server was heard, naming the robots
+// it publishes; no answer (3) when nothing was, or states of the robot came
+// but not the one waited for.
+int robotMissing(Context& context, const Hearing& hearing, const client::Robot& robot,
+                 Client::Timeout timeout, uint64_t after = 0) {
+  const double seconds = static_cast<double>(timeout.count()) * 1e-3;
+  const char* name = robot.name().c_str();
+  if (robot.stateCount() > after) {
+    std::fprintf(stderr, "rbctl: no state of robot '%s' as expected on %s within %.3g s\n", name,
+                 hearing.channel().c_str(), seconds);
+    return kExitNoAnswer;
+  }
+  if (!hearing.robots().empty()) {
+    const std::vector<std::string> heard(hearing.robots().begin(), hearing.robots().end());
+    std::string list;
+    for (const std::string& other : heard) list += (list.empty() ? "" : ", ") + other;
+    std::fprintf(stderr, "rbctl: no robot named '%s' on %s within %.3g s%s; robots heard: %s\n",
+                 name, hearing.channel().c_str(), seconds, didYouMean(robot.name(), heard).c_str(),
+                 list.c_str());
+    return kExitRejected;
+  }
+  if (hearing.server()) {
+    std::fprintf(stderr,
+                 "rbctl: no robot named '%s': no robot states on %s within %.3g s (robots heard: "
+                 "none)\n",
+                 name, hearing.channel().c_str(), seconds);
+    return kExitRejected;
+  }
+  return noAnswer(context, "robot state on " + hearing.channel());
+}
+
+int runRobotState(Context& context, Arguments& arguments) {
+  std::string name;
+  bool json = false;
+  bool dynamics = false;
+  while (!arguments.empty()) {
+    const std::string argument = arguments.next("robot state", "an argument");
+    if (argument == "--json") {
+      json = true;
+    } else if (argument == "--dynamics") {
+      dynamics = true;
+    } else if (argument.rfind("--", 0) == 0) {
+      throw UsageError("robot state: unknown option '" + argument + "'");
+    } else if (name.empty()) {
+      name = argument;
+    } else {
+      throw UsageError("robot state: unexpected argument '" + argument + "'");
+    }
+  }
+  if (name.empty()) throw UsageError("robot state: missing NAME");
+  client::Robot robot(name, context.options);
+  Hearing hearing(robot.lcm(), context.client.channelPrefix());
+  if (dynamics) {
+    robot.setDynamics(true);
+    const auto ack = robot.waitForAck(robot.send(), context.timeout);
+    if (!ack) return noAnswer(context, "acknowledgement of the robot command");
+    if (!ack->accepted) {
+      std::fprintf(stderr, "rbctl: robot %s dynamics rejected: %s\n", name.c_str(),
+                   ack->reason.c_str());
+      return kExitRejected;
+    }
+  }
+  // With --dynamics a state that carries them (or says why it cannot): the
+  // Robot holds only states that came since it was made, before the request.
+  if (!robot.waitForState(context.timeout, dynamics))
+    return robotMissing(context, hearing, robot, context.timeout);
+  if (json) {
+    printRobotStateJson(stdout, *robot.state(), dynamics);
+  } else {
+    printRobotState(stdout, *robot.state(), dynamics);
+  }
+  return kExitOk;
+}
+
+// A comma list's items, none empty.
+std::vector<std::string> commaList(const std::string& option, const std::string& text,
+                                   const std::string& what) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (items.back().empty())
+      throw UsageError(option + ": expected " + what + " separated by commas, got '" + text + "'");
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+// `values` for `count` joints: one value for all, or one each.
+template <class T>
+std::vector<T> perJoint(const std::string& option, const std::vector<T>& values,
+                        std::size_t count) {
+  if (values.size() == 1) return std::vector<T>(count, values.front());
+  if (values.size() != count)
+    throw UsageError(option + ": " + std::to_string(values.size()) + " values for " +
+                     std::to_string(count) + " joints (give one for all, or one per joint)");
+  return values;
+}
+
+int8_t parseRobotMode(const std::string& text) {
+  if (text == "keep") return rbsim::robot_command_t::MODE_KEEP;
+  if (text == "off") return rbsim::robot_command_t::MODE_OFF;
+  if (text == "velocity") return rbsim::robot_command_t::MODE_VELOCITY;
+  if (text == "position") return rbsim::robot_command_t::MODE_POSITION;
+  if (text == "effort") return rbsim::robot_command_t::MODE_EFFORT;
+  throw UsageError("--mode: expected keep, off, velocity, position or effort, got '" + text + "'");
+}
+
+// robot_command_t's per-joint numbers, by option.
+const std::pair<const char*, std::vector<double> rbsim::robot_command_t::*> kRobotValues[] = {
+    {"--position", &rbsim::robot_command_t::position},
+    {"--velocity", &rbsim::robot_command_t::velocity},
+    {"--effort", &rbsim::robot_command_t::effort},
+    {"--stiffness", &rbsim::robot_command_t::stiffness},
+    {"--damping", &rbsim::robot_command_t::damping},
+    {"--max-effort", &rbsim::robot_command_t::max_effort}};
+
+int runRobotCommand(Context& context, Arguments& arguments) {
+  std::string name;
+  std::vector<std::string> joints;
+  std::optional<std::string> modeText;
+  std::map<std::string, std::string> valueTexts;  // option -> its comma list
+  int64_t atStep = -1;
+  double stateRate = 0.0;
+  int64_t steps = 0;
+  while (!arguments.empty()) {
+    const std::string argument = arguments.next("robot command", "an argument");
+    const auto isValue = [&](const auto& entry) { return argument == entry.first; };
+    if (argument == "--joint") {
+      joints.push_back(arguments.next(argument, "joint names"));
+    } else if (argument == "--mode") {
+      modeText = arguments.next(argument, "modes");
+    } else if (std::any_of(std::begin(kRobotValues), std::end(kRobotValues), isValue)) {
+      valueTexts[argument] = arguments.next(argument, "numbers");
+    } else if (argument == "--at-step") {
+      atStep = arguments.nextInteger(argument);
+    } else if (argument == "--state-rate") {
+      stateRate = arguments.nextNumber(argument);
+    } else if (argument == "--steps") {
+      steps = arguments.nextInteger(argument);
+    } else if (argument.rfind("--", 0) == 0) {
+      throw UsageError("robot command: unknown option '" + argument + "'");
+    } else if (name.empty()) {
+      name = argument;
+    } else {
+      throw UsageError("robot command: unexpected argument '" + argument + "'");
+    }
+  }
+  if (name.empty()) throw UsageError("robot command: missing NAME");
+  // Everything that does not depend on the robot is checked first, as the
+  // Python CLI does.
+  std::vector<std::string> names;
+  for (const std::string& text : joints)
+    for (std::string& joint : commaList("--joint", text, "joint names")) names.push_back(joint);
+  std::vector<std::string> modes;
+  if (modeText)
+    for (std::string& mode : commaList("--mode", *modeText, "modes")) {
+      parseRobotMode(mode);
+      modes.push_back(mode);
+    }
+  std::map<std::string, std::vector<double>> values;
+  for (const auto& [option, text] : valueTexts)
+    for (const std::string& item : commaList(option, text, "numbers"))
+      values[option].push_back(parseNumber(item, option));
+  if ((!names.empty() || !values.empty()) && !modeText)
+    throw UsageError("give --mode for the joints commanded");
+  for (const std::string& mode : modes)
+    if ((mode == "velocity" || mode == "position" || mode == "effort") &&
+        values.count("--" + mode) == 0)
+      throw UsageError("--mode " + mode + " needs --" + mode);
+  if (steps < 0) throw UsageError("--steps: expected N >= 0, got " + std::to_string(steps));
+  if (steps > INT32_MAX) throw UsageError("--steps: at most " + std::to_string(INT32_MAX));
+
+  client::Robot robot(name, context.options);
+  Hearing hearing(robot.lcm(), context.client.channelPrefix());
+  if (modeText) {
+    std::size_t count = names.size();
+    if (names.empty()) {
+      // No --joint: every joint of the robot, in its order, so its count.
+      if (!robot.waitForState(context.timeout))
+        return robotMissing(context, hearing, robot, context.timeout);
+      count = static_cast<std::size_t>(robot.numJoints());
+    }
+    rbsim::robot_command_t entries{};
+    for (const std::string& mode : perJoint("--mode", modes, count))
+      entries.mode.push_back(parseRobotMode(mode));
+    for (const auto& [option, field] : kRobotValues) {
+      const auto given = values.find(option);
+      entries.*field = given == values.end() ? std::vector<double>(count, 0.0)
+                                             : perJoint(option, given->second, count);
+    }
+    entries.num_joints = static_cast<int32_t>(count);
+    entries.joint_names = names;
+    entries.num_names = static_cast<int32_t>(names.size());
+    robot.commandRaw(entries);
+  }
+  robot.setStateRate(stateRate);
+  const uint64_t before = robot.stateCount();
+  const auto ack =
+      robot.waitForAck(robot.send(atStep, static_cast<int32_t>(steps)), context.timeout);
+  if (!ack) return noAnswer(context, "acknowledgement of the robot command");
+  const std::string what = "robot " + name + " command";
+  if (!ack->accepted) {
+    std::fprintf(stderr, "rbctl: %s rejected: %s\n", what.c_str(), ack->reason.c_str());
+    return kExitRejected;
+  }
+  std::printf("%s accepted: effective_step %lld", what.c_str(),
+              static_cast<long long>(ack->effective_step));
+  if (!ack->reason.empty()) std::printf(" note %s", ack->reason.c_str());
+  std::printf("\n");
+  if (steps == 0) return kExitOk;
+  // The server publishes the robot's state after the last step.
+  const int64_t last = ack->effective_step + steps - 1;
+  const Client::Timeout wait = context.timeout + Client::Timeout(steps);
+  if (!spinRobot(
+          robot, [&] { return robot.stateCount() > before && robot.state()->step >= last; }, wait))
+    return robotMissing(context, hearing, robot, wait, before);
+  std::printf("step %lld\n", static_cast<long long>(robot.state()->step));
+  return kExitOk;
+}
+
+int runRobot(Context& context, Arguments& arguments) {
+  if (arguments.empty()) throw UsageError("missing state or command");
+  const std::string verb = arguments.next("robot", "state or command");
+  if (verb == "state") return runRobotState(context, arguments);
+  if (verb == "command") return runRobotCommand(context, arguments);
+  throw UsageError("expected state or command, got '" + verb + "'");
+}
+
 }  // namespace
 
 const std::vector<Verb>& verbs() {
@@ -367,7 +713,8 @@ const std::vector<Verb>& verbs() {
        "  --json        one JSON object: step, sim_time, world_revision, bodies\n",
        runState},
       {"status", "print the latest heartbeat",
-       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its fields\n"
+       "usage: rbctl status [--json]\n\nWaits for a heartbeat on <prefix>STATUS and prints its "
+       "fields\n"
        "(--json: as one JSON object).\n",
        runStatus},
       {"bodies", "print the world description (bodies, shapes, masses)",
@@ -459,6 +806,50 @@ const std::vector<Verb>& verbs() {
        "  effort        a constant TARGET (N m or N) along the axis\n"
        "  --at-step K   the step from which it acts (default: the next)\n",
        runJoint},
+      {"robot", "a robot's state, or one command for all its joints",
+       "usage: rbctl robot state NAME [--json] [--dynamics]\n"
+       "       rbctl robot command NAME [--joint J[,J...]]... [--mode M[,M...]]\n"
+       "                     [--position Q,...] [--velocity V,...] [--effort E,...]\n"
+       "                     [--stiffness K,...] [--damping D,...] [--max-effort E,...]\n"
+       "                     [--at-step K] [--state-rate HZ] [--steps N]\n\n"
+       "A robot is the joints named NAME/... . robot state waits for its next\n"
+       "robot_state_t and prints \"robot NAME step S sim_time T world_revision R\n"
+       "joints N\", per joint \"joint NAME position P velocity V effort E [leader L]\"\n"
+       "(rad or m, rad/s or m/s, N m or N; a mimic follower names its leader) and\n"
+       "\"base NAME fixed B position ... orientation ... linear_velocity ...\n"
+       "angular_velocity ...\" (world frame). Exit 1 when no state of NAME comes\n"
+       "within --timeout (it lists the robots heard).\n"
+       "  --json        one JSON object with the wire field names\n"
+       "  --dynamics    turn the robot's dynamics on first (they stay on) and print\n"
+       "                them too: \"dynamics dofs N links L [note TEXT]\", the rows\n"
+       "                \"mass_matrix I ...\" of M, \"bias ...\" (h), \"gravity ...\" (g)\n"
+       "                and \"link NAME position ... orientation ...\" (--json: and\n"
+       "                each link's Jacobian)\n\n"
+       "robot command sends one robot_command_t, applied whole at one step or refused\n"
+       "whole (exit 1, the server's reason naming the joint), and prints\n"
+       "\"robot NAME command accepted: effective_step K\". Values are comma lists,\n"
+       "one per joint commanded; a single value is for every joint.\n"
+       "  --joint J     the joints commanded, J or NAME/J (repeatable, or a comma\n"
+       "                list; default: every joint of the robot, in its order)\n"
+       "  --mode M      keep (left as it is: a mimic follower's), off, velocity,\n"
+       "                position or effort; needed to command joints\n"
+       "  --position    rad or m: position's target (needed by position)\n"
+       "  --velocity    rad/s or m/s: velocity's target (needed by velocity);\n"
+       "                position: the rate the damping pulls to (default 0)\n"
+       "  --effort      N m or N: effort's (needed by effort); position and velocity:\n"
+       "                a feed-forward effort added (default 0)\n"
+       "  --stiffness   position: N m/rad or N/m (default 0; not both 0 with --damping)\n"
+       "  --damping     position: N m s/rad or N s/m (default 0)\n"
+       "  --max-effort  N m or N: velocity: the motor's largest effort (default 0: the\n"
+       "                joint's effort limit); position: the drive's cap (default 0:\n"
+       "                uncapped)\n"
+       "  --at-step K   the step from which it acts (default: the next)\n"
+       "  --state-rate HZ  how often the server publishes the robot's state from now\n"
+       "                on (default 0: as it is; -1: with every world state)\n"
+       "  --steps N     while paused: take N steps after applying it, then wait for\n"
+       "                the robot's state after the last and print \"step S\"\n"
+       "Without --mode, no joint changes: e.g. only --steps or --state-rate.\n",
+       runRobot},
   };
   return kVerbs;
 }

@@ -20,6 +20,9 @@ inline constexpr int kExitNoConnection = 4;  // LCM could not be opened
 struct Context {
   client::Client& client;
   client::Client::Timeout timeout;
+  // The client's URL, prefix and id, for the verbs that open a connection
+  // of their own (robot: a client::Robot).
+  const client::ClientOptions& options;
 };
 
 struct Verb {
