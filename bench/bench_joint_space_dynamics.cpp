@@ -23,19 +23,22 @@
 // world coordinates, its tip frame the inverse of that joint's pose at the
 // joint's current position q_i, so that at q (rbsim's JointState
 // positions, which KDL is fed) every segment's tip frame is the world
-// frame, and its KDL::RigidBodyInertia is the body's, world frame. KDL then
-// turns each body rigidly about the same axis through the same anchor as
-// rbsim's model does, and is fed rbsim's q and q̇: the same model, not
-// only at q but for any q near it (rbsim's model is its own at q only: it
-// is read from the world each time).
+// frame (the last segment's moved to link7's centre of mass, the point
+// whose Jacobian is asked for), and its KDL::RigidBodyInertia is the
+// body's, world frame. KDL then turns each body rigidly about the same
+// axis through the same anchor as rbsim's model does, and is fed rbsim's
+// q and q̇: the same model, at q and, the bodies being rigid, about it
+// (rbsim's model is a snapshot at q: it is read from the world each time).
 //
 // Benchmarks (µs per controller cycle):
 //   rbsim/model_from_world+M+h+J  JointSpaceDynamics::ofRobot, massMatrix, biasForces, jacobian
 //   kdl/model_from_world+M+h+J    kdlArmOfWorld, ChainDynParam and ChainJntToJacSolver made,
-//                                 JntToMass, JntToCoriolis + JntToGravity, JntToJac (+ changeRefPoint)
+//                                 JntToMass, JntToCoriolis + JntToGravity, JntToJac
 //   rbsim/M+h+J                   the three on a model already read
 //   kdl/M+h+J                     the same KDL calls on a chain and solvers already made
 //   kdl/M+h(one_RNE)+J            KDL's quicker h: ChainIdSolver_RNE with q̈ = 0 (one pass, not two)
+//   kdl/q_qd_from_world+…         the chain made once, each cycle the joints' q and q̇ read
+//                                 from the world, then M+h+J or M+h(one_RNE)+J
 //
 //   taskset -c 1 build/bench/bench_joint_space_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
