@@ -1,7 +1,6 @@
 #include "rbsim/physics/joint_space_dynamics.h"
 
 #include <algorithm>
-#include <map>
 #include <optional>
 
 #include "rbsim/physics/body_view.h"
@@ -11,130 +10,130 @@
 namespace rbsim {
 
 Expected<JointSpaceDynamics> JointSpaceDynamics::ofRobot(const World& world, std::string_view prefix) {
-  const std::string robot = "robot '" + std::string(prefix) + "…'";
-  // The robot's joints, and the one that carries each of its bodies.
+  // Called each control cycle (robot_state_t with its dynamics), so the
+  // world is read once per joint and bodies are matched by id, not name:
+  // reading the model costs about what computing M, h and J does.
+  const auto robot = [&] { return "robot '" + std::string(prefix) + "…'"; };
+  const auto nameOf = [&](BodyId id) { return id.isNull() ? std::string("the world") : world.body(id).name(); };
+  // The robot's joints in the world's order, each with the body it carries.
   struct Carried {
-    int joint;         // dense index
-    std::string parent;  // "" for the world
+    int joint = 0;  // dense index
+    BodyId child, parent;  // parent null: the world
+    JointState state;
+    bool robotsParent = false;  // the parent is carried by another of the robot's joints
   };
-  std::map<std::string, Carried, std::less<>> carrier;  // by child body name
-  std::vector<std::string> children;                   // in the world's joint order
+  std::vector<Carried> carried;
   for (int j = 0; j < world.jointCount(); ++j) {
     const JointDef& def = world.jointDefinitionAt(j);
     if (def.name.compare(0, prefix.size(), prefix) != 0) continue;
     if (def.type != JointType::Revolute && def.type != JointType::Prismatic && def.type != JointType::Fixed)
-      return Error{robot + ": joint '" + def.name + "' is " + jointTypeName(def.type) +
+      return Error{robot() + ": joint '" + def.name + "' is " + jointTypeName(def.type) +
                    ": joint-space dynamics take revolute, prismatic and fixed joints"};
-    if (!world.jointStateAt(j).active)
-      return Error{robot + ": joint '" + def.name + "' is not enforced (one of its bodies is frozen)"};
-    if (def.bodyB.isNull()) return Error{robot + ": joint '" + def.name + "' carries the world (body_b): not a tree"};
-    const std::string child = world.body(def.bodyB).name();
-    const std::string parent = def.bodyA.isNull() ? std::string() : world.body(def.bodyA).name();
-    if (!carrier.emplace(child, Carried{j, parent}).second)
-      return Error{robot + ": body '" + child + "' is moved by two of its joints ('" +
-                   world.jointDefinitionAt(carrier.at(child).joint).name + "' and '" + def.name + "'): not a tree"};
-    children.push_back(child);
+    if (def.bodyB.isNull()) return Error{robot() + ": joint '" + def.name + "' carries the world (body_b): not a tree"};
+    Carried next{j, def.bodyB, def.bodyA, world.jointStateAt(j)};
+    if (!next.state.active)
+      return Error{robot() + ": joint '" + def.name + "' is not enforced (one of its bodies is frozen)"};
+    for (const Carried& other : carried)
+      if (other.child == next.child)
+        return Error{robot() + ": body '" + nameOf(next.child) + "' is moved by two of its joints ('" +
+                     world.jointDefinitionAt(other.joint).name + "' and '" + def.name + "'): not a tree"};
+    carried.push_back(std::move(next));
   }
-  if (children.empty()) return Error{robot + ": the world has no joint named so"};
+  if (carried.empty()) return Error{robot() + ": the world has no joint named so"};
 
   JointSpaceDynamics out;
   out.m_gravity = world.settings().gravity;
-  // The base: the parent no joint of the robot carries (the world: "").
-  // One that moves floats, and must be free: held by no other joint.
-  std::optional<std::string> base;
-  for (const std::string& child : children) {
-    const std::string& parent = carrier.at(child).parent;
-    if (carrier.count(parent) != 0) continue;
-    if (base && *base != parent)
-      return Error{robot + ": two bases, '" + (base->empty() ? "the world" : *base) + "' and '" +
-                   (parent.empty() ? "the world" : parent) + "': not one tree"};
-    base = parent;
+  // The base: the parent no joint of the robot carries (or the world). One
+  // that moves floats, and must be free: held by no other joint.
+  std::optional<BodyId> base;
+  for (Carried& c : carried) {
+    c.robotsParent = std::any_of(carried.begin(), carried.end(), [&](const Carried& o) { return o.child == c.parent; });
+    if (c.robotsParent) continue;
+    if (base && !(*base == c.parent))
+      return Error{robot() + ": two bases, '" + nameOf(*base) + "' and '" + nameOf(c.parent) + "': not one tree"};
+    base = c.parent;
   }
-  if (!base) return Error{robot + ": its joints close a loop: not a tree"};
-  const BodyId baseId = base->empty() ? BodyId{} : world.findBody(*base);
-  if (!baseId.isNull() && !world.body(baseId).isStatic()) {
+  if (!base) return Error{robot() + ": its joints close a loop: not a tree"};
+  if (!base->isNull() && !world.body(*base).isStatic()) {
     for (int j = 0; j < world.jointCount(); ++j) {
       const JointDef& def = world.jointDefinitionAt(j);
       const bool ours = def.name.compare(0, prefix.size(), prefix) == 0;
-      if (!ours && (def.bodyA == baseId || def.bodyB == baseId))
-        return Error{robot + ": its base '" + *base + "' moves and is held by joint '" + def.name +
+      if (!ours && (def.bodyA == *base || def.bodyB == *base))
+        return Error{robot() + ": its base '" + nameOf(*base) + "' moves and is held by joint '" + def.name +
                      "', which is not the robot's: a floating base must be free"};
     }
-    const BodyView body = world.body(baseId);
+    const BodyView body = world.body(*base);
     out.m_floating = true;
-    out.m_baseName = *base;
+    out.m_baseName = body.name();
     out.m_baseOrigin = body.bodyToWorld(body.description().shapeTranslation);
     Link link;
-    link.name = *base;
+    link.name = out.m_baseName;
     link.anchor = out.m_baseOrigin;
     link.center = body.position();
     link.mass = body.mass();
     link.inertia = body.inertiaWorld();
     out.m_links.push_back(link);
   }
+
   // Parents before children: a body is placed once its parent is (or the
-  // parent is the base: the world, a static body).
-  std::map<std::string, int, std::less<>> linkOf;
-  if (out.m_floating) linkOf.emplace(out.m_baseName, 0);
-  std::vector<char> placed(children.size(), 0);
-  for (std::size_t round = 0; round < children.size(); ++round) {
+  // parent is the base).
+  std::vector<BodyId> linkBodies;  // the body of each link
+  if (out.m_floating) linkBodies.push_back(*base);
+  std::vector<int> linkOfCarried(carried.size(), -1);
+  for (std::size_t round = 0; round < carried.size(); ++round) {
     bool progress = false;
-    for (std::size_t k = 0; k < children.size(); ++k) {
-      if (placed[k]) continue;
-      const Carried& carried = carrier.at(children[k]);
-      const JointDef& def = world.jointDefinitionAt(carried.joint);
+    for (std::size_t k = 0; k < carried.size(); ++k) {
+      if (linkOfCarried[k] >= 0) continue;
+      const Carried& c = carried[k];
       int parent = -1;
-      if (!carried.parent.empty()) {
-        const auto link = linkOf.find(carried.parent);
-        if (link != linkOf.end()) {
-          parent = link->second;
-        } else if (carrier.count(carried.parent)) {
-          continue;  // its parent is the robot's and not placed yet
-        }
+      if (c.robotsParent || out.m_floating) {
+        const auto at = std::find(linkBodies.begin(), linkBodies.end(), c.parent);
+        if (at == linkBodies.end()) continue;  // its parent is not placed yet
+        parent = static_cast<int>(at - linkBodies.begin());
       }
-      const JointState state = world.jointStateAt(carried.joint);
-      const BodyView body = world.body(def.bodyB);
+      const JointDef& def = world.jointDefinitionAt(c.joint);
+      const BodyView body = world.body(c.child);
       Link link;
-      link.name = children[k];
+      link.name = body.name();
       link.parent = parent;
       link.prismatic = def.type == JointType::Prismatic;
-      link.axis = state.axis;
-      link.anchor = state.anchorA;
+      link.axis = c.state.axis;
+      link.anchor = c.state.anchorA;
       link.center = body.position();
       link.mass = body.mass();
       link.inertia = body.inertiaWorld();
       if (def.type != JointType::Fixed) link.coordinate = 0;  // numbered below, in joint order
-      linkOf.emplace(link.name, static_cast<int>(out.m_links.size()));
-      out.m_links.push_back(link);
-      placed[k] = 1;
+      linkOfCarried[k] = static_cast<int>(out.m_links.size());
+      linkBodies.push_back(c.child);
+      out.m_links.push_back(std::move(link));
       progress = true;
     }
     if (!progress) break;
   }
-  if (std::find(placed.begin(), placed.end(), 0) != placed.end())
-    return Error{robot + ": its joints close a loop: not a tree"};
+  if (std::find(linkOfCarried.begin(), linkOfCarried.end(), -1) != linkOfCarried.end())
+    return Error{robot() + ": its joints close a loop: not a tree"};
+
   // Coordinates in the world's joint order, after a floating base's six.
   const int first = out.m_floating ? 6 : 0;
-  for (const std::string& child : children) {
-    Link& link = out.m_links[static_cast<std::size_t>(linkOf.at(child))];
-    if (link.coordinate < 0) continue;
-    const int joint = carrier.at(child).joint;
-    link.coordinate = first + static_cast<int>(out.m_jointNames.size());
-    out.m_jointNames.push_back(world.jointDefinitionAt(joint).name);
-  }
-  const auto n = static_cast<Eigen::Index>(out.m_jointNames.size());
-  out.m_q.resize(n);
-  out.m_qd.resize(first + n);
+  int joints = 0;
+  for (std::size_t k = 0; k < carried.size(); ++k)
+    if (out.m_links[static_cast<std::size_t>(linkOfCarried[k])].coordinate >= 0) ++joints;
+  out.m_q.resize(joints);
+  out.m_qd.resize(first + joints);
+  out.m_jointNames.reserve(static_cast<std::size_t>(joints));
   if (out.m_floating) {
-    const BodyView body = world.body(baseId);
+    const BodyView body = world.body(*base);
     out.m_qd.head<3>() = body.velocityAtPoint(out.m_baseOrigin);
     out.m_qd.segment<3>(3) = body.angularVelocity();
   }
-  for (const Link& link : out.m_links) {
+  for (std::size_t k = 0; k < carried.size(); ++k) {
+    Link& link = out.m_links[static_cast<std::size_t>(linkOfCarried[k])];
     if (link.coordinate < 0) continue;
-    const JointState state = world.jointStateAt(carrier.at(link.name).joint);
-    out.m_q[link.coordinate - first] = state.position;
-    out.m_qd[link.coordinate] = state.rate;
+    const auto index = static_cast<Eigen::Index>(out.m_jointNames.size());
+    link.coordinate = first + static_cast<int>(index);
+    out.m_jointNames.push_back(world.jointDefinitionAt(carried[k].joint).name);
+    out.m_q[index] = carried[k].state.position;
+    out.m_qd[link.coordinate] = carried[k].state.rate;
   }
   return out;
 }
