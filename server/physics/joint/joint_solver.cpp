@@ -230,11 +230,31 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   const auto omegaOf = [&](std::size_t i) {
     return Vec3(drift.angularVelocity[i] + bodies[i].startInverseInertia * drift.angularImpulse[i]);
   };
+  // The angular velocity body i drifts with. For the momenta's drift, the
+  // explicit midpoint of the free rotation: L stays, the inertia turns with
+  // the body, so ω is I⁻¹ L at the pose half-way (second order for a body
+  // tumbling with unequal moments, where a fixed ω is first order). Also
+  // the inverse inertia it is taken with (`halfInverseInertia`).
+  const bool freeRotation = !drift.angularMomentum.empty();
+  const auto driftOmega = [&](std::size_t i, Mat3* halfInverseInertia) {
+    const Vec3 omega = omegaOf(i);
+    if (!freeRotation) {
+      if (halfInverseInertia != nullptr) *halfInverseInertia = bodies[i].startInverseInertia;
+      return omega;
+    }
+    const Quaternion& from = drift.fromOrientation[i];
+    const Quaternion half = advancedPose(Vec3::Zero(), from, Vec3::Zero(), omega, 0.5 * h).orientation;
+    const Mat3 turn = half.toRotationMatrix() * from.toRotationMatrix().transpose();
+    const Mat3 inverseInertia = turn * bodies[i].startInverseInertia * turn.transpose();
+    if (halfInverseInertia != nullptr) *halfInverseInertia = inverseInertia;
+    return Vec3(inverseInertia * (drift.angularMomentum[i] + drift.angularImpulse[i]));
+  };
   const auto moveAll = [&] {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Vec3 omega = driftOmega(i, nullptr);
       const IntegratedPose pose =
           advancedPose(drift.fromPosition[i], drift.fromOrientation[i],
-                       drift.linearVelocity[i] + bodies[i].inverseMass * drift.linearImpulse[i], omegaOf(i), h);
+                       drift.linearVelocity[i] + bodies[i].inverseMass * drift.linearImpulse[i], omega, h);
       bodies[i].position = pose.position;
       bodies[i].orientation = pose.orientation;
       rotation[i] = pose.orientation.toRotationMatrix();
@@ -276,7 +296,15 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
         link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
         currentRows.push_back(row);
       }
-      for (std::size_t i = 0; i < bodies.size(); ++i) turns[i] = turnResponse(drift.fromOrientation[i], omegaOf(i), h);
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        // d(turn)/d(impulse) = turnResponse · I_half⁻¹, passed as a turn
+        // that the Newton system multiplies by the start's I⁻¹ (the half
+        // turn's own dependence on the impulse is O(h) and left out).
+        Mat3 halfInverseInertia;
+        const Vec3 omega = driftOmega(i, &halfInverseInertia);
+        turns[i] = turnResponse(drift.fromOrientation[i], omega, h);
+        if (freeRotation) turns[i] = turns[i] * halfInverseInertia * bodies[i].startInverseInertia.inverse();
+      }
       exact.factor(m_rows, currentRows, bodies, turns, h);
       if (!exact.ok()) break;
       impulse = exact.solve(-residual);
@@ -619,6 +647,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       momenta.fromOrientation.push_back(body.startOrientation);
       momenta.linearVelocity.push_back(body.inverseMass * kickedLinear[i]);
       momenta.angularVelocity.push_back(body.startInverseInertia * kickedAngular[i]);
+      momenta.angularMomentum.push_back(kickedAngular[i]);
     }
     momenta.linearImpulse.assign(bodies.size(), Vec3::Zero());
     momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
@@ -715,17 +744,55 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     return !b.pseudoLinear.isZero(0.0) || !b.pseudoAngular.isZero(0.0);
   });
   if (anyPseudo || outsideError) {
-    Drift pseudo;
+    // The pass may push a joint that the momentum projection left within
+    // its limits past one (contacts pushing a limb out of the ground):
+    // such a limit is then held at its bound and the pass done again from
+    // the same poses, as the momentum projection's rounds do.
+    std::vector<Vec3> fromPosition;
+    std::vector<Quaternion> fromOrientation;
     for (const JointBody& body : bodies) {
-      pseudo.fromPosition.push_back(body.position);
-      pseudo.fromOrientation.push_back(body.orientation);
-      pseudo.linearVelocity.push_back(body.pseudoLinear);
-      pseudo.angularVelocity.push_back(body.pseudoAngular);
+      fromPosition.push_back(body.position);
+      fromOrientation.push_back(body.orientation);
     }
-    pseudo.linearImpulse.assign(bodies.size(), Vec3::Zero());
-    pseudo.angularImpulse.assign(bodies.size(), Vec3::Zero());
-    double pseudoLeft = 0.0;
-    project(links, bodies, bases, &positionTargets, pseudo, h, settings, pseudoLeft);
+    for (int round = 0; round < kLimitRounds; ++round) {
+      Drift pseudo;
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        bodies[i].position = fromPosition[i];
+        bodies[i].orientation = fromOrientation[i];
+        pseudo.fromPosition.push_back(fromPosition[i]);
+        pseudo.fromOrientation.push_back(fromOrientation[i]);
+        pseudo.linearVelocity.push_back(bodies[i].pseudoLinear);
+        pseudo.angularVelocity.push_back(bodies[i].pseudoAngular);
+      }
+      pseudo.linearImpulse.assign(bodies.size(), Vec3::Zero());
+      pseudo.angularImpulse.assign(bodies.size(), Vec3::Zero());
+      double pseudoLeft = 0.0;
+      project(links, bodies, bases, &positionTargets, pseudo, h, settings, pseudoLeft);
+      if (round == kLimitRounds - 1) break;
+      bool added = false;
+      for (std::size_t l = 0; l < links.size(); ++l) {
+        const JointLink& link = links[l];
+        const JointConstraint& joint = *link.joint;
+        if (link.isCoupling() || !joint.hasLimit()) continue;
+        if (std::any_of(m_limits.begin(), m_limits.end(), [&](const LimitRow& r) { return r.link == static_cast<int>(l); }))
+          continue;
+        const double q = joint.coordinate(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false));
+        const LimitRow lower{static_cast<int>(l), joint.limitLower(), -1};
+        const LimitRow upper{static_cast<int>(l), joint.limitUpper(), +1};
+        const bool below = q < lower.bound - settings.tolerance, above = q > upper.bound + settings.tolerance;
+        if (!below && !above) continue;
+        const LimitRow& limit = below ? lower : upper;
+        m_limits.push_back(limit);
+        JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+        joint.limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row.jacobian);
+        m_rows.push_back(row);
+        positionTargets.push_back(0.0);
+        added = true;
+      }
+      if (!added) break;
+      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
+    }
   }
 
   // What each joint did to B, and the error it leaves.

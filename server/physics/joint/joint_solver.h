@@ -154,6 +154,11 @@ class JointGroupSolver {
     std::vector<Quaternion> fromOrientation;
     std::vector<Vec3> linearVelocity, angularVelocity;
     std::vector<Vec3> linearImpulse, angularImpulse;
+    // The bodies' angular momenta (world), when the drift turns each body
+    // as a free rigid body does: L fixed, ω = I(t)⁻¹ L taken at mid-drift
+    // (second order for a body tumbling with unequal moments). Empty: ω
+    // fixed over the drift (the position corrections' pseudo-velocities).
+    std::vector<Vec3> angularMomentum;
   };
   // Impulses along the start's rows until the drifted poses have the
   // errors `targets` (null: none); returns them per row.

@@ -121,7 +121,8 @@ void pushSomeBodies(World& world, int step) {
 }
 
 TEST(ParallelDeterminism, ABusyWorldWithJointsContactsAndWrenchesIsTheSameOnEveryThreadCount) {
-  expectSameOnEveryThreadCount("busy world", makeBusyWorld, 0xfb9d5ea821f1f6e3ull, 150, pushSomeBodies);
+  // Golden since the joint drift turns bodies as free rigid bodies do.
+  expectSameOnEveryThreadCount("busy world", makeBusyWorld, 0x4becb00cb42d0705ull, 150, pushSomeBodies);
 }
 
 }  // namespace
