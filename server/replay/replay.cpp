@@ -131,7 +131,46 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
     if (!done) return Error{"log '" + logPath + "', event " + std::to_string(e.eventNumber) + " (" +
                             e.channel + "): " + done.error().message};
   }
+  if (m_report.difference) {
+    // A bus log that lost a message and its ack both shows it only by the
+    // gap in its client's numbers, which the messages after the difference
+    // may be the first to show: read on for them before blaming the
+    // simulation.
+    while (true) {
+      auto event = reader.next();
+      if (!event || !event->has_value()) break;
+      const LogEvent& e = **event;
+      std::optional<std::pair<std::string, int64_t>> numbered;
+      if (e.channel == ack) {
+        if (const auto a = decodeWhole<rbsim::ack_t>(e.data)) numbered = {{a->client, a->seq}};
+      } else if (e.channel == wrench) {
+        if (const auto w = decodeWhole<rbsim::wrench_t>(e.data)) numbered = {{w->client, w->seq}};
+      } else if (e.channel == command) {
+        if (const auto c = decodeWhole<rbsim::command_t>(e.data)) numbered = {{c->client, c->seq}};
+      } else if (e.channel == jointCommand) {
+        if (const auto j = decodeWhole<rbsim::joint_command_t>(e.data)) numbered = {{j->client, j->seq}};
+      } else if (e.channel == robotCommand) {
+        if (const auto r = decodeWhole<rbsim::robot_command_t>(e.data)) numbered = {{r->client, r->seq}};
+      }
+      if (numbered) m_pending->seqsByClient[numbered->first].insert(numbered->second);
+    }
+    if (const auto gap = seqGap())
+      return Error{"log '" + logPath + "': the states differ from the log (" + *m_report.difference +
+                   ") and the log holds no message or ack of '" + gap->first + "' seq " + std::to_string(gap->second) +
+                   " (lost by the logger?): the session cannot be replayed"};
+  }
   return m_report;
+}
+
+std::optional<std::pair<std::string, int64_t>> Replay::seqGap() const {
+  for (const auto& [client, seqs] : m_pending->seqsByClient) {
+    int64_t previous = *seqs.begin();
+    for (const int64_t seq : seqs) {
+      if (seq > previous + 1) return std::pair<std::string, int64_t>{client, previous + 1};
+      previous = seq;
+    }
+  }
+  return std::nullopt;
 }
 
 Expected<bool> Replay::onInput(const LogEvent& event) {
@@ -301,16 +340,10 @@ Expected<bool> Replay::blameLostAck(int64_t step) {
                  " has no ack (lost by the logger?): the session cannot be replayed"};
   }
   // Or the log lost a message and its ack both: a gap in a client's numbers.
-  for (const auto& [client, seqs] : m_pending->seqsByClient) {
-    int64_t previous = *seqs.begin();
-    for (const int64_t seq : seqs) {
-      if (seq > previous + 1)
-        return Error{"step " + std::to_string(step) + ": the states differ from the log (" + *m_report.difference +
-                     ") and the log holds no message or ack of '" + client + "' seq " + std::to_string(previous + 1) +
-                     " (lost by the logger?): the session cannot be replayed"};
-      previous = seq;
-    }
-  }
+  if (const auto gap = seqGap())
+    return Error{"step " + std::to_string(step) + ": the states differ from the log (" + *m_report.difference +
+                 ") and the log holds no message or ack of '" + gap->first + "' seq " + std::to_string(gap->second) +
+                 " (lost by the logger?): the session cannot be replayed"};
   return true;
 }
 

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "bridge/command_handler.h"
 #include "rbsim/physics/types.h"
@@ -74,7 +75,10 @@ class Replay {
   Expected<bool> onJoints(const LogEvent& event);
   // After a difference: an error (the log lost an ack) if a message still
   // waits for its ack, else true with the difference reported.
-  Expected<bool> blameLostAck(int64_t step);  // compared and re-emitted as the states are
+  Expected<bool> blameLostAck(int64_t step);
+  // The first number missing from a client's messages and acks seen so far
+  // (client, seq): a message the log lost with its ack.
+  std::optional<std::pair<std::string, int64_t>> seqGap() const;  // compared and re-emitted as the states are
   Expected<bool> advanceTo(int64_t step, const std::string& why);
   void emitWorld(int64_t timestamp);
 
