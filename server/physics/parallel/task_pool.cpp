@@ -3,35 +3,52 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <chrono>
 
 namespace rbsim {
 
 namespace {
 
-// Waits until `changed()` holds: spins first, since a step's parallel
-// loops follow each other within microseconds and a futex wake costs about
-// as much as a small loop; then yields the core between looks, so that on
-// more threads than cores the thread with work to do gets it; then sleeps on
-// the atomic (a futex), so that a worker between steps (the pacing thread
-// sleeps there) gives its core back. `sleep(value)` blocks while the atomic
-// still holds `value`.
-constexpr int kPauses = 64;
+// Waits until `changed()` holds: spins first (`spin` long), since a step's
+// parallel loops follow each other within microseconds and waking a thread
+// asleep on a futex costs tens of microseconds here (a virtual machine's
+// idle core, measured: 28 us a wake against 0.5 us spinning); then yields
+// the core between looks, so that on more threads than cores the thread
+// with work to do gets it; then sleeps on the atomic (a futex), so that a
+// worker between steps (the pacing thread sleeps there) gives its core
+// back. `sleep(value)` blocks while the atomic still holds `value`.
+// A worker waiting for the next loop spins long enough to cover the serial
+// stretches of a step (the broad phase, the colouring of the contacts); the
+// caller waiting for the workers' last tasks spins briefly, as a worker that
+// holds one and is not done within a few microseconds has lost its core.
+// On more threads than cores (the tests' 8 threads on 2 cores) a spinning
+// worker holds a core that a thread with work may be waiting for: workers
+// then spin as briefly as the caller.
+constexpr std::chrono::microseconds kWorkerSpin{50};
+constexpr std::chrono::microseconds kCallerSpin{2};
+constexpr int kPausesPerLook = 16;
 constexpr int kYields = 200;
 
 template <class Changed, class Sleep>
-void waitUntil(Changed&& changed, Sleep&& sleep) {
-  for (int i = 0; i < kPauses; ++i) {
-    if (changed()) return;
+void waitUntil(std::chrono::microseconds spin, Changed&& changed, Sleep&& sleep) {
+  const auto start = std::chrono::steady_clock::now();
+  do {
+    for (int i = 0; i < kPausesPerLook; ++i) {
+      if (changed()) return;
 #if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
+      __builtin_ia32_pause();
 #endif
-  }
+    }
+  } while (std::chrono::steady_clock::now() - start < spin);
   for (int i = 0; i < kYields; ++i) {
     if (changed()) return;
     sched_yield();
   }
   while (!changed()) sleep();
 }
+
+// m_unclaimed: [front, back) packed in one word.
+constexpr uint64_t packUnclaimed(uint64_t front, uint64_t back) { return front | (back << 32); }
 
 }  // namespace
 
@@ -45,6 +62,7 @@ int resolveThreadCount(int threads) {
 
 TaskPool::TaskPool(int threads) {
   const int workers = std::max(1, threads) - 1;
+  m_workerSpin = threads <= resolveThreadCount(0) ? kWorkerSpin : kCallerSpin;
   m_workers.reserve(static_cast<std::size_t>(workers));
   for (int i = 0; i < workers; ++i) m_workers.emplace_back([this] { workerLoop(); });
 }
@@ -59,33 +77,40 @@ TaskPool::~TaskPool() {
 void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
   m_call = call;
   m_task = task;
-  m_count = count;
-  m_next.store(0, std::memory_order_relaxed);
+  m_unclaimed.store(packUnclaimed(0, count), std::memory_order_relaxed);
   m_loop.store(kOpen, std::memory_order_release);  // publishes the loop to joiners
   m_generation.fetch_add(1, std::memory_order_release);
   m_generation.notify_all();
-  runClaimedTasks();
+  runClaimedTasks(true);
   // Every task is claimed: close the loop, then wait for the workers that
   // joined it to finish theirs (and their reads of m_call and m_task),
   // before the next loop may overwrite them.
   if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return;  // nobody joined
-  waitUntil([&] { return m_loop.load(std::memory_order_acquire) == 0; },
+  waitUntil(kCallerSpin, [&] { return m_loop.load(std::memory_order_acquire) == 0; },
             [&] {
               const uint32_t inside = m_loop.load(std::memory_order_acquire);
               if (inside != 0) m_loop.wait(inside, std::memory_order_acquire);
             });
 }
 
-void TaskPool::runClaimedTasks() {
-  for (std::size_t i = m_next.fetch_add(1, std::memory_order_relaxed); i < m_count;
-       i = m_next.fetch_add(1, std::memory_order_relaxed))
-    m_call(m_task, i);
+void TaskPool::runClaimedTasks(bool fromFront) {
+  uint64_t unclaimed = m_unclaimed.load(std::memory_order_relaxed);
+  for (;;) {
+    const uint64_t front = unclaimed & 0xffffffffu;
+    const uint64_t back = unclaimed >> 32;
+    if (front >= back) return;
+    const uint64_t index = fromFront ? front : back - 1;
+    const uint64_t claimed = fromFront ? packUnclaimed(front + 1, back) : packUnclaimed(front, back - 1);
+    if (!m_unclaimed.compare_exchange_weak(unclaimed, claimed, std::memory_order_relaxed)) continue;
+    m_call(m_task, static_cast<std::size_t>(index));
+    unclaimed = m_unclaimed.load(std::memory_order_relaxed);
+  }
 }
 
 void TaskPool::workerLoop() {
   uint32_t seen = 0;
   for (;;) {
-    waitUntil([&] { return m_generation.load(std::memory_order_acquire) != seen; },
+    waitUntil(m_workerSpin, [&] { return m_generation.load(std::memory_order_acquire) != seen; },
               [&] { m_generation.wait(seen, std::memory_order_acquire); });
     seen = m_generation.load(std::memory_order_acquire);
     if (m_stopping.load(std::memory_order_acquire)) return;
@@ -96,7 +121,7 @@ void TaskPool::workerLoop() {
       joined = m_loop.compare_exchange_weak(loop, loop + 1, std::memory_order_acq_rel,
                                             std::memory_order_acquire);
     if (!joined) continue;
-    runClaimedTasks();
+    runClaimedTasks(false);
     // The last worker out of a closed loop wakes the caller, which may be
     // asleep on it.
     if (m_loop.fetch_sub(1, std::memory_order_acq_rel) == 1) m_loop.notify_one();
