@@ -9,41 +9,39 @@ namespace rbsim {
 
 namespace {
 
-// Waits until `changed()` holds: spins first (`spin` long), since a step's
-// parallel loops follow each other within microseconds and waking a thread
-// asleep on a futex costs tens of microseconds here (a virtual machine's
-// idle core, measured: 28 us a wake against 0.5 us spinning); then yields
-// the core between looks, so that on more threads than cores the thread
-// with work to do gets it; then sleeps on the atomic (a futex), so that a
-// worker between steps (the pacing thread sleeps there) gives its core
-// back. `sleep(value)` blocks while the atomic still holds `value`.
-// A worker waiting for the next loop spins long enough to cover the serial
-// stretches of a step (the broad phase, the colouring of the contacts); the
-// caller waiting for the workers' last tasks spins briefly, as a worker that
-// holds one and is not done within a few microseconds has lost its core.
-// On more threads than cores (the tests' 8 threads on 2 cores) a spinning
-// worker holds a core that a thread with work may be waiting for: workers
-// then spin as briefly as the caller.
-constexpr std::chrono::microseconds kWorkerSpin{50};
-constexpr std::chrono::microseconds kCallerSpin{2};
-constexpr int kPausesPerLook = 16;
-constexpr int kYields = 200;
+// Waits until `changed()` holds: spins first, briefly (a pause is 25 ns
+// here); then yields the core between looks, so that a thread with work to
+// do on the same core (on more threads than cores, or when another process
+// holds the other core and the scheduler put both threads on one) gets it;
+// a yield costs 0.6 us when nothing else wants the core, so a thread alone
+// on its core still sees a change within a microsecond; then sleeps on the
+// atomic (a futex), so that a worker between steps (the pacing thread sleeps
+// there) gives its core back. `sleep(value)` blocks while the atomic still
+// holds `value`.
+// A worker waiting for the next loop yields long enough to cover the serial
+// stretches of a step (the broad phase, the colouring of the contacts, the
+// islands): measured on the pile of 1000, 200 yields (120 us) left it asleep
+// 2-3 times a step, and waking a thread asleep on a futex costs 28 us here
+// (a virtual machine's idle core) against under 1 us yielding.
+constexpr std::chrono::microseconds kSpin{2};
+constexpr std::chrono::microseconds kWorkerYielding{300};
+constexpr std::chrono::microseconds kCallerYielding{120};
 
 template <class Changed, class Sleep>
-void waitUntil(std::chrono::microseconds spin, Changed&& changed, Sleep&& sleep) {
+void waitUntil(std::chrono::microseconds yielding, Changed&& changed, Sleep&& sleep) {
   const auto start = std::chrono::steady_clock::now();
   do {
-    for (int i = 0; i < kPausesPerLook; ++i) {
+    for (int i = 0; i < 16; ++i) {
       if (changed()) return;
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
     }
-  } while (std::chrono::steady_clock::now() - start < spin);
-  for (int i = 0; i < kYields; ++i) {
+  } while (std::chrono::steady_clock::now() - start < kSpin);
+  do {
     if (changed()) return;
     sched_yield();
-  }
+  } while (std::chrono::steady_clock::now() - start < kSpin + yielding);
   while (!changed()) sleep();
 }
 
@@ -62,7 +60,6 @@ int resolveThreadCount(int threads) {
 
 TaskPool::TaskPool(int threads) {
   const int workers = std::max(1, threads) - 1;
-  m_workerSpin = threads <= resolveThreadCount(0) ? kWorkerSpin : kCallerSpin;
   m_workers.reserve(static_cast<std::size_t>(workers));
   for (int i = 0; i < workers; ++i) m_workers.emplace_back([this] { workerLoop(); });
 }
@@ -86,7 +83,7 @@ void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
   // joined it to finish theirs (and their reads of m_call and m_task),
   // before the next loop may overwrite them.
   if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return;  // nobody joined
-  waitUntil(kCallerSpin, [&] { return m_loop.load(std::memory_order_acquire) == 0; },
+  waitUntil(kCallerYielding, [&] { return m_loop.load(std::memory_order_acquire) == 0; },
             [&] {
               const uint32_t inside = m_loop.load(std::memory_order_acquire);
               if (inside != 0) m_loop.wait(inside, std::memory_order_acquire);
@@ -110,7 +107,7 @@ void TaskPool::runClaimedTasks(bool fromFront) {
 void TaskPool::workerLoop() {
   uint32_t seen = 0;
   for (;;) {
-    waitUntil(m_workerSpin, [&] { return m_generation.load(std::memory_order_acquire) != seen; },
+    waitUntil(kWorkerYielding, [&] { return m_generation.load(std::memory_order_acquire) != seen; },
               [&] { m_generation.wait(seen, std::memory_order_acquire); });
     seen = m_generation.load(std::memory_order_acquire);
     if (m_stopping.load(std::memory_order_acquire)) return;

@@ -14,7 +14,7 @@
 // The threads are made once, with the pool. A loop costs no allocation and
 // takes no lock: tasks are claimed from an atomic pair of counters, and the
 // threads wait between loops on an atomic (a futex on Linux) after a short
-// spin.
+// spin and a stretch of yields (task_pool.cpp says how long, and why).
 //
 // The caller claims tasks from the front of the loop, the workers from its
 // back, until they meet. A loop that is run again (a solver sweep, the next
@@ -25,7 +25,6 @@
 // every sweep, which cost more than the second thread gained.
 
 #include <atomic>
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -76,8 +75,6 @@ class TaskPool {
   void runClaimedTasks(bool fromFront);
 
   std::vector<std::thread> m_workers;
-  // How long a worker spins for the next loop before it yields, then sleeps.
-  std::chrono::microseconds m_workerSpin{0};
   // The current loop. Written by run() only while no worker is inside a
   // loop; a worker reads them after it has joined the open loop (acquire).
   TaskCall m_call = nullptr;
