@@ -96,7 +96,9 @@ class CollisionDetector {
 
   // The narrow phase of a run of consecutive candidate pairs, done by one
   // thread into its own lists; the runs' lists are joined in pair order.
-  struct PairRun {
+  // Each on its own cache lines: a run's thread writes its lists' ends and
+  // cursors at every pair, and neighbouring runs go to different threads.
+  struct alignas(64) PairRun {
     std::vector<BodyContact> contacts;
     std::vector<uint64_t> contactKeys;  // (serial A, serial B) of each contact
     std::vector<KeptSeparation> separations;  // in (key, piece A, piece B) order

@@ -12,8 +12,17 @@
 // results are a known complaint about other engines, mujoco#1093.)
 //
 // The threads are made once, with the pool. A loop costs no allocation and
-// takes no lock: tasks are claimed from an atomic counter, and the threads
-// wait between loops on an atomic (a futex on Linux) after a short spin.
+// takes no lock: tasks are claimed from an atomic pair of counters, and the
+// threads wait between loops on an atomic (a futex on Linux) after a short
+// spin and a stretch of yields (task_pool.cpp says how long, and why).
+//
+// The caller claims tasks from the front of the loop, the workers from its
+// back, until they meet. A loop that is run again (a solver sweep, the next
+// step's integration) then gives each thread mostly the same tasks as the
+// last time, whose data is still in its core's cache: claimed one by one
+// from a shared counter, every task would go to either thread by chance,
+// and its data (a contact's rows, a body) would cross between the cores at
+// every sweep, which cost more than the second thread gained.
 
 #include <atomic>
 #include <cstddef>
@@ -44,7 +53,7 @@ class TaskPool {
   template <class Task>
   void run(std::size_t count, Task&& task) {
     if (count == 0) return;
-    if (m_workers.empty() || count == 1) {
+    if (m_workers.empty() || count == 1 || count > kMaxTasks) {
       for (std::size_t i = 0; i < count; ++i) task(i);
       return;
     }
@@ -52,6 +61,7 @@ class TaskPool {
   }
 
  private:
+  static constexpr std::size_t kMaxTasks = 0xffffffffu;  // what m_unclaimed holds; more run on the caller
   using TaskCall = void (*)(void* task, std::size_t index);
   template <class Task>
   static void callTask(void* task, std::size_t index) {
@@ -60,16 +70,19 @@ class TaskPool {
 
   void runErased(std::size_t count, TaskCall call, void* task);
   void workerLoop();
-  // Claims and runs tasks of the current loop until none is left.
-  void runClaimedTasks();
+  // Claims and runs tasks of the current loop until none is left: from the
+  // front (the caller) or from the back (the workers).
+  void runClaimedTasks(bool fromFront);
 
   std::vector<std::thread> m_workers;
   // The current loop. Written by run() only while no worker is inside a
   // loop; a worker reads them after it has joined the open loop (acquire).
   TaskCall m_call = nullptr;
   void* m_task = nullptr;
-  std::size_t m_count = 0;
-  std::atomic<std::size_t> m_next{0};  // the next unclaimed task
+  // The unclaimed tasks [front, back) of the current loop: front in the low
+  // 32 bits, back in the high 32 (one atomic, so that a claim from either
+  // end sees the other's).
+  std::atomic<uint64_t> m_unclaimed{0};
   // kOpen while the caller is in the loop, plus the number of workers
   // inside it. A worker joins only while it is open, so the caller waits
   // for the workers that came in time, never for one still asleep or

@@ -151,7 +151,12 @@ void forEachBody(WorldData& world, Visit&& visit) {
   world.chunkSpeeds.assign(chunks, SpeedBound{});
   forEachChunk(taskPool(world), world.bodies.size(), kBodiesPerChunk,
                [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-                 for (std::size_t i = begin; i < end; ++i) visit(i, world.chunkSpeeds[chunk]);
+                 // Kept on this thread's stack and stored once: the chunks'
+                 // bounds share cache lines, which two threads writing at
+                 // every body would pass between their cores.
+                 SpeedBound bound;
+                 for (std::size_t i = begin; i < end; ++i) visit(i, bound);
+                 world.chunkSpeeds[chunk] = bound;
                });
   for (const SpeedBound& bound : world.chunkSpeeds) noteSpeeds(world, bound.squaredSpeed, bound.squaredSpin);
 }

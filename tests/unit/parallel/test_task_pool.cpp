@@ -39,6 +39,26 @@ TEST(TaskPool, SharesTheTasksAmongItsThreads) {
   EXPECT_EQ(started.load(), 2);
 }
 
+TEST(TaskPool, TheCallerTakesTasksFromTheFrontTheWorkersFromTheBack) {
+  // What keeps a repeated loop's data in each core's cache: the caller's
+  // tasks are a prefix of the loop, the worker's the rest.
+  TaskPool pool(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  for (int loop = 0; loop < 200; ++loop) {
+    std::vector<char> byCaller(64, 0);
+    pool.run(byCaller.size(), [&](std::size_t i) {
+      byCaller[i] = std::this_thread::get_id() == caller ? 1 : 0;
+      // Long enough for the worker to join some of the loops.
+      for (volatile int spin = 0; spin < 2000; spin = spin + 1) {
+      }
+    });
+    std::size_t prefix = 0;
+    while (prefix < byCaller.size() && byCaller[prefix]) ++prefix;
+    for (std::size_t i = prefix; i < byCaller.size(); ++i)
+      ASSERT_EQ(byCaller[i], 0) << "loop " << loop << ": task " << i << " after the caller's prefix of " << prefix;
+  }
+}
+
 TEST(TaskPool, OneThreadRunsTheTasksInOrderOnTheCaller) {
   TaskPool pool(1);
   std::vector<std::size_t> order;
