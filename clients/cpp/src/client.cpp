@@ -36,13 +36,6 @@ using detail::kQueueCapacity;
 using detail::regexEscaped;
 using detail::wallMicroseconds;
 
-// handle() stops draining after this many messages so that a fast publisher
-// cannot keep it from returning.
-constexpr int kMaxBatch = 100000;
-// spinUntil() checks its predicate at least this often even when no message
-// comes, for predicates that watch something other than LCM (a child
-// process, a signal flag).
-constexpr Client::Timeout kMaxWaitSlice{50};
 
 void copyVec3(double (&out)[3], const Vec3& in) {
   std::copy(in.begin(), in.end(), out);
@@ -91,27 +84,11 @@ bool Client::good() const {
 
 int Client::handle(Timeout timeout) {
   if (!good()) return -1;
-  const auto millis = std::clamp<Timeout::rep>(timeout.count(), 0, INT_MAX);
-  errno = 0;
-  int status = m_lcm->handleTimeout(static_cast<int>(millis));
-  // A signal that interrupted the wait is no LCM error: report "nothing yet"
-  // so that spinUntil() goes on (and sees a flag the handler may have set).
-  if (status < 0 && errno == EINTR) return 0;
-  if (status <= 0) return status < 0 ? -1 : 0;
-  int handled = 1;
-  while (handled < kMaxBatch && (status = m_lcm->handleTimeout(0)) > 0) ++handled;
-  return status < 0 ? -1 : handled;
+  return detail::handleMessages(*m_lcm, timeout);
 }
 
 bool Client::spinUntil(const std::function<bool()>& done, Timeout timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now >= deadline || !good()) return false;
-    const auto slice = std::min(std::chrono::ceil<Timeout>(deadline - now), kMaxWaitSlice);
-    if (handle(slice) < 0) return done();
-  }
-  return true;
+  return detail::spinUntil([this](Timeout slice) { return handle(slice); }, [this] { return good(); }, done, timeout);
 }
 
 Client::CallbackId Client::onState(StateCallback callback) {

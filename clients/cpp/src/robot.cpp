@@ -17,11 +17,6 @@ namespace {
 
 using detail::wallMicroseconds;
 
-// As Client's: handle() stops draining after this many messages, and waits
-// in slices of at most this long (a wait returns as soon as a message comes:
-// the slice only bounds how long a lost connection goes unnoticed).
-constexpr int kMaxBatch = 100000;
-constexpr Robot::Timeout kMaxWaitSlice{50};
 
 const std::vector<std::string> kNoNames;
 const std::string kNoNote;
@@ -76,25 +71,11 @@ void Robot::onAck(const lcm::ReceiveBuffer*, const std::string&, const rbsim::ac
 
 int Robot::handle(Timeout timeout) {
   if (!good()) return -1;
-  const auto millis = std::clamp<Timeout::rep>(timeout.count(), 0, INT_MAX);
-  errno = 0;
-  int status = m_lcm->handleTimeout(static_cast<int>(millis));
-  if (status < 0 && errno == EINTR) return 0;  // a signal, no LCM error
-  if (status <= 0) return status < 0 ? -1 : 0;
-  int handled = 1;
-  while (handled < kMaxBatch && (status = m_lcm->handleTimeout(0)) > 0) ++handled;
-  return status < 0 ? -1 : handled;
+  return detail::handleMessages(*m_lcm, timeout);
 }
 
 bool Robot::spinUntil(const std::function<bool()>& done, Timeout timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now >= deadline || !good()) return false;
-    const auto slice = std::min(std::chrono::ceil<Timeout>(deadline - now), kMaxWaitSlice);
-    if (handle(slice) < 0) return done();
-  }
-  return true;
+  return detail::spinUntil([this](Timeout slice) { return handle(slice); }, [this] { return good(); }, done, timeout);
 }
 
 bool Robot::waitForState(Timeout timeout, bool withDynamics) {

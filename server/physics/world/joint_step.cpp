@@ -93,6 +93,23 @@ void collectJointLinks(const WorldData& world, const std::vector<int>& local, st
   }
 }
 
+// An impulse `lambda` along a joint's axis row at the start or current
+// poses of `bodies`: on B, and its reaction on A.
+void pushAlongAxis(const JointLink& link, std::vector<JointBody>& bodies, bool atStart, double lambda) {
+  JointRow row;
+  link.joint->axisRow(sidePose(link, bodies, false, atStart), sidePose(link, bodies, true, atStart), row);
+  if (link.bodyA >= 0) {
+    JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
+    body.linearMomentum += lambda * row.linearA;
+    body.angularMomentum += lambda * row.angularA;
+  }
+  if (link.bodyB >= 0) {
+    JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
+    body.linearMomentum += lambda * row.linearB;
+    body.angularMomentum += lambda * row.angularB;
+  }
+}
+
 }  // namespace
 
 std::vector<char> findActuatedBodies(const WorldData& world) {
@@ -203,19 +220,7 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
   for (const JointLink& link : links) {
     const double effort = appliedEffort(*link.joint);
     if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
-    JointRow row;
-    link.joint->axisRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
-    const double lambda = effort * h;
-    if (link.bodyA >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
-      body.linearMomentum += lambda * row.linearA;
-      body.angularMomentum += lambda * row.angularA;
-    }
-    if (link.bodyB >= 0) {
-      JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
-      body.linearMomentum += lambda * row.linearB;
-      body.angularMomentum += lambda * row.angularB;
-    }
+    pushAlongAxis(link, bodies, true, effort * h);
   }
   std::vector<JointLinkResult> results;
   world.jointSolver->actuateBeforeContacts(links, bodies, h, results);
@@ -295,19 +300,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
       if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
       const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB;
       if ((staggered[static_cast<std::size_t>(any)] != 0) != staggeredPart) continue;
-      JointRow row;
-      link.joint->axisRow(sidePose(link, bodies, false, atStart), sidePose(link, bodies, true, atStart), row);
-      const double lambda = effort * duration;
-      if (link.bodyA >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(link.bodyA)];
-        body.linearMomentum += lambda * row.linearA;
-        body.angularMomentum += lambda * row.angularA;
-      }
-      if (link.bodyB >= 0) {
-        JointBody& body = bodies[static_cast<std::size_t>(link.bodyB)];
-        body.linearMomentum += lambda * row.linearB;
-        body.angularMomentum += lambda * row.angularB;
-      }
+      pushAlongAxis(link, bodies, atStart, effort * duration);
     }
   };
   std::vector<double> axisImpulse(links.size(), 0.0);
