@@ -27,6 +27,14 @@ class RbsimEngine final : public sb::Engine {
     settings.contact.sleeping = engineSettings.sleep;
     if (engineSettings.iterations > 0) settings.contact.solver.velocityIterations = engineSettings.iterations;
     settings.threads = engineSettings.threads;
+    if (engineSettings.solver == "soft_step") {
+      settings.contact.solver.kind = rbsim::ContactSolverKind::SoftStep;
+    } else if (!engineSettings.solver.empty() && engineSettings.solver != "sequential_impulses") {
+      std::fprintf(stderr, "rbsim: unknown --solver %s\n", engineSettings.solver.c_str());
+      std::exit(2);
+    }
+    if (engineSettings.substeps > 0) settings.contact.solver.substeps = engineSettings.substeps;
+    if (engineSettings.contactHertz > 0) settings.contact.solver.contactHertz = engineSettings.contactHertz;
     settings.contact.defaultMaterial.friction = sb::kFriction;
     settings.contact.defaultMaterial.staticFriction = sb::kFriction;
     settings.contact.defaultMaterial.restitution = sb::kRestitution;
@@ -67,6 +75,16 @@ class RbsimEngine final : public sb::Engine {
   std::string settings() const override {
     const rbsim::ContactSolverSettings& solver = m_world->settings().contact.solver;
     char text[512];
+    if (solver.kind == rbsim::ContactSolverKind::SoftStep) {
+      std::snprintf(text, sizeof text,
+                    "rbsim World::step: semi-implicit Euler, double; soft step, %d sub-steps, contact %.0f Hz, "
+                    "damping ratio %.1f, slop %.4f m, warm starting %s; friction 0.5, restitution 0; sleeping %s; "
+                    "threads %d",
+                    solver.substeps, solver.contactHertz, solver.contactDampingRatio, solver.linearSlop,
+                    solver.warmStarting ? "on" : "off", m_world->settings().contact.sleeping ? "on" : "off",
+                    rbsim::resolveThreadCount(m_world->settings().threads));
+      return text;
+    }
     std::snprintf(text, sizeof text,
                   "rbsim World::step: semi-implicit Euler, double; sequential impulses, %d velocity iterations, "
                   "%d split-impulse iterations, slop %.4f m, baumgarte %.2f, warm starting %s, shock propagation "

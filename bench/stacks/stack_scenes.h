@@ -132,6 +132,9 @@ struct EngineSettings {
   bool sleep = false;   // the engine may put bodies at rest to sleep
   int iterations = -1;  // solver iterations; < 0: the engine's default
   int threads = 1;      // threads of an engine that has them (rbsim's world.threads; 0: one per core)
+  std::string solver;   // rbsim's contact solver (sequential_impulses, soft_step); empty: its default
+  int substeps = -1;    // rbsim's soft-step sub-steps; < 0: its default
+  double contactHertz = -1;  // rbsim's soft-step contact stiffness; <= 0: its default
 };
 
 struct BodyState {
@@ -165,12 +168,16 @@ struct Options {
   double maxWall = 0;   // s of stepping per rep; 0: no cap
   std::string label;    // engine label in the output
   int threads = 1;      // engines with threads (rbsim); the peers' adapters run on one
+  std::string solver;   // rbsim only: its contact solver
+  int substeps = -1;    // rbsim only: the soft-step solver's sub-steps
+  double contactHertz = -1;  // rbsim only: the soft-step solver's contact stiffness (Hz)
 };
 
 inline void usage(const char* program) {
   std::fprintf(stderr,
                "usage: %s --scene pyramid|stack [--n N] [--reps 3] [--steps S] [--dt DT] [--iters K]\n"
                "          [--sleep 0|1] [--max-wall SEC] [--label NAME] [--threads N]\n"
+               "          [--solver sequential_impulses|soft_step] [--substeps N] [--contact-hertz F]  (rbsim only)\n"
                "  pyramid: --n = base count (90: 4095 cubes), sleeping off by default\n"
                "  stack:   --n = cubes in the tower (20), sleeping on by default (as the anchors)\n",
                program);
@@ -194,6 +201,9 @@ inline bool parseOptions(int argc, char** argv, Options& o) {
     else if (arg == "--max-wall") o.maxWall = std::atof(value);
     else if (arg == "--label") o.label = value;
     else if (arg == "--threads") o.threads = std::atoi(value);
+    else if (arg == "--solver") o.solver = value;
+    else if (arg == "--substeps") o.substeps = std::atoi(value);
+    else if (arg == "--contact-hertz") o.contactHertz = std::atof(value);
     else {
       usage(argv[0]);
       return false;
@@ -407,8 +417,12 @@ inline int runMain(int argc, char** argv, const std::string& engineName, bool sl
   settings.sleep = o.sleep < 0 ? s.sleep : o.sleep != 0;
   settings.iterations = o.iters;
   settings.threads = o.threads;
+  settings.solver = o.solver;
+  settings.substeps = o.substeps;
+  settings.contactHertz = o.contactHertz;
   const std::string label =
-      !o.label.empty() ? o.label : engineName + (sleepingEngine && !settings.sleep ? "-nosleep" : "");
+      !o.label.empty() ? o.label : engineName + (o.solver == "soft_step" ? "-soft" : "") +
+                               (sleepingEngine && !settings.sleep ? "-nosleep" : "");
 
   if (o.maxWall > 0) std::signal(SIGALRM, watchdog);
   std::vector<RepResult> reps;

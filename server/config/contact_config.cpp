@@ -9,7 +9,7 @@ namespace {
 
 constexpr std::array<std::string_view, 3> kMaterialKeys = {"restitution", "friction",
                                                            "static_friction"};
-constexpr std::array<std::string_view, 21> kContactKeys = {
+constexpr std::array<std::string_view, 25> kContactKeys = {
     "enabled",           "model",
     "backtracking",      "iterations",
     "position_iterations", "stiffness",
@@ -20,7 +20,9 @@ constexpr std::array<std::string_view, 21> kContactKeys = {
     "slop",              "baumgarte",
     "warm_starting",     "epsilon",
     "sleeping",          "sleep_velocity",
-    "sleep_time"};
+    "sleep_time",        "solver",
+    "substeps",          "contact_hertz",
+    "contact_damping_ratio"};
 
 constexpr double kMaxCoefficient = 100.0;  // friction coefficients beyond this are typos
 
@@ -92,6 +94,17 @@ std::optional<Error> parseContactConfig(const YamlReader& reader, const YamlNode
       return reader.error(law->value, "expected clamped or unclamped, got \"" + *name + "\"");
     config.penaltyLaw = *kind;
   }
+  if (const auto* solver = map->find("solver")) {
+    const auto name = reader.string(solver->value);
+    if (!name) return name.error();
+    if (*name == "sequential_impulses") {
+      config.solver.kind = ContactSolverKind::SequentialImpulses;
+    } else if (*name == "soft_step") {
+      config.solver.kind = ContactSolverKind::SoftStep;
+    } else {
+      return reader.error(solver->value, "expected sequential_impulses or soft_step, got \"" + *name + "\"");
+    }
+  }
   const auto backtracking = reader.boolean(*map, "backtracking", config.backtracking);
   if (!backtracking) return backtracking.error();
   config.backtracking = *backtracking;
@@ -105,12 +118,15 @@ std::optional<Error> parseContactConfig(const YamlReader& reader, const YamlNode
   if (auto e = readCount(reader, *map, "iterations", 1000, config.solver.velocityIterations)) return e;
   if (auto e = readCount(reader, *map, "position_iterations", 1000, config.solver.positionIterations))
     return e;
+  if (auto e = readCount(reader, *map, "substeps", 64, config.solver.substeps)) return e;
+  if (config.solver.substeps < 1)
+    return reader.error(map->find("substeps")->value, "expected at least 1 sub-step");
   struct Field {
     std::string_view key;
     NumberRule rule;
     double* value;
   };
-  const std::array<Field, 10> fields = {{
+  const std::array<Field, 12> fields = {{
       {"stiffness", NumberRule::positive(1e12), &config.penaltyStiffness},
       {"damping", NumberRule::nonNegative(1e12), &config.penaltyDamping},
       {"friction_damping", NumberRule::nonNegative(1e12), &config.penaltyFrictionDamping},
@@ -121,6 +137,8 @@ std::optional<Error> parseContactConfig(const YamlReader& reader, const YamlNode
       {"epsilon", NumberRule::nonNegative(1e3), &config.classificationEpsilon},
       {"sleep_velocity", NumberRule::nonNegative(1e3), &config.sleepLinearVelocity},
       {"sleep_time", NumberRule::nonNegative(1e6), &config.sleepTime},
+      {"contact_hertz", NumberRule::positive(1e6), &config.solver.contactHertz},
+      {"contact_damping_ratio", NumberRule::nonNegative(1e3), &config.solver.contactDampingRatio},
   }};
   for (const Field& field : fields)
     if (auto error = readNumber(reader, *map, field.key, field.rule, *field.value)) return error;

@@ -1,4 +1,6 @@
 #include "physics/solver/contact_solver.h"
+#include "physics/solver/previous_manifold.h"
+#include "physics/solver/tangent_basis.h"
 #include "physics/solver/velocity_projection.h"
 
 #include <algorithm>
@@ -21,15 +23,6 @@ SolvedManifold manifoldIdentity(const BodyContact& contact, int32_t serialA, int
 }
 
 namespace {
-
-// A tangent basis that depends only on the normal, so that friction impulses
-// accumulated along t1, t2 last step still mean the same thing this step
-// (warm starting needs that).
-void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
-  const Vec3 axis = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : Vec3::UnitY();
-  t1 = n.cross(axis).normalized();
-  t2 = n.cross(t1);
-}
 
 double inverseOrZero(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
 
@@ -55,19 +48,6 @@ bool invertLeadingBlock(const Mat3& k, int size, Mat3& inverse) {
   if (!(det > 1e-12 * k(0, 0) * k(1, 1) * k(2, 2))) return false;
   inverse = k.inverse();
   return true;
-}
-
-using ManifoldKey = std::tuple<int32_t, int32_t, int, int>;
-
-// Last step's manifold with this key (same bodies and pieces), or null.
-// `previous` is sorted by key and so are the calls: `cursor` only moves on.
-const SolvedManifold* previousManifold(const std::vector<SolvedManifold>& previous,
-                                       const ManifoldKey& key, std::size_t& cursor) {
-  const auto keyOf = [](const SolvedManifold& s) {
-    return ManifoldKey{s.serialA, s.serialB, s.pieceA, s.pieceB};
-  };
-  while (cursor < previous.size() && keyOf(previous[cursor]) < key) ++cursor;
-  return cursor < previous.size() && keyOf(previous[cursor]) == key ? &previous[cursor] : nullptr;
 }
 
 constexpr int kLocalSweeps = 4;  // Gauss–Seidel passes over a manifold's points when the block solution is infeasible
@@ -518,27 +498,8 @@ void ContactSolver::batchSweeps(const std::vector<SolverBody>& bodies, const std
   m_batcher.build(m_constraintBodies, m_moves, m_shockStage, m_shockSweep);
 }
 
-template <class Solve>
-void ContactSolver::sweep(const SweepBatches& batches, TaskPool& pool, Solve&& solve) {
-  // A batch smaller than this is solved on the calling thread: sharing it
-  // would cost more than it saves.
-  constexpr std::size_t kSmallestShared = 48;
-  constexpr std::size_t kConstraintsPerTask = 16;
-  for (int b = 0; b < batches.batchCount(); ++b) {
-    const std::span<const int> batch = batches.batch(b);
-    if (batches.inOrder[static_cast<std::size_t>(b)] || batch.size() < kSmallestShared ||
-        pool.threadCount() == 1) {
-      for (const int m : batch) solve(static_cast<std::size_t>(m));
-      continue;
-    }
-    forEachChunk(pool, batch.size(), kConstraintsPerTask, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) solve(static_cast<std::size_t>(batch[k]));
-    });
-  }
-}
-
 void ContactSolver::warmStart(std::vector<SolverBody>& bodies, TaskPool& pool) {
-  sweep(m_sweep, pool, [&](std::size_t m) { warmStartOne(m_constraints[m], bodies); });
+  sweepInBatches(m_sweep, pool, [&](std::size_t m) { warmStartOne(m_constraints[m], bodies); });
 }
 
 namespace {
@@ -673,7 +634,7 @@ Vec3 ContactSolver::solveNormalBlock(ManifoldConstraint& c, const Vec3& u, bool 
 }
 
 void ContactSolver::solveVelocities(std::vector<SolverBody>& bodies, bool shock, TaskPool& pool) {
-  sweep(shock ? m_shockSweep : m_sweep, pool,
+  sweepInBatches(shock ? m_shockSweep : m_sweep, pool,
         [&](std::size_t m) { solveVelocity(m_constraints[m], bodies, shock); });
 }
 
@@ -739,7 +700,7 @@ void ContactSolver::solvePositions(std::vector<SolverBody>& bodies, int iteratio
   // Pseudo-velocities that remove a fraction of the penetration beyond the
   // slop; they move positions only and are discarded after the step.
   for (int iteration = 0; iteration < iterations; ++iteration)
-    sweep(m_sweep, pool, [&](std::size_t m) { solvePosition(m_constraints[m], bodies); });
+    sweepInBatches(m_sweep, pool, [&](std::size_t m) { solvePosition(m_constraints[m], bodies); });
 }
 
 void ContactSolver::solvePosition(ManifoldConstraint& c, std::vector<SolverBody>& bodies) {

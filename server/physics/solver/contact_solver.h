@@ -230,10 +230,6 @@ class ContactSolver {
   // The sweeps' batches: of the regular sweeps, and of the shock sweep
   // (level by level upwards, from `levels`; when `shock`).
   void batchSweeps(const std::vector<SolverBody>& bodies, const std::vector<int>& levels, bool shock);
-  // Calls solve(m) for every constraint m, batch after batch of `batches`,
-  // each batch shared among the pool's threads.
-  template <class Solve>
-  void sweep(const SweepBatches& batches, TaskPool& pool, Solve&& solve);
   void warmStart(std::vector<SolverBody>& bodies, TaskPool& pool);
   void warmStartOne(const ManifoldConstraint& c, std::vector<SolverBody>& bodies) const;
   // The propagation pass (see the header's comment; a no-op unless a

@@ -17,6 +17,8 @@
 #include <span>
 #include <vector>
 
+#include "physics/parallel/task_pool.h"
+
 namespace rbsim {
 
 struct SweepBatches {
@@ -55,5 +57,27 @@ class SweepBatcher {
   std::vector<int> m_colourCount;        // constraints per colour in the stage
   std::vector<int> m_colourStart;        // scratch of the counting sort
 };
+
+// Calls solve(m) for every constraint m of `batches`, batch after batch,
+// each batch shared among the pool's threads (the result is the same for
+// every thread count: see above).
+template <class Solve>
+void sweepInBatches(const SweepBatches& batches, TaskPool& pool, Solve&& solve) {
+  // A batch smaller than this is solved on the calling thread: sharing it
+  // would cost more than it saves.
+  constexpr std::size_t kSmallestShared = 48;
+  constexpr std::size_t kConstraintsPerTask = 16;
+  for (int b = 0; b < batches.batchCount(); ++b) {
+    const std::span<const int> batch = batches.batch(b);
+    if (batches.inOrder[static_cast<std::size_t>(b)] || batch.size() < kSmallestShared ||
+        pool.threadCount() == 1) {
+      for (const int m : batch) solve(static_cast<std::size_t>(m));
+      continue;
+    }
+    forEachChunk(pool, batch.size(), kConstraintsPerTask, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) solve(static_cast<std::size_t>(batch[k]));
+    });
+  }
+}
 
 }  // namespace rbsim

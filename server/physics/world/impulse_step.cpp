@@ -2,6 +2,7 @@
 // woken, velocities after the forces, colliding contacts moved to their time
 // of impact, sequential impulses (solver/contact_solver.h), positions, sleep.
 #include <algorithm>
+#include <iterator>
 #include <memory>
 #include <tuple>
 
@@ -257,18 +258,69 @@ std::vector<int> contactLevels(const WorldData& world, const std::vector<BodyCon
   return levels;
 }
 
-void solveContacts(WorldData& world, const std::vector<BodyContact>& active, const ContactSolverSettings& settings,
-                   double h, std::vector<SolvedManifold>& solved, const VelocityProjection* equalities) {
-  std::vector<int32_t> serials(world.bodies.size());
-  for (std::size_t i = 0; i < world.bodies.size(); ++i) serials[i] = world.bodies[i].serial();
+std::vector<PairMaterial> materialsOf(const WorldData& world, const std::vector<BodyContact>& contacts) {
   std::vector<PairMaterial> materials;
-  materials.reserve(active.size());
-  for (const BodyContact& c : active)
+  materials.reserve(contacts.size());
+  for (const BodyContact& c : contacts)
     materials.push_back(
         combineMaterials(world.bodies[static_cast<std::size_t>(c.bodyA)].description().material,
                          world.bodies[static_cast<std::size_t>(c.bodyB)].description().material));
-  world.solver->solve(active, materials, world.solverBodies, serials, world.contacts, settings, h, solved,
-                  taskPool(world), contactLevels(world, active), equalities);
+  return materials;
+}
+
+void solveBySequentialImpulses(WorldData& world, const std::vector<BodyContact>& active,
+                               const std::vector<int32_t>& serials, const ContactSolverSettings& settings,
+                               double h, std::vector<SolvedManifold>& solved,
+                               const VelocityProjection* equalities) {
+  world.solver->solve(active, materialsOf(world, active), world.solverBodies, serials, world.contacts, settings,
+                      h, solved, taskPool(world), contactLevels(world, active), equalities);
+}
+
+// The soft-step solver's share of the contacts: those of islands with no
+// collision in the step and no joint. The others go to sequential
+// impulses, which answer a collision at its time of impact (and a chain of
+// them pair by pair) and project joints between their sweeps. Islands
+// share no moving body, so the two solvers never touch the same one.
+void splitForSoftStep(const WorldData& world, const ContactStep& step, const std::vector<int>& islandOf,
+                      const std::vector<BodyContact>& active, std::vector<BodyContact>& soft,
+                      std::vector<BodyContact>& exact) {
+  const std::size_t n = world.bodies.size();
+  std::vector<char> exactIsland(n, 0);  // by island root
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool collides = !step.impactTime.empty() && step.impactTime[i] >= 0.0;
+    const bool jointed = !step.jointed.empty() && step.jointed[i] && step.solving[i];
+    if (collides || jointed) exactIsland[static_cast<std::size_t>(islandOf[i])] = 1;
+  }
+  for (const BodyContact& c : active) {
+    const int moving = world.bodies[static_cast<std::size_t>(c.bodyA)].isStatic() ? c.bodyB : c.bodyA;
+    const bool toExact = exactIsland[static_cast<std::size_t>(islandOf[static_cast<std::size_t>(moving)])] != 0;
+    (toExact ? exact : soft).push_back(c);
+  }
+}
+
+void solveContacts(WorldData& world, const ContactStep& step, const std::vector<int>& islandOf,
+                   const std::vector<BodyContact>& active, const ContactSolverSettings& settings, double h,
+                   std::vector<SolvedManifold>& solved, const VelocityProjection* equalities) {
+  std::vector<int32_t> serials(world.bodies.size());
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) serials[i] = world.bodies[i].serial();
+  if (settings.kind != ContactSolverKind::SoftStep) {
+    solveBySequentialImpulses(world, active, serials, settings, h, solved, equalities);
+    return;
+  }
+  std::vector<BodyContact> soft, exact;
+  splitForSoftStep(world, step, islandOf, active, soft, exact);
+  std::vector<SolvedManifold> softSolved, exactSolved;
+  if (!soft.empty())
+    world.softSolver->solve(soft, materialsOf(world, soft), world.solverBodies, serials, world.contacts,
+                            settings, h, softSolved, taskPool(world));
+  if (!exact.empty()) solveBySequentialImpulses(world, exact, serials, settings, h, exactSolved, equalities);
+  // Both lists keep the contacts' order, which is by key: merged, so is the result.
+  solved.clear();
+  solved.reserve(softSolved.size() + exactSolved.size());
+  std::merge(softSolved.begin(), softSolved.end(), exactSolved.begin(), exactSolved.end(),
+             std::back_inserter(solved), [](const SolvedManifold& x, const SolvedManifold& y) {
+               return manifoldKey(x) < manifoldKey(y);
+             });
 }
 
 // Momenta from the solved velocities and positions over h: semi-implicit
@@ -393,7 +445,7 @@ void stepImpulse(WorldData& world) {
     if (jointRows) actuateJointedIslandsInContact(world, step, jointed, dt);
     findImpacts(world, step);
     std::vector<SolvedManifold> solved;
-    solveContacts(world, *step.contacts, world.settings.contact.solver, dt, solved, jointRows.get());
+    solveContacts(world, step, islandOf, *step.contacts, world.settings.contact.solver, dt, solved, jointRows.get());
     integrateSolvedBodies(world, step, solved, dt, jointed);
     stepJointedBodies(world, jointed, step.solving, islandOf, dt);
     keepSleepingContacts(world, detected, solved);

@@ -125,6 +125,7 @@ WorldData::WorldData(const WorldSettings& worldSettings)
       detector(std::make_unique<CollisionDetector>(worldSettings.contact.detection)),
       tag(newWorldTag()),
       solver(std::make_unique<ContactSolver>()),
+      softSolver(std::make_unique<SoftStepSolver>()),
       jointSolver(std::make_unique<JointSolver>()) {}
 
 WorldData::WorldData(const WorldData& other) = default;

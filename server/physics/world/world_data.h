@@ -21,6 +21,7 @@
 #include "physics/joint/joint_solver.h"
 #include "physics/parallel/task_pool.h"
 #include "physics/solver/contact_solver.h"
+#include "physics/solver/soft_step_solver.h"
 #include "rbsim/physics/world.h"
 
 namespace rbsim {
@@ -59,6 +60,7 @@ struct WorldData {
   DeepCopyPtr<CollisionDetector> detector;
   uint32_t tag;  // stamped on the ids it hands out (ids.h); copies keep it
   DeepCopyPtr<ContactSolver> solver;
+  DeepCopyPtr<SoftStepSolver> softSolver;  // when settings.contact.solver.kind is SoftStep
   // The joint step's solver: it keeps the symbolic factorisation of the
   // joints' system while their pattern stays (joint/joint_solver.h).
   DeepCopyPtr<JointSolver> jointSolver;

@@ -97,6 +97,10 @@ TEST(ConfigLoader, FullWorldFieldByField) {
   EXPECT_FALSE(contact.sleeping);
   EXPECT_DOUBLE_EQ(contact.sleepLinearVelocity, 0.02);
   EXPECT_DOUBLE_EQ(contact.sleepTime, 1.5);
+  EXPECT_EQ(contact.solver.kind, ContactSolverKind::SoftStep);
+  EXPECT_EQ(contact.solver.substeps, 6);
+  EXPECT_DOUBLE_EQ(contact.solver.contactHertz, 400.0);
+  EXPECT_DOUBLE_EQ(contact.solver.contactDampingRatio, 5.0);
 
   ASSERT_EQ(world->bodies.size(), 6u);
   const BodyDef& floor = world->bodies[0];
@@ -473,6 +477,13 @@ TEST(ConfigLoaderErrors, BadContactSettings) {
   EXPECT_EQ(errorOf("contact: 3\n"), "test.yaml:1:10: contact: expected a mapping, got \"3\"");
   EXPECT_EQ(errorOf("contact: {model: springs}\n"),
             "test.yaml:1:18: contact.model: expected impulse or penalty, got \"springs\"");
+  EXPECT_EQ(errorOf("contact: {solver: box2d}\n"),
+            "test.yaml:1:19: contact.solver: expected sequential_impulses or soft_step, got \"box2d\"");
+  EXPECT_EQ(errorOf("contact: {substeps: 0}\n"), "test.yaml:1:21: contact.substeps: expected at least 1 sub-step");
+  EXPECT_NE(errorOf("contact: {substeps: 2.5}\n").find("whole number"), std::string::npos);
+  EXPECT_NE(errorOf("contact: {contact_hertz: 0}\n").find("contact.contact_hertz"), std::string::npos);
+  EXPECT_NE(errorOf("contact: {contact_damping_ratio: -1}\n").find("contact.contact_damping_ratio"),
+            std::string::npos);
   EXPECT_EQ(errorOf("contact: {penalty_law: soft}\n"),
             "test.yaml:1:24: contact.penalty_law: expected clamped or unclamped, got \"soft\"");
   EXPECT_EQ(errorOf("contact: {friction: 0.5, static_friction: 0.2}\n"),

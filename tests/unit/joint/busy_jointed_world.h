@@ -17,8 +17,10 @@ inline Vec3 vec(const jb::Vec3& v) { return {v[0], v[1], v[2]}; }
 
 // The ground and one ragdoll upright 1 m up, leaning 0.4 rad so that it
 // falls over; its bodies in `bodies`.
-inline World makeRagdollWorld(std::vector<BodyId>& bodies) {
+inline World makeRagdollWorld(std::vector<BodyId>& bodies,
+                              ContactSolverKind solver = ContactSolverKind::SequentialImpulses) {
   WorldSettings settings;
+  settings.contact.solver.kind = solver;
   settings.dt = 1e-3;
   settings.gravity = Vec3(0, 0, -kGravity);
   settings.contact.defaultMaterial.friction = 0.5;
@@ -65,9 +67,9 @@ inline World makeRagdollWorld(std::vector<BodyId>& bodies) {
 // The ragdoll, and beside it a wheel spun by a motor against friction, a
 // servo arm on a drive, a lamp on a rope: every joint type, limit and
 // actuator, in contact and in free flight.
-inline World makeBusyJointedWorld() {
+inline World makeBusyJointedWorld(ContactSolverKind solver = ContactSolverKind::SequentialImpulses) {
   std::vector<BodyId> bodies;
-  World world = makeRagdollWorld(bodies);
+  World world = makeRagdollWorld(bodies, solver);
   const BodyId wheel = addBody(world, "wheel", CylinderShape{0.2, 0.05}, 2.0, Vec3(2, 0, 1));
   JointDef axle = hinge("axle", BodyId{}, wheel, Vec3(2, 0, 1), Vec3(0, 1, 0));
   axle.motor = {true, 6.0, 0.4};

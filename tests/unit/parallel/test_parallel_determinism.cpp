@@ -75,8 +75,9 @@ void expectSameOnEveryThreadCount(const char* scene, const std::function<World()
   }
 }
 
-World fromDef(WorldDef def) {
+World fromDef(WorldDef def, ContactSolverKind solver = ContactSolverKind::SequentialImpulses) {
   def.settings.contact.sleeping = false;  // every body solved every step
+  def.settings.contact.solver.kind = solver;
   return World::fromDef(def).value();
 }
 
@@ -91,10 +92,26 @@ TEST(ParallelDeterminism, ASphereBinIsTheSameOnEveryThreadCount) {
       "bin of 200 spheres", [] { return fromDef(scenes::makeSphereBinScene(200)); }, 0xa87db9918d920176ull, 500);
 }
 
+// The soft-step solver (sub-steps, each with its own sweeps) keeps the
+// same promise.
+TEST(ParallelDeterminism, APileIsTheSameOnEveryThreadCountWithSoftSteps) {
+  expectSameOnEveryThreadCount(
+      "pile of 200 boxes, soft step",
+      [] { return fromDef(scenes::makePileScene(200, scenes::PileVariant::Dropped), ContactSolverKind::SoftStep); },
+      0x68a7f6ab002d8894ull, 800);
+}
+
+TEST(ParallelDeterminism, ASphereBinIsTheSameOnEveryThreadCountWithSoftSteps) {
+  expectSameOnEveryThreadCount(
+      "bin of 200 spheres, soft step",
+      [] { return fromDef(scenes::makeSphereBinScene(200), ContactSolverKind::SoftStep); },
+      0x9c7a26f4b1038fc3ull, 500);
+}
+
 // Joints of every type with their limits and actuators, a pile beside them
 // that sleeps and is woken, and wrenches on a few bodies every step.
-World makeBusyWorld() {
-  World world = testing::makeBusyJointedWorld();
+World makeBusyWorld(ContactSolverKind solver = ContactSolverKind::SequentialImpulses) {
+  World world = testing::makeBusyJointedWorld(solver);
   scenes::SceneRandom random(0xB05Fu);
   for (int i = 0; i < 40; ++i) {
     BodyDef box;
@@ -120,9 +137,19 @@ void pushSomeBodies(World& world, int step) {
   }
 }
 
+// Jointed islands in contact go to sequential impulses, the rest to soft
+// steps, in one step.
+World makeBusySoftStepWorld() { return makeBusyWorld(ContactSolverKind::SoftStep); }
+
+TEST(ParallelDeterminism, ABusyWorldWithSoftStepsIsTheSameOnEveryThreadCount) {
+  expectSameOnEveryThreadCount("busy world, soft step", makeBusySoftStepWorld, 0xbe205f23c2c5398full, 150,
+                               pushSomeBodies);
+}
+
 TEST(ParallelDeterminism, ABusyWorldWithJointsContactsAndWrenchesIsTheSameOnEveryThreadCount) {
   // Golden since the joint drift turns bodies as free rigid bodies do.
-  expectSameOnEveryThreadCount("busy world", makeBusyWorld, 0x4becb00cb42d0705ull, 150, pushSomeBodies);
+  expectSameOnEveryThreadCount("busy world", [] { return makeBusyWorld(); }, 0x4becb00cb42d0705ull, 150,
+                               pushSomeBodies);
 }
 
 }  // namespace

@@ -8,9 +8,20 @@
 
 namespace rbsim::testing {
 
+// The contact solver the contact tests run with: test_contact_response
+// compiles them with the default, test_contact_response_soft_step with
+// RBSIM_TEST_SOFT_STEP defined, so that every contact test holds for both.
+inline constexpr ContactSolverKind kTestContactSolver =
+#ifdef RBSIM_TEST_SOFT_STEP
+    ContactSolverKind::SoftStep;
+#else
+    ContactSolverKind::SequentialImpulses;
+#endif
+
 inline WorldSettings contactSettings(double restitution, double friction) {
   WorldSettings settings;
   settings.dt = 1e-3;
+  settings.contact.solver.kind = kTestContactSolver;
   settings.contact.defaultMaterial.restitution = restitution;
   settings.contact.defaultMaterial.friction = friction;
   settings.contact.defaultMaterial.staticFriction = friction;
