@@ -6,10 +6,12 @@
 // --threads N (ours alone; taken out before the harness reads the options)
 // sets world.threads: 1 (the default here, one core as the peers) steps on
 // the caller alone, 0 on every core the process may run on (pin it to
-// both: taskset -c 0,1).
+// both: taskset -c 0,1). --solver soft_step (ours alone, too) picks the
+// soft-step contact solver instead of sequential impulses.
 // One timed step = World::step(): collision detection, contact response, integration.
 #include "scene.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@ namespace {
 rbsim::Vec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
 
 int g_threads = 1;  // --threads
+bool g_softStep = false;  // --solver soft_step
 
 struct RbsimEngine : anchors::Engine {
   std::optional<rbsim::World> world;
@@ -35,6 +38,7 @@ struct RbsimEngine : anchors::Engine {
     settings.gravity = rbsim::Vec3(0, 0, scene.gravity);
     settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
     settings.threads = g_threads;
+    if (g_softStep) settings.contact.solver.kind = rbsim::ContactSolverKind::SoftStep;
     world.emplace(settings);
     int index = 0;
     for (const anchors::BodyDef& b : scene.bodies) {
@@ -86,6 +90,12 @@ struct RbsimEngine : anchors::Engine {
     return sleeping ? "sleeping bodies at end: " + std::to_string(world->sleepingBodyCount()) : "";
   }
   std::string settings() const override {
+    const rbsim::ContactSolverSettings& solver = world->settings().contact.solver;
+    if (solver.kind == rbsim::ContactSolverKind::SoftStep)
+      return std::string("rbsim World::step: semi-implicit Euler, double; soft step, ") +
+             std::to_string(solver.substeps) + " sub-steps, contact " +
+             std::to_string(static_cast<int>(solver.contactHertz)) + " Hz, patch friction 0.5; sleeping " +
+             (sleeping ? "on" : "off") + "; threads " + std::to_string(rbsim::resolveThreadCount(g_threads));
     return std::string("rbsim World::step: semi-implicit Euler, double; sequential impulses, ") +
            std::to_string(world->settings().contact.solver.velocityIterations) +
            " iterations, patch friction 0.5, split impulses, shock propagation; sleeping " +
@@ -100,6 +110,15 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     if (std::string(argv[i]) == "--threads" && i + 1 < argc) {
       g_threads = std::atoi(argv[++i]);
+      continue;
+    }
+    if (std::string(argv[i]) == "--solver" && i + 1 < argc) {
+      const std::string name = argv[++i];
+      if (name != "soft_step" && name != "sequential_impulses") {
+        std::fprintf(stderr, "rbsim: unknown --solver %s\n", name.c_str());
+        return 2;
+      }
+      g_softStep = name == "soft_step";
       continue;
     }
     args.push_back(argv[i]);

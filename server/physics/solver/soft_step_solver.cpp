@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <span>
 
 #include "physics/solver/previous_manifold.h"
 #include "physics/solver/tangent_basis.h"
@@ -22,44 +24,17 @@ namespace {
 
 double inverseOrZero(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
 
-// A pair's velocities in locals, written back once (see PairVelocities in
-// contact_solver.cpp: registers, no aliasing). A body that does not move
-// (static, or asleep) is read and never written: other threads may read it
-// at the same time.
-struct Pair {
-  Pair(const SolverBody& a, const SolverBody& b, bool aMoves, bool bMoves)
-      : vA(a.linearVelocity), wA(a.angularVelocity), vB(b.linearVelocity), wB(b.angularVelocity),
-        movesA(aMoves), movesB(bMoves) {}
-
-  double velocity(const VelocityRow& row) const { return row.velocity(vA, wA, vB, wB); }
-  void apply(const VelocityRow& row, double impulse, double inverseMassA, double inverseMassB) {
-    if (movesA) {
-      vA -= (impulse * inverseMassA) * row.linear;
-      wA -= impulse * row.responseA;
-    }
-    if (movesB) {
-      vB += (impulse * inverseMassB) * row.linear;
-      wB += impulse * row.responseB;
-    }
-  }
-  void applyRotation(const VelocityRow& row, double impulse) {
-    if (movesA) wA -= impulse * row.responseA;
-    if (movesB) wB += impulse * row.responseB;
-  }
-  void store(SolverBody& a, SolverBody& b) const {
-    if (movesA) {
-      a.linearVelocity = vA;
-      a.angularVelocity = wA;
-    }
-    if (movesB) {
-      b.linearVelocity = vB;
-      b.angularVelocity = wB;
-    }
-  }
-
-  Vec3 vA, wA, vB, wB;
-  const bool movesA, movesB;
-};
+// An impulse along a row (VelocityRow::apply, lane by lane). A body that
+// does not move has no inverse mass and no response, so its lanes keep
+// their velocities (and scatter() does not write them).
+inline void applyRow(LaneVec3& vA, LaneVec3& wA, LaneVec3& vB, LaneVec3& wB, const Lanes& inverseMassA,
+                     const Lanes& inverseMassB, const LaneVec3& linear, const LaneVec3& responseA,
+                     const LaneVec3& responseB, const Lanes& impulse) {
+  addScaled(vA, -(impulse * inverseMassA), linear);
+  addScaled(wA, -impulse, responseA);
+  addScaled(vB, impulse * inverseMassB, linear);
+  addScaled(wB, impulse, responseB);
+}
 
 }  // namespace
 
@@ -112,6 +87,7 @@ void SoftStepSolver::solve(const std::vector<BodyContact>& contacts,
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (m_moves[i]) m_moving.push_back(static_cast<int>(i));
   m_batcher.build(m_constraintBodies, m_moves, {}, m_sweep);
+  packGroups();
 
   // Each body starts from its velocity at the step's start and gains the
   // forces' share at every sub-step.
@@ -141,17 +117,15 @@ void SoftStepSolver::solve(const std::vector<BodyContact>& contacts,
       b.linearVelocity += motion.forceLinear;
       b.angularVelocity += motion.forceAngular;
     });
-    if (settings.warmStarting)
-      sweepInBatches(m_sweep, pool, [&](std::size_t m) { warmStartOne(m_manifolds[m], bodies); });
-    sweepInBatches(m_sweep, pool, [&](std::size_t m) {
-      solveOne(m_manifolds[m], bodies, true, inverseH, maxPush);
-    });
+    if (settings.warmStarting) sweepGroups(pool, [&](Group& g) { warmStartGroup(g, bodies); });
+    sweepGroups(pool, [&](Group& g) { solveGroup(g, bodies, true, inverseH, maxPush); });
     forEachMoving([&](std::size_t, SolverBody& b, Motion& motion) {
       motion.linear += h * b.linearVelocity;
       motion.angular += h * b.angularVelocity;
     });
-    sweepInBatches(m_sweep, pool, [&](std::size_t m) { relaxOne(m_manifolds[m], bodies, inverseH); });
+    sweepGroups(pool, [&](Group& g) { solveGroup(g, bodies, false, inverseH, maxPush); });
   }
+  unpackGroups();
   // Integrating the pose with velocity + pseudo over dt gives the mean
   // velocity's motion: the sub-steps' position. A body that no contact
   // pushed in any sub-step flew free; the world's integrator moves it then
@@ -292,118 +266,240 @@ void SoftStepSolver::shareUnmatchedLoad(Manifold& c, const SolvedManifold& old, 
     if (!matched[p]) c.points[p].impulse = share;
 }
 
-void SoftStepSolver::warmStartOne(Manifold& c, std::vector<SolverBody>& bodies) const {
-  SolverBody& bodyA = bodies[static_cast<std::size_t>(c.bodyA)];
-  SolverBody& bodyB = bodies[static_cast<std::size_t>(c.bodyB)];
-  Pair v(bodyA, bodyB, c.inverseMassA != 0.0, c.inverseMassB != 0.0);
-  for (int p = 0; p < c.pointCount; ++p) {
-    const Point& pc = c.points[p];
-    const double impulse = pc.impulse;
-    if (v.movesA) {
-      v.vA -= (impulse * c.inverseMassA) * c.normal;
-      v.wA -= impulse * pc.responseA;
+void SoftStepSolver::packGroups() {
+  m_groups.clear();
+  m_batchGroups.assign(1, 0);
+  for (int b = 0; b < m_sweep.batchCount(); ++b) {
+    const std::span<const int> batch = m_sweep.batch(b);
+    // Manifolds of the overflow batch share bodies: one per group, in order.
+    const int perGroup = m_sweep.inOrder[static_cast<std::size_t>(b)] ? 1 : kLanes;
+    for (std::size_t k = 0; k < batch.size(); k += static_cast<std::size_t>(perGroup)) {
+      Group& g = m_groups.emplace_back();
+      g.count = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(perGroup), batch.size() - k));
+      for (int lane = 0; lane < g.count; ++lane) {
+        g.manifold[lane] = batch[k + static_cast<std::size_t>(lane)];
+        storeLane(g, lane, m_manifolds[static_cast<std::size_t>(g.manifold[lane])]);
+      }
+      // Unused lanes point at the first lane's bodies: read, never written.
+      for (int lane = g.count; lane < kLanes; ++lane) {
+        g.bodyA[lane] = g.bodyA[0];
+        g.bodyB[lane] = g.bodyB[0];
+      }
     }
-    if (v.movesB) {
-      v.vB += (impulse * c.inverseMassB) * c.normal;
-      v.wB += impulse * pc.responseB;
-    }
+    m_batchGroups.push_back(static_cast<int>(m_groups.size()));
   }
-  v.apply(c.tangentRows[0], c.tangentImpulse[0], c.inverseMassA, c.inverseMassB);
-  v.apply(c.tangentRows[1], c.tangentImpulse[1], c.inverseMassA, c.inverseMassB);
-  if (c.twistImpulse != 0.0) v.applyRotation(c.twistRow, c.twistImpulse);
-  v.store(bodyA, bodyB);
 }
 
-void SoftStepSolver::solveOne(Manifold& c, std::vector<SolverBody>& bodies, bool useBias,
-                              double inverseH, double maxPush) const {
-  SolverBody& bodyA = bodies[static_cast<std::size_t>(c.bodyA)];
-  SolverBody& bodyB = bodies[static_cast<std::size_t>(c.bodyB)];
-  Pair v(bodyA, bodyB, c.inverseMassA != 0.0, c.inverseMassB != 0.0);
+void SoftStepSolver::storeLane(Group& g, int lane, const Manifold& c) {
+  g.bodyA[lane] = c.bodyA;
+  g.bodyB[lane] = c.bodyB;
+  g.movesA[lane] = c.inverseMassA != 0.0;
+  g.movesB[lane] = c.inverseMassB != 0.0;
+  g.inverseMassA[lane] = c.inverseMassA;
+  g.inverseMassB[lane] = c.inverseMassB;
+  g.normal.set(lane, c.normal);
+  for (int p = 0; p < c.pointCount; ++p) {
+    const Point& point = c.points[p];
+    PointLanes& lanes = g.points[p];
+    lanes.armA.set(lane, point.armA);
+    lanes.armB.set(lane, point.armB);
+    lanes.responseA.set(lane, point.responseA);
+    lanes.responseB.set(lane, point.responseB);
+    lanes.normalMass[lane] = point.normalMass;
+    lanes.baseSeparation[lane] = point.baseSeparation;
+    lanes.impulse[lane] = point.impulse;
+    lanes.total[lane] = 0.0;
+  }
+  for (int p = c.pointCount; p < 4; ++p) {  // no point: no mass, no impulse
+    PointLanes& lanes = g.points[p];
+    for (LaneVec3* v : {&lanes.armA, &lanes.armB, &lanes.responseA, &lanes.responseB}) v->set(lane, Vec3::Zero());
+    lanes.normalMass[lane] = lanes.baseSeparation[lane] = lanes.impulse[lane] = lanes.total[lane] = 0.0;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const VelocityRow& row = c.tangentRows[k];
+    g.tangent[k].set(lane, row.linear);
+    g.tangentArmA[k].set(lane, row.armA);
+    g.tangentArmB[k].set(lane, row.armB);
+    g.tangentResponseA[k].set(lane, row.responseA);
+    g.tangentResponseB[k].set(lane, row.responseB);
+    g.tangentMass[k][lane] = c.tangentMass[k];
+    g.tangentImpulse[k][lane] = c.tangentImpulse[k];
+    g.tangentTotal[k][lane] = 0.0;
+  }
+  g.twistResponseA.set(lane, c.twistRow.responseA);
+  g.twistResponseB.set(lane, c.twistRow.responseB);
+  g.twistMass[lane] = c.twistMass;
+  g.twistImpulse[lane] = c.twistImpulse;
+  g.twistTotal[lane] = 0.0;
+  g.friction[lane] = c.friction;
+  g.twistRadius[lane] = c.twistRadius;
+  g.biasRate[lane] = c.soft.biasRate;
+  g.massScale[lane] = c.soft.massScale;
+  g.impulseScale[lane] = c.soft.impulseScale;
+}
+
+void SoftStepSolver::unpackGroups() {
+  for (const Group& g : m_groups) {
+    for (int lane = 0; lane < g.count; ++lane) {
+      Manifold& c = m_manifolds[static_cast<std::size_t>(g.manifold[lane])];
+      for (int p = 0; p < c.pointCount; ++p) {
+        c.points[p].impulse = g.points[p].impulse[lane];
+        c.points[p].total = g.points[p].total[lane];
+      }
+      for (int k = 0; k < 2; ++k) {
+        c.tangentImpulse[k] = g.tangentImpulse[k][lane];
+        c.tangentTotal[k] = g.tangentTotal[k][lane];
+      }
+      c.twistImpulse = g.twistImpulse[lane];
+      c.twistTotal = g.twistTotal[lane];
+    }
+  }
+}
+
+template <class Solve>
+void SoftStepSolver::sweepGroups(TaskPool& pool, Solve&& solve) {
+  // A batch of fewer groups than this is solved on the calling thread:
+  // sharing it would cost more than it saves.
+  constexpr int kSmallestShared = 12;
+  constexpr std::size_t kGroupsPerTask = 4;
+  for (int b = 0; b + 1 < static_cast<int>(m_batchGroups.size()); ++b) {
+    const int begin = m_batchGroups[static_cast<std::size_t>(b)];
+    const int end = m_batchGroups[static_cast<std::size_t>(b) + 1];
+    if (m_sweep.inOrder[static_cast<std::size_t>(b)] || end - begin < kSmallestShared || pool.threadCount() == 1) {
+      for (int g = begin; g < end; ++g) solve(m_groups[static_cast<std::size_t>(g)]);
+      continue;
+    }
+    forEachChunk(pool, static_cast<std::size_t>(end - begin), kGroupsPerTask,
+                 [&](std::size_t, std::size_t first, std::size_t last) {
+                   for (std::size_t g = first; g < last; ++g) solve(m_groups[static_cast<std::size_t>(begin) + g]);
+                 });
+  }
+}
+
+SoftStepSolver::GroupVelocities SoftStepSolver::gather(const Group& g, const std::vector<SolverBody>& bodies) const {
+  GroupVelocities v;
+  for (int lane = 0; lane < kLanes; ++lane) {
+    const SolverBody& a = bodies[static_cast<std::size_t>(g.bodyA[lane])];
+    const SolverBody& b = bodies[static_cast<std::size_t>(g.bodyB[lane])];
+    v.vA.set(lane, a.linearVelocity);
+    v.wA.set(lane, a.angularVelocity);
+    v.vB.set(lane, b.linearVelocity);
+    v.wB.set(lane, b.angularVelocity);
+  }
+  return v;
+}
+
+// Only the used lanes' moving bodies are written: a static body (or one
+// asleep) may be read by other threads at the same time.
+void SoftStepSolver::scatter(const Group& g, const GroupVelocities& v, std::vector<SolverBody>& bodies) {
+  for (int lane = 0; lane < g.count; ++lane) {
+    if (g.movesA[lane]) {
+      SolverBody& a = bodies[static_cast<std::size_t>(g.bodyA[lane])];
+      a.linearVelocity = v.vA.get(lane);
+      a.angularVelocity = v.wA.get(lane);
+    }
+    if (g.movesB[lane]) {
+      SolverBody& b = bodies[static_cast<std::size_t>(g.bodyB[lane])];
+      b.linearVelocity = v.vB.get(lane);
+      b.angularVelocity = v.wB.get(lane);
+    }
+  }
+}
+
+void SoftStepSolver::warmStartGroup(Group& g, std::vector<SolverBody>& bodies) const {
+  GroupVelocities v = gather(g, bodies);
+  for (const PointLanes& point : g.points) applyRow(v.vA, v.wA, v.vB, v.wB, g.inverseMassA, g.inverseMassB, g.normal, point.responseA, point.responseB, point.impulse);
+  for (int k = 0; k < 2; ++k)
+    applyRow(v.vA, v.wA, v.vB, v.wB, g.inverseMassA, g.inverseMassB, g.tangent[k], g.tangentResponseA[k], g.tangentResponseB[k], g.tangentImpulse[k]);
+  addScaled(v.wA, -g.twistImpulse, g.twistResponseA);
+  addScaled(v.wB, g.twistImpulse, g.twistResponseB);
+  scatter(g, v, bodies);
+}
+
+void SoftStepSolver::solveGroup(Group& g, std::vector<SolverBody>& bodies, bool useBias, double inverseH,
+                                double maxPush) const {
+  GroupVelocities v = gather(g, bodies);
 
   // Friction first, bounded by the normal impulses so far in this sub-step
-  // (non-penetration has the last word).
-  double totalNormal = 0.0;
-  for (int p = 0; p < c.pointCount; ++p) totalNormal += c.points[p].impulse;
-  {
-    const double old1 = c.tangentImpulse[0], old2 = c.tangentImpulse[1];
-    double new1 = old1 - c.tangentMass[0] * v.velocity(c.tangentRows[0]);
-    double new2 = old2 - c.tangentMass[1] * v.velocity(c.tangentRows[1]);
-    const double limit = c.friction * totalNormal;
-    const double magnitude = std::sqrt(new1 * new1 + new2 * new2);
-    if (magnitude > limit) {
-      const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
-      new1 *= scale;
-      new2 *= scale;
-    }
-    c.tangentImpulse[0] = new1;
-    c.tangentImpulse[1] = new2;
-    v.apply(c.tangentRows[0], new1 - old1, c.inverseMassA, c.inverseMassB);
-    v.apply(c.tangentRows[1], new2 - old2, c.inverseMassA, c.inverseMassB);
+  // (non-penetration has the last word): the patch's two tangential
+  // impulses stay in the disc of radius μ Σλn.
+  const Lanes totalNormal = g.points[0].impulse + g.points[1].impulse + g.points[2].impulse + g.points[3].impulse;
+  Lanes tangential[2];
+  for (int k = 0; k < 2; ++k) {
+    const Lanes slip = dot(g.tangent[k], v.vB - v.vA) + dot(g.tangentArmB[k], v.wB) - dot(g.tangentArmA[k], v.wA);
+    tangential[k] = g.tangentImpulse[k] - g.tangentMass[k] * slip;
   }
-  if (c.twistRadius > 0.0) {
-    const double spin = c.twistRow.armB.dot(v.wB) - c.twistRow.armA.dot(v.wA);
-    const double limit = c.friction * c.twistRadius * totalNormal;
-    const double accumulated = std::clamp(c.twistImpulse - c.twistMass * spin, -limit, limit);
-    v.applyRotation(c.twistRow, accumulated - c.twistImpulse);
-    c.twistImpulse = accumulated;
+  const Lanes limit = g.friction * totalNormal;
+  const Lanes magnitude = (tangential[0] * tangential[0] + tangential[1] * tangential[1]).sqrt();
+  // magnitude > limit >= 0 where the clamp acts, so the quotient is finite there.
+  const Lanes scale =
+      (magnitude > limit).select(limit / magnitude.max(std::numeric_limits<double>::min()), Lanes::Ones());
+  for (int k = 0; k < 2; ++k) {
+    tangential[k] *= scale;
+    const Lanes delta = tangential[k] - g.tangentImpulse[k];
+    g.tangentImpulse[k] = tangential[k];
+    applyRow(v.vA, v.wA, v.vB, v.wB, g.inverseMassA, g.inverseMassB, g.tangent[k], g.tangentResponseA[k], g.tangentResponseB[k], delta);
+  }
+  // Torsion: the patch resists spinning about the normal up to μ r Σλn
+  // (nothing for a single point, r = 0).
+  {
+    const Lanes spin = dot(g.normal, v.wB) - dot(g.normal, v.wA);
+    const Lanes twistLimit = g.friction * g.twistRadius * totalNormal;
+    const Lanes twisted = (g.twistImpulse - g.twistMass * spin).max(-twistLimit).min(twistLimit);
+    const auto twisting = g.twistRadius > 0.0;
+    const Lanes delta = twisting.select(twisted - g.twistImpulse, Lanes::Zero());
+    g.twistImpulse = twisting.select(twisted, g.twistImpulse);
+    addScaled(v.wA, -delta, g.twistResponseA);
+    addScaled(v.wB, delta, g.twistResponseB);
   }
 
   // The bodies' motion since the step's start moves the points' separation.
-  const Motion& motionA = m_motion[static_cast<std::size_t>(c.bodyA)];
-  const Motion& motionB = m_motion[static_cast<std::size_t>(c.bodyB)];
-  const bool movedA = c.inverseMassA != 0.0, movedB = c.inverseMassB != 0.0;
-  const Vec3 zero = Vec3::Zero();
-  const Vec3& linearA = movedA ? motionA.linear : zero;
-  const Vec3& angularA = movedA ? motionA.angular : zero;
-  const Vec3& linearB = movedB ? motionB.linear : zero;
-  const Vec3& angularB = movedB ? motionB.angular : zero;
-  const double approach = c.normal.dot(linearB - linearA);
-  for (int p = 0; p < c.pointCount; ++p) {
-    Point& pc = c.points[p];
-    const double separation =
-        pc.baseSeparation + approach + pc.armB.dot(angularB) - pc.armA.dot(angularA);
-    double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
-    if (separation > 0.0) {
-      // Speculative: the gap may close in this sub-step, no further. The
-      // relax sweep comes after the positions moved: held to the gap there
-      // it would look one sub-step ahead, past the step's end in the last
-      // one, and stop a body short of a collision that the next step
-      // answers at its time of impact. The relax has no bias of a gap to
-      // take back, so it leaves such points alone.
-      if (!useBias) continue;
-      bias = separation * inverseH;
-    } else if (useBias) {
-      bias = std::max(c.soft.biasRate * separation, -maxPush);
-      massScale = c.soft.massScale;
-      impulseScale = c.soft.impulseScale;
+  LaneVec3 linearA, angularA, linearB, angularB;
+  for (int lane = 0; lane < kLanes; ++lane) {
+    if (g.movesA[lane]) {
+      const Motion& motion = m_motion[static_cast<std::size_t>(g.bodyA[lane])];
+      linearA.set(lane, motion.linear);
+      angularA.set(lane, motion.angular);
     }
-    const double vn = c.normal.dot(v.vB - v.vA) + pc.armB.dot(v.wB) - pc.armA.dot(v.wA);
-    const double delta = -pc.normalMass * massScale * (vn + bias) - impulseScale * pc.impulse;
-    const double accumulated = std::max(pc.impulse + delta, 0.0);
-    const double applied = accumulated - pc.impulse;
-    pc.impulse = accumulated;
-    if (v.movesA) {
-      v.vA -= (applied * c.inverseMassA) * c.normal;
-      v.wA -= applied * pc.responseA;
-    }
-    if (v.movesB) {
-      v.vB += (applied * c.inverseMassB) * c.normal;
-      v.wB += applied * pc.responseB;
+    if (g.movesB[lane]) {
+      const Motion& motion = m_motion[static_cast<std::size_t>(g.bodyB[lane])];
+      linearB.set(lane, motion.linear);
+      angularB.set(lane, motion.angular);
     }
   }
-  v.store(bodyA, bodyB);
+  const Lanes approach = dot(g.normal, linearB - linearA);
+  for (PointLanes& point : g.points) {
+    const Lanes separation = point.baseSeparation + approach + dot(point.armB, angularB) - dot(point.armA, angularA);
+    const auto speculative = separation > 0.0;
+    Lanes bias = Lanes::Zero(), massScale = Lanes::Ones(), impulseScale = Lanes::Zero();
+    if (useBias) {
+      // Speculative: the gap may close in this sub-step, no further.
+      // Penetrating: the soft spring's push-out, capped.
+      bias = speculative.select(separation * inverseH, (g.biasRate * separation).max(-maxPush));
+      massScale = speculative.select(Lanes::Ones(), g.massScale);
+      impulseScale = speculative.select(Lanes::Zero(), g.impulseScale);
+    }
+    const Lanes vn = dot(g.normal, v.vB - v.vA) + dot(point.armB, v.wB) - dot(point.armA, v.wA);
+    const Lanes delta = -point.normalMass * massScale * (vn + bias) - impulseScale * point.impulse;
+    Lanes accumulated = (point.impulse + delta).max(0.0);
+    // The relax sweep comes after the positions moved: held to a gap there
+    // it would look one sub-step ahead, past the step's end in the last
+    // one, and stop a body short of a collision that the next step answers
+    // at its time of impact. It has no bias of a gap to take back, so it
+    // leaves speculative points alone.
+    if (!useBias) accumulated = speculative.select(point.impulse, accumulated);
+    const Lanes applied = accumulated - point.impulse;
+    point.impulse = accumulated;
+    applyRow(v.vA, v.wA, v.vB, v.wB, g.inverseMassA, g.inverseMassB, g.normal, point.responseA, point.responseB, applied);
+  }
+  scatter(g, v, bodies);
 
-}
-
-void SoftStepSolver::relaxOne(Manifold& c, std::vector<SolverBody>& bodies, double inverseH) const {
-  solveOne(c, bodies, false, inverseH, 0.0);
   // The relax sweep ends a sub-step: what is accumulated now is what this
   // sub-step applied (the warm start put in the last one's).
-  {
-    for (int p = 0; p < c.pointCount; ++p) c.points[p].total += c.points[p].impulse;
-    c.tangentTotal[0] += c.tangentImpulse[0];
-    c.tangentTotal[1] += c.tangentImpulse[1];
-    c.twistTotal += c.twistImpulse;
+  if (!useBias) {
+    for (PointLanes& point : g.points) point.total += point.impulse;
+    for (int k = 0; k < 2; ++k) g.tangentTotal[k] += g.tangentImpulse[k];
+    g.twistTotal += g.twistImpulse;
   }
 }
 

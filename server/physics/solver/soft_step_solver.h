@@ -44,6 +44,7 @@
 #include "physics/collision/body_contact.h"
 #include "physics/parallel/task_pool.h"
 #include "physics/solver/contact_solver.h"
+#include "physics/solver/lanes.h"
 #include "physics/solver/material.h"
 #include "physics/solver/sweep_batches.h"
 #include "physics/solver/velocity_row.h"
@@ -127,12 +128,54 @@ class SoftStepSolver {
   static void shareUnmatchedLoad(Manifold& c, const SolvedManifold& old, const bool matched[4],
                                  double perSubstep, const PairMaterial& material,
                                  const ContactSolverSettings& settings);
-  void warmStartOne(Manifold& c, std::vector<SolverBody>& bodies) const;
-  void solveOne(Manifold& c, std::vector<SolverBody>& bodies, bool useBias, double inverseH,
-                double maxPush) const;
-  // The relax sweep's solve, which ends the sub-step: adds the sub-step's
-  // impulses to the step's totals.
-  void relaxOne(Manifold& c, std::vector<SolverBody>& bodies, double inverseH) const;
+  // The sweeps' form of up to kLanes manifolds of one batch (no moving body
+  // shared), structure-of-arrays (lanes.h): the sweeps solve a group's
+  // manifolds side by side with the same instructions. A batch that shares
+  // bodies (the colouring's overflow) gets one manifold per group. Unused
+  // lanes have no mass and no impulse, and their bodies are never written.
+  struct PointLanes {
+    LaneVec3 armA, armB, responseA, responseB;
+    Lanes normalMass = Lanes::Zero(), baseSeparation = Lanes::Zero();
+    Lanes impulse = Lanes::Zero(), total = Lanes::Zero();
+  };
+  struct Group {
+    int count = 0;
+    int manifold[kLanes] = {0, 0, 0, 0};  // index in m_manifolds
+    int bodyA[kLanes] = {0, 0, 0, 0}, bodyB[kLanes] = {0, 0, 0, 0};
+    bool movesA[kLanes] = {false, false, false, false}, movesB[kLanes] = {false, false, false, false};
+    Lanes inverseMassA = Lanes::Zero(), inverseMassB = Lanes::Zero();
+    LaneVec3 normal;
+    PointLanes points[4];
+    LaneVec3 tangent[2], tangentArmA[2], tangentArmB[2], tangentResponseA[2], tangentResponseB[2];
+    LaneVec3 twistResponseA, twistResponseB;  // the twist row's arm is the normal
+    Lanes tangentMass[2] = {Lanes::Zero(), Lanes::Zero()}, twistMass = Lanes::Zero();
+    Lanes tangentImpulse[2] = {Lanes::Zero(), Lanes::Zero()}, twistImpulse = Lanes::Zero();
+    Lanes tangentTotal[2] = {Lanes::Zero(), Lanes::Zero()}, twistTotal = Lanes::Zero();
+    Lanes friction = Lanes::Zero(), twistRadius = Lanes::Zero();
+    Lanes biasRate = Lanes::Zero(), massScale = Lanes::Ones(), impulseScale = Lanes::Zero();
+  };
+  // A group's bodies' velocities (and, for the solve, motions), one lane each.
+  struct GroupVelocities {
+    LaneVec3 vA, wA, vB, wB;
+  };
+
+  // Cuts the batches into groups and copies the prepared manifolds in.
+  void packGroups();
+  void storeLane(Group& g, int lane, const Manifold& c);
+  // Copies the step's impulses back to the manifolds, for the results.
+  void unpackGroups();
+  // Calls solve(group) for every group, batch after batch, each batch's
+  // groups shared among the pool's threads.
+  template <class Solve>
+  void sweepGroups(TaskPool& pool, Solve&& solve);
+  GroupVelocities gather(const Group& g, const std::vector<SolverBody>& bodies) const;
+  static void scatter(const Group& g, const GroupVelocities& v, std::vector<SolverBody>& bodies);
+  void warmStartGroup(Group& g, std::vector<SolverBody>& bodies) const;
+  // One sweep's work on a group: friction, then the normal points, soft
+  // with the bias (useBias: the solve) or rigid without it (the relax,
+  // which ends the sub-step and adds its impulses to the step's totals).
+  void solveGroup(Group& g, std::vector<SolverBody>& bodies, bool useBias, double inverseH,
+                  double maxPush) const;
   SolvedManifold resultOf(std::size_t m, const BodyContact& contact,
                           const std::vector<SolverBody>& bodies, const std::vector<int32_t>& serials,
                           const ContactSolverSettings& settings) const;
@@ -146,6 +189,8 @@ class SoftStepSolver {
   std::vector<ConstraintBodies> m_constraintBodies;
   std::vector<char> m_moves;
   std::vector<char> m_pushed;  // per world body: some contact's impulse reached it this step
+  std::vector<Group> m_groups;
+  std::vector<int> m_batchGroups;  // batch b: groups m_batchGroups[b] .. m_batchGroups[b + 1] − 1
 };
 
 }  // namespace rbsim
