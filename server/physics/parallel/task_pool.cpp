@@ -72,34 +72,55 @@ TaskPool::~TaskPool() {
 }
 
 void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
+  if (m_soloLoopsLeft > 0) {
+    --m_soloLoopsLeft;
+    for (std::size_t i = 0; i < count; ++i) call(task, i);
+    return;
+  }
+  const std::size_t byCaller = shareLoop(count, call, task);
+  // The workers' share of the window's tasks decides whether the next
+  // loops are shared at all.
+  m_windowTasks += count;
+  m_windowWorkerTasks += count - byCaller;
+  if (++m_windowLoops < kWindowLoops) return;
+  if (m_windowWorkerTasks * kLeastWorkerShare < m_windowTasks) m_soloLoopsLeft = kSoloLoops;
+  m_windowLoops = 0;
+  m_windowTasks = 0;
+  m_windowWorkerTasks = 0;
+}
+
+std::size_t TaskPool::shareLoop(std::size_t count, TaskCall call, void* task) {
   m_call = call;
   m_task = task;
   m_unclaimed.store(packUnclaimed(0, count), std::memory_order_relaxed);
   m_loop.store(kOpen, std::memory_order_release);  // publishes the loop to joiners
   m_generation.fetch_add(1, std::memory_order_release);
   m_generation.notify_all();
-  runClaimedTasks(true);
+  const std::size_t byCaller = runClaimedTasks(true);
   // Every task is claimed: close the loop, then wait for the workers that
   // joined it to finish theirs (and their reads of m_call and m_task),
   // before the next loop may overwrite them.
-  if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return;  // nobody joined
+  if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return byCaller;  // nobody joined
   waitUntil(kCallerYielding, [&] { return m_loop.load(std::memory_order_acquire) == 0; },
             [&] {
               const uint32_t inside = m_loop.load(std::memory_order_acquire);
               if (inside != 0) m_loop.wait(inside, std::memory_order_acquire);
             });
+  return byCaller;
 }
 
-void TaskPool::runClaimedTasks(bool fromFront) {
+std::size_t TaskPool::runClaimedTasks(bool fromFront) {
+  std::size_t ran = 0;
   uint64_t unclaimed = m_unclaimed.load(std::memory_order_relaxed);
   for (;;) {
     const uint64_t front = unclaimed & 0xffffffffu;
     const uint64_t back = unclaimed >> 32;
-    if (front >= back) return;
+    if (front >= back) return ran;
     const uint64_t index = fromFront ? front : back - 1;
     const uint64_t claimed = fromFront ? packUnclaimed(front + 1, back) : packUnclaimed(front, back - 1);
     if (!m_unclaimed.compare_exchange_weak(unclaimed, claimed, std::memory_order_relaxed)) continue;
     m_call(m_task, static_cast<std::size_t>(index));
+    ++ran;
     unclaimed = m_unclaimed.load(std::memory_order_relaxed);
   }
 }

@@ -69,12 +69,30 @@ class TaskPool {
   }
 
   void runErased(std::size_t count, TaskCall call, void* task);
+  // Runs one loop shared with the workers; returns how many of its tasks
+  // the caller ran.
+  std::size_t shareLoop(std::size_t count, TaskCall call, void* task);
   void workerLoop();
   // Claims and runs tasks of the current loop until none is left: from the
-  // front (the caller) or from the back (the workers).
-  void runClaimedTasks(bool fromFront);
+  // front (the caller) or from the back (the workers). Returns how many.
+  std::size_t runClaimedTasks(bool fromFront);
 
   std::vector<std::thread> m_workers;
+  // When the workers ran less than 1/kLeastWorkerShare of the tasks of the
+  // last kWindowLoops loops, the next kSoloLoops loops run on the caller
+  // alone, then the pool tries again. Workers that come too late to help
+  // (a world too small to gain: its loops are done before they join) or
+  // that share a core with the caller or with another process (a busy
+  // machine) cost the caller more than they save; left without loops they
+  // go to sleep, and the caller keeps a core to itself. Which thread runs a
+  // task never changes a result, so neither does this.
+  static constexpr uint32_t kWindowLoops = 256;
+  static constexpr uint64_t kLeastWorkerShare = 8;
+  static constexpr uint32_t kSoloLoops = 4096;
+  uint32_t m_windowLoops = 0;
+  uint64_t m_windowTasks = 0;
+  uint64_t m_windowWorkerTasks = 0;
+  uint32_t m_soloLoopsLeft = 0;
   // The current loop. Written by run() only while no worker is inside a
   // loop; a worker reads them after it has joined the open loop (acquire).
   TaskCall m_call = nullptr;
