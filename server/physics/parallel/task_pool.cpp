@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 
 namespace rbsim {
 
@@ -45,6 +47,19 @@ void waitUntil(std::chrono::microseconds yielding, Changed&& changed, Sleep&& sl
   while (!changed()) sleep();
 }
 
+// Whether this is a ThreadSanitizer build (clang's test, and GCC's macro).
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kThreadSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+constexpr bool kThreadSanitizer = true;
+#else
+constexpr bool kThreadSanitizer = false;
+#endif
+#else
+constexpr bool kThreadSanitizer = false;
+#endif
+
 // m_unclaimed: [front, back) packed in one word.
 constexpr uint64_t packUnclaimed(uint64_t front, uint64_t back) { return front | (back << 32); }
 
@@ -58,7 +73,13 @@ int resolveThreadCount(int threads) {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
-TaskPool::TaskPool(int threads) {
+LoopSharing loopSharingFromEnvironment() {
+  const char* text = std::getenv("RBSIM_POOL_ALWAYS_SHARE");
+  if (text && text[0] != '\0') return std::strcmp(text, "0") == 0 ? LoopSharing::Adaptive : LoopSharing::Always;
+  return kThreadSanitizer ? LoopSharing::Always : LoopSharing::Adaptive;
+}
+
+TaskPool::TaskPool(int threads, LoopSharing sharing) : m_sharing(sharing) {
   const int workers = std::max(1, threads) - 1;
   m_workers.reserve(static_cast<std::size_t>(workers));
   for (int i = 0; i < workers; ++i) m_workers.emplace_back([this] { workerLoop(); });
@@ -78,6 +99,7 @@ void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
     return;
   }
   const std::size_t byCaller = shareLoop(count, call, task);
+  if (m_sharing == LoopSharing::Always) return;
   // The workers' share of the window's tasks decides whether the next
   // loops are shared at all.
   m_windowTasks += count;
