@@ -78,12 +78,17 @@ debug_goldens() {
 }
 # ThreadSanitizer (clang): the task pool and the parallel step's scenes on
 # 1, 2, 3 and 8 threads, shortened; any data race it reports fails the run.
+# RBSIM_POOL_ALWAYS_SHARE=1: every loop is offered to the workers. Left to
+# itself the pool runs loops on the caller alone while its workers do too
+# little of them (task_pool.h), which TSan's slow-down makes likely, and a
+# loop on one thread has no race to find. (A TSan build shares always when
+# the variable is unset too; it is set here so the run says what it checks.)
 tsan_build() {
   CC=clang CXX=clang++ configure "$tsan_build" -DRBSIM_TSAN=ON -DRBSIM_BUILD_BENCH=OFF &&
     cmake --build "$tsan_build" -j"$jobs" --target test_parallel
 }
 tsan_run() {
-  TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" RBSIM_PARALLEL_STEPS=400 \
+  TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" RBSIM_PARALLEL_STEPS=400 RBSIM_POOL_ALWAYS_SHARE=1 \
     "$tsan_build"/tests/test_parallel
 }
 # Python: the lcm-gen types, the client package, the CLIs, the READMEs'

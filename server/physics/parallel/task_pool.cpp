@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 
 namespace rbsim {
 
@@ -45,6 +47,19 @@ void waitUntil(std::chrono::microseconds yielding, Changed&& changed, Sleep&& sl
   while (!changed()) sleep();
 }
 
+// Whether this is a ThreadSanitizer build (clang's test, and GCC's macro).
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kThreadSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+constexpr bool kThreadSanitizer = true;
+#else
+constexpr bool kThreadSanitizer = false;
+#endif
+#else
+constexpr bool kThreadSanitizer = false;
+#endif
+
 // m_unclaimed: [front, back) packed in one word.
 constexpr uint64_t packUnclaimed(uint64_t front, uint64_t back) { return front | (back << 32); }
 
@@ -58,7 +73,13 @@ int resolveThreadCount(int threads) {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
-TaskPool::TaskPool(int threads) {
+LoopSharing loopSharingFromEnvironment() {
+  const char* text = std::getenv("RBSIM_POOL_ALWAYS_SHARE");
+  if (text && text[0] != '\0') return std::strcmp(text, "0") == 0 ? LoopSharing::Adaptive : LoopSharing::Always;
+  return kThreadSanitizer ? LoopSharing::Always : LoopSharing::Adaptive;
+}
+
+TaskPool::TaskPool(int threads, LoopSharing sharing) : m_sharing(sharing) {
   const int workers = std::max(1, threads) - 1;
   m_workers.reserve(static_cast<std::size_t>(workers));
   for (int i = 0; i < workers; ++i) m_workers.emplace_back([this] { workerLoop(); });
@@ -72,34 +93,56 @@ TaskPool::~TaskPool() {
 }
 
 void TaskPool::runErased(std::size_t count, TaskCall call, void* task) {
+  if (m_soloLoopsLeft > 0) {
+    --m_soloLoopsLeft;
+    for (std::size_t i = 0; i < count; ++i) call(task, i);
+    return;
+  }
+  const std::size_t byCaller = shareLoop(count, call, task);
+  if (m_sharing == LoopSharing::Always) return;
+  // The workers' share of the window's tasks decides whether the next
+  // loops are shared at all.
+  m_windowTasks += count;
+  m_windowWorkerTasks += count - byCaller;
+  if (++m_windowLoops < kWindowLoops) return;
+  if (m_windowWorkerTasks * kLeastWorkerShare < m_windowTasks) m_soloLoopsLeft = kSoloLoops;
+  m_windowLoops = 0;
+  m_windowTasks = 0;
+  m_windowWorkerTasks = 0;
+}
+
+std::size_t TaskPool::shareLoop(std::size_t count, TaskCall call, void* task) {
   m_call = call;
   m_task = task;
   m_unclaimed.store(packUnclaimed(0, count), std::memory_order_relaxed);
   m_loop.store(kOpen, std::memory_order_release);  // publishes the loop to joiners
   m_generation.fetch_add(1, std::memory_order_release);
   m_generation.notify_all();
-  runClaimedTasks(true);
+  const std::size_t byCaller = runClaimedTasks(true);
   // Every task is claimed: close the loop, then wait for the workers that
   // joined it to finish theirs (and their reads of m_call and m_task),
   // before the next loop may overwrite them.
-  if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return;  // nobody joined
+  if (m_loop.fetch_and(~kOpen, std::memory_order_acq_rel) == kOpen) return byCaller;  // nobody joined
   waitUntil(kCallerYielding, [&] { return m_loop.load(std::memory_order_acquire) == 0; },
             [&] {
               const uint32_t inside = m_loop.load(std::memory_order_acquire);
               if (inside != 0) m_loop.wait(inside, std::memory_order_acquire);
             });
+  return byCaller;
 }
 
-void TaskPool::runClaimedTasks(bool fromFront) {
+std::size_t TaskPool::runClaimedTasks(bool fromFront) {
+  std::size_t ran = 0;
   uint64_t unclaimed = m_unclaimed.load(std::memory_order_relaxed);
   for (;;) {
     const uint64_t front = unclaimed & 0xffffffffu;
     const uint64_t back = unclaimed >> 32;
-    if (front >= back) return;
+    if (front >= back) return ran;
     const uint64_t index = fromFront ? front : back - 1;
     const uint64_t claimed = fromFront ? packUnclaimed(front + 1, back) : packUnclaimed(front, back - 1);
     if (!m_unclaimed.compare_exchange_weak(unclaimed, claimed, std::memory_order_relaxed)) continue;
     m_call(m_task, static_cast<std::size_t>(index));
+    ++ran;
     unclaimed = m_unclaimed.load(std::memory_order_relaxed);
   }
 }

@@ -35,16 +35,51 @@
 
 namespace rbsim {
 
+// Whether the pool may run loops on the caller alone while its workers do
+// not help (TaskPool::kLeastWorkerShare below says when).
+enum class LoopSharing {
+  // Loops run on the caller alone for a while when the workers ran too few
+  // of the last ones' tasks: the default.
+  Adaptive,
+  // Every loop is offered to the workers. For ThreadSanitizer runs: a loop
+  // that runs on the caller alone has no race to find, and TSan slows the
+  // caller down, so the workers' share would often be too small and the
+  // rule would hide the very races the run looks for.
+  Always,
+};
+
+// RBSIM_POOL_ALWAYS_SHARE=1 in the environment: Always; =0: Adaptive.
+// Unset: Always in a ThreadSanitizer build (so that a TSan binary run by
+// hand checks what scripts/run_tests.sh's phase checks), else Adaptive.
+LoopSharing loopSharingFromEnvironment();
+
 class TaskPool {
  public:
   // threads >= 1: threads − 1 workers are started; the caller of run() is
   // the last thread. 1 runs every loop on the caller, as a plain loop.
-  explicit TaskPool(int threads);
+  explicit TaskPool(int threads, LoopSharing sharing = loopSharingFromEnvironment());
   TaskPool(const TaskPool&) = delete;
   TaskPool& operator=(const TaskPool&) = delete;
   ~TaskPool();
 
   int threadCount() const { return static_cast<int>(m_workers.size()) + 1; }
+  LoopSharing sharing() const { return m_sharing; }
+
+  // When the workers ran less than 1/kLeastWorkerShare of the tasks of the
+  // last kWindowLoops loops, the next kSoloLoops loops run on the caller
+  // alone, then the pool tries again. Workers that come too late to help
+  // (a world too small to gain: its loops are done before they join) or
+  // that share a core with the caller or with another process (a busy
+  // machine) cost the caller more than they save; left without loops they
+  // go to sleep, and the caller keeps a core to itself. Which thread runs a
+  // task never changes a result, so neither does this. Loops of one task
+  // (run on the caller in any case) do not count.
+  static constexpr uint32_t kWindowLoops = 256;
+  static constexpr uint64_t kLeastWorkerShare = 8;
+  static constexpr uint32_t kSoloLoops = 4096;
+  // Whether the next loop will run on the caller alone (the rule above is
+  // engaged). Read by the caller of run() only; for tests and diagnostics.
+  bool runsOnCallerAlone() const { return m_soloLoopsLeft > 0; }
 
   // Calls task(i) once for every i in [0, count) and returns when all have
   // returned. Tasks run concurrently on any of the threads, in any order:
@@ -69,12 +104,21 @@ class TaskPool {
   }
 
   void runErased(std::size_t count, TaskCall call, void* task);
+  // Runs one loop shared with the workers; returns how many of its tasks
+  // the caller ran.
+  std::size_t shareLoop(std::size_t count, TaskCall call, void* task);
   void workerLoop();
   // Claims and runs tasks of the current loop until none is left: from the
-  // front (the caller) or from the back (the workers).
-  void runClaimedTasks(bool fromFront);
+  // front (the caller) or from the back (the workers). Returns how many.
+  std::size_t runClaimedTasks(bool fromFront);
 
   std::vector<std::thread> m_workers;
+  LoopSharing m_sharing;
+  // The rule's counts (kWindowLoops above): the caller's alone.
+  uint32_t m_windowLoops = 0;
+  uint64_t m_windowTasks = 0;
+  uint64_t m_windowWorkerTasks = 0;
+  uint32_t m_soloLoopsLeft = 0;
   // The current loop. Written by run() only while no worker is inside a
   // loop; a worker reads them after it has joined the open loop (acquire).
   TaskCall m_call = nullptr;
