@@ -56,7 +56,8 @@ TEST(TaskPool, TheCallerTakesTasksFromTheFrontTheWorkersFromTheBack) {
     pool.run(byCaller.size(), [&](std::size_t i) {
       byCaller[i] = std::this_thread::get_id() == caller ? 1 : 0;
       // Long enough for the worker to join some of the loops.
-      for (volatile int spin = 0; spin < 2000; spin = spin + 1) {
+      std::atomic<int> spin{0};
+      while (spin.fetch_add(1, std::memory_order_relaxed) < 2000) {
       }
     });
     std::size_t prefix = 0;
