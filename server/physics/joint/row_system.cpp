@@ -3,11 +3,16 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace rbsim {
 
 namespace {
+
+std::atomic<std::uint64_t> g_factorisations{0};
+std::atomic<std::uint64_t> g_kept{0};
+std::atomic<std::uint64_t> g_solves{0};
 
 // Where row position `row` sits among column `column`'s off-diagonal blocks
 // (as an index into `below`); the symbolic factorisation guarantees it is
@@ -86,6 +91,11 @@ void updateFromColumn(double* values, const int* belowAt, const int* belowRow, i
 }
 
 }  // namespace
+
+RowSystemCounts RowSystem::counts() {
+  return {g_factorisations.load(std::memory_order_relaxed), g_kept.load(std::memory_order_relaxed),
+          g_solves.load(std::memory_order_relaxed)};
+}
 
 void RowSystem::analyse() {
   const int blocks = static_cast<int>(m_keys.size());
@@ -303,6 +313,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
     for (int k = 0; k < s; ++k) d[k + s * k] *= 1.0 + 1e-10;
   }
 
+  g_factorisations.fetch_add(1, std::memory_order_relaxed);
   // L Lᵀ, column by column (right-looking): factor the diagonal block,
   // scale the column's blocks below it, update the blocks they reach.
   const int* targets = m_updateTarget.data();
@@ -386,6 +397,7 @@ Eigen::VectorXd RowSystem::solve(const Eigen::VectorXd& rhs) const {
 }
 
 void RowSystem::solveInPlace(Eigen::VectorXd& x) const {
+  g_solves.fetch_add(1, std::memory_order_relaxed);
   // Into elimination order.
   m_scratch.resize(m_rowCount);
   double* z = m_scratch.data();

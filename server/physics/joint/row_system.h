@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
@@ -50,8 +51,23 @@ struct JointSolverRow {
   }
 };
 
+// How much work the joint systems of this process have done: numeric
+// factorisations of K, factorisations found already made (the inputs
+// bit-identical to the kept factor's, RowSystem::factor), and solves with a
+// factor. Always counted (a relaxed atomic add per factor or solve, far
+// below either's cost), for the benchmarks (bench/joints) and the tests
+// that check a factor is kept.
+struct RowSystemCounts {
+  std::uint64_t factorisations = 0;
+  std::uint64_t kept = 0;
+  std::uint64_t solves = 0;
+};
+
 class RowSystem {
  public:
+  // Since the process started, over every RowSystem of every thread.
+  static RowSystemCounts counts();
+
   // K of the rows for bodies of these inverse masses and (world) inverse
   // inertias, factorised. The rows of one link share a block; a link's rows
   // need not be next to each other (its limit's row may follow the rest).
