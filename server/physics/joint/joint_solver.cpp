@@ -398,10 +398,79 @@ double driveError(const JointConstraint& joint, double position) {
 
 void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
-  Eigen::VectorXd rate(count);
-  rowRates(m_rows, bodies, inverseInertia, rate);
-  const Eigen::VectorXd impulse = m_system.solve(-rate);
+  Eigen::VectorXd impulse(count);
+  rowRates(m_rows, bodies, inverseInertia, impulse);
+  impulse = -impulse;
+  solveRows(impulse);
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
+}
+
+namespace {
+
+// K's entry of two rows: over the bodies they share, m⁻¹ lᵢ·lⱼ + aᵢ·I⁻¹ aⱼ.
+double rowCoupling(const JointSolverRow& a, const JointSolverRow& b, const std::vector<JointBody>& bodies,
+                   const std::vector<Mat3>& inverseInertia) {
+  double k = 0.0;
+  for (int sa = 0; sa < a.sideCount(); ++sa) {
+    const int body = a.body(sa);
+    if (body < 0) continue;
+    for (int sb = 0; sb < b.sideCount(); ++sb) {
+      if (b.body(sb) != body) continue;
+      const auto i = static_cast<std::size_t>(body);
+      k += bodies[i].inverseMass * a.linear(sa).dot(b.linear(sb)) + a.angular(sa).dot(inverseInertia[i] * b.angular(sb));
+    }
+  }
+  return k;
+}
+
+}  // namespace
+
+bool JointGroupSolver::makeBorder(const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) {
+  const Eigen::Index joints = m_system.size();
+  const Eigen::Index limits = static_cast<Eigen::Index>(m_rows.size()) - joints;
+  m_border.ok = joints == 0 || m_system.ok();
+  if (!m_border.ok || limits == 0) return m_border.ok;
+  m_border.coupling.resize(joints, limits);
+  m_border.response.resize(joints, limits);
+  const auto row = [&](Eigen::Index r) -> const Row& { return m_rows[static_cast<std::size_t>(r)]; };
+  for (Eigen::Index j = 0; j < limits; ++j) {
+    for (Eigen::Index i = 0; i < joints; ++i)
+      m_border.coupling(i, j) = rowCoupling(row(i), row(joints + j), bodies, inverseInertia);
+    if (joints == 0) continue;  // limits alone (ropes): S is K_LL
+    Eigen::VectorXd column = m_border.coupling.col(j);
+    m_system.solveInPlace(column);
+    m_border.response.col(j) = column;
+  }
+  Eigen::MatrixXd schur(limits, limits);
+  for (Eigen::Index j = 0; j < limits; ++j)
+    for (Eigen::Index i = j; i < limits; ++i) {
+      schur(i, j) = rowCoupling(row(joints + i), row(joints + j), bodies, inverseInertia) -
+                    m_border.coupling.col(i).dot(m_border.response.col(j));
+      schur(j, i) = schur(i, j);
+    }
+  // The same tiny relative regularisation as K's (row_system.cpp): limits
+  // that hold one motion twice stay solvable.
+  schur.diagonal() *= 1.0 + 1e-10;
+  m_border.schur.compute(schur);
+  m_border.ok = m_border.schur.info() == Eigen::Success;
+  return m_border.ok;
+}
+
+void JointGroupSolver::solveRows(Eigen::VectorXd& x) const {
+  const Eigen::Index joints = m_system.size();
+  const Eigen::Index limits = x.size() - joints;
+  if (limits == 0) {
+    if (joints > 0) m_system.solveInPlace(x);
+    return;
+  }
+  // [K_JJ K_JL; K_LJ K_LL] [x_J; x_L] = [r_J; r_L]: x_J = K_JJ⁻¹ r_J − Y x_L,
+  // S x_L = r_L − K_LJ K_JJ⁻¹ r_J, Y = K_JJ⁻¹ K_JL.
+  Eigen::VectorXd jointPart = x.head(joints);
+  if (joints > 0) m_system.solveInPlace(jointPart);
+  const Eigen::VectorXd limitPart =
+      m_border.schur.solve(x.tail(limits) - m_border.coupling.transpose() * jointPart);
+  x.head(joints) = jointPart - m_border.response * limitPart;
+  x.tail(limits) = limitPart;
 }
 
 void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
@@ -475,7 +544,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
     }
     pushAlongRow(axes[i].row, 1.0, bodies);
     const double unconstrained = rowRate(axes[i].row, bodies, inverseInertia);
-    if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+    if (systemOk()) removeJointRates(bodies, inverseInertia);
     for (std::size_t j = 0; j < n; ++j)
       response(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) = rowRate(axes[j].row, bodies, inverseInertia);
     const auto ii = static_cast<Eigen::Index>(i);
@@ -483,7 +552,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   }
   // The free rates: the momenta with the joints' rates removed.
   bodies = start;
-  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  if (systemOk()) removeJointRates(bodies, inverseInertia);
   Eigen::VectorXd freeRate(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) freeRate[static_cast<Eigen::Index>(i)] = rowRate(axes[i].row, bodies, inverseInertia);
 
@@ -528,7 +597,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   // the same end velocities as A says, by linearity.
   bodies = start;
   for (const Axis& axis : axes) pushAlongRow(axis.row, axis.impulse.total, bodies);
-  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  if (systemOk()) removeJointRates(bodies, inverseInertia);
   for (const Axis& axis : axes) {
     JointLinkResult& result = results[axis.link];
     result.axisImpulse += axis.impulse.actuation;
@@ -546,8 +615,13 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
 }
 
 void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                                             double h, std::vector<JointLinkResult>& results) {
+                                             double h, std::vector<JointLinkResult>& results, const JointSolver* kept) {
   results.assign(links.size(), JointLinkResult{});
+  m_border.ok = true;
+  // Nothing acts along an axis (a ragdoll): no K₀ to make.
+  if (!std::any_of(links.begin(), links.end(),
+                   [](const JointLink& l) { return l.wholeKick && !l.isCoupling() && axisActs(*l.joint); }))
+    return;
   m_rows.clear();
   m_limits.clear();
   for (std::size_t l = 0; l < links.size(); ++l) {
@@ -557,7 +631,10 @@ void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  const std::vector<double> inverseMass = inverseMasses(bodies);
+  if (kept != nullptr)
+    if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, startInverseInertia)) m_system = *made;
+  m_system.factor(m_rows, inverseMass, startInverseInertia);
   actuateAxes(links, bodies, h, startInverseInertia, false, results, true);
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointSidePose b = sidePose(links[l], bodies, true, true);
@@ -572,6 +649,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   results.assign(links.size(), JointLinkResult{});
   m_rows.clear();
   m_limits.clear();
+  m_border.ok = true;
   // The rows at the step's start, and the errors there. An error from the
   // last step's rounding is closed with the rest; a larger one came from
   // outside and is kept by the momentum projection, then removed by the
@@ -1014,12 +1092,20 @@ void JointSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std
     for (const int i : group.bodies) groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
     groupLinks.clear();
     for (const int l : group.links) groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], localIndex));
-    m_kickSolvers[g].actuateBeforeContacts(groupLinks, groupBodies, h, groupResults);
+    m_kickSolvers[g].actuateBeforeContacts(groupLinks, groupBodies, h, groupResults, this);
     for (std::size_t k = 0; k < group.bodies.size(); ++k)
       bodies[static_cast<std::size_t>(group.bodies[k])] = groupBodies[k];
     for (std::size_t k = 0; k < group.links.size(); ++k)
       results[static_cast<std::size_t>(group.links[k])] = groupResults[k];
   }
+}
+
+const RowSystem* JointSolver::keptFactor(const std::vector<JointSolverRow>& rows,
+                                         const std::vector<double>& inverseMass,
+                                         const std::vector<Mat3>& inverseInertia) const {
+  for (const JointGroupSolver& solver : m_solvers)
+    if (solver.system().madeFrom(rows, inverseMass, inverseInertia)) return &solver.system();
+  return nullptr;
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,

@@ -24,6 +24,7 @@
 // symplectic: a frictionless pendulum keeps its energy, its period is
 // right to O(h²).
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <array>
 #include <vector>
@@ -118,6 +119,8 @@ struct JointLinkResult {
   double couplingError = 0.0;          // a coupling's signed error at the end poses
 };
 
+class JointSolver;
+
 // The step of one group of joints (bodies joined to each other, directly
 // or through others): JointSolver below gives it each group.
 class JointGroupSolver {
@@ -141,8 +144,14 @@ class JointGroupSolver {
   // take it), with the joints' rows kept, into the momenta, before the
   // contact solve sees them. `results` gets them (B's couple about its
   // anchor).
+  // `kept` (may be null): a solver whose factors may already be K₀'s.
   void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
-                             std::vector<JointLinkResult>& results);
+                             std::vector<JointLinkResult>& results, const JointSolver* kept = nullptr);
+
+  // The factor the group's last step left: K at the end poses of its
+  // velocity projection (the joints' rows only), which is the next step's
+  // K₀ when that starts where this one ended.
+  const RowSystem& system() const { return m_system; }
 
  private:
   using Row = JointSolverRow;
@@ -181,8 +190,31 @@ class JointGroupSolver {
   void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
   // Removes the rates along m_rows from the momenta (with K as m_system
-  // holds it).
+  // and the border hold it).
   void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;
+
+  // Limit rows after the rows m_system holds (m_rows past m_system.size()):
+  // the velocity projection's, at the end poses. m_system keeps the joints'
+  // rows alone (the factor the next step starts with), and these are solved
+  // through the Schur complement on them,
+  //   S = K_LL − K_LJ K_JJ⁻¹ K_JL,
+  // one solve with K_JJ per limit row, no factorisation.
+  struct Border {
+    Eigen::MatrixXd coupling;  // K_JL
+    Eigen::MatrixXd response;  // K_JJ⁻¹ K_JL
+    Eigen::LLT<Eigen::MatrixXd> schur;
+    bool ok = true;
+  };
+  // The border of m_rows past m_system.size() for bodies of these inverse
+  // inertias; false when K is not positive definite on the rows.
+  bool makeBorder(const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia);
+  // K⁻¹ x over m_rows, with m_system and the border.
+  void solveRows(Eigen::VectorXd& x) const;
+  // Whether solveRows can solve: m_system's factor (if it has rows) and the
+  // border's.
+  bool systemOk() const {
+    return (m_system.size() == 0 || m_system.ok()) && m_border.ok && !m_rows.empty();
+  }
 
   // A limit held this step: its row follows the joints' rows in m_rows.
   struct LimitRow {
@@ -205,7 +237,8 @@ class JointGroupSolver {
   std::vector<Row> m_rows;
   std::vector<LimitRow> m_limits;
   std::vector<double> m_startBeyond;  // by link: the coordinate's excess over a bound at the start, signed
-  RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
+  RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step; K₁ after the velocity projection
+  Border m_border;
 };
 
 // Bodies joined to each other by links, directly or through others, and
@@ -242,6 +275,11 @@ class JointSolver {
   // that the step's keep their systems' analysis).
   void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                              std::vector<JointLinkResult>& results);
+  // A factor one of the groups' solvers holds (system()) made from exactly
+  // these inputs, or null: the contact sweeps' projection of a group in
+  // contact finds its K₀ here, made at the end of the last step.
+  const RowSystem* keptFactor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
+                              const std::vector<Mat3>& inverseInertia) const;
 
  private:
   std::vector<JointGroupSolver> m_kickSolvers;  // by group, for actuateBeforeContacts

@@ -183,7 +183,9 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
   std::vector<JointLink> inContact;
   for (const JointLink& link : links)
     if (link.bodyA >= 0 || link.bodyB >= 0 || link.bodyC >= 0 || link.bodyD >= 0) inContact.push_back(link);
-  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
+  // Their K₀ was made at the end of the last step (its velocity
+  // projection), where this one starts: the joint solver keeps it.
+  return std::make_unique<JointVelocityProjection>(inContact, bodies, solverIndex, world.jointSolver.get());
 }
 
 void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
