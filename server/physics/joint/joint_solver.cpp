@@ -909,6 +909,13 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     const LinkPoses poses = linkPoses(link, bodies, false);
     appendLinkRows(link, static_cast<int>(l), poses, link.joint->basisAt(poses[0]), m_rows);
   }
+  // K₁ of the joints' rows at the end poses: the projection is exact with
+  // it, and the next step, which starts at these poses, finds it as its K₀
+  // (RowSystem keeps a factor asked for again with the same inputs). The
+  // limits moved into join it as a border (makeBorder), so that it stays
+  // the joints' rows' alone.
+  m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);  // none for no rows
+  m_border.ok = true;
   const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
   // A joint held at a limit leaves with no rate into it. Which limits are
   // moved into is looked at before the projection and again after it: the
@@ -932,22 +939,16 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     }
     return added;
   };
-  // The axes' second half needs the end's K itself (its projection exact).
   const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) {
     return !l.isCoupling() && !l.wholeKick && axisActs(*l.joint);
   });
   addLimitsMovedInto();
   for (int round = 0; round < 2; ++round) {
     if (round == 1 && !addLimitsMovedInto()) break;
+    if (m_rows.empty() || !makeBorder(bodies, inverseInertia)) break;
     const auto count = static_cast<Eigen::Index>(m_rows.size());
-    // The step's K₀ when the rows are the ones it was made for (the usual
-    // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
-    // else K₁ made here.
-    bool reuse = round == 0 && !axesAct && m_system.ok() && m_system.size() == count &&
-                 endLimits.size() == m_limits.size();
-    for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
-    if (!reuse) m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);  // none for no rows
-    if (m_rows.empty() || !m_system.ok()) break;
+    // K is exact here, so one solve leaves rates of rounding size; the
+    // loop takes what rounding leaves above 1e-13.
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
     Eigen::VectorXd rate(count);
     double previous = INFINITY;
@@ -956,7 +957,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
       const double largest = rate.cwiseAbs().maxCoeff();
       if (largest <= 1e-13 || largest >= previous) break;
       previous = largest;
-      const Eigen::VectorXd step = m_system.solve(-rate);
+      Eigen::VectorXd step = -rate;
+      solveRows(step);
       for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
       impulse += step;
     }
