@@ -275,6 +275,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
 
   moveAll();
   largest = measure();
+  m_projectIterations = 0;
   // Quasi-Newton with the start's K while it converges fast (the usual
   // case: a few iterations); Newton with the exact derivative once it does
   // not (fast turns, where the start's rows are too far from the current
@@ -311,6 +312,29 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
     } else {
       impulse = m_system.solve(-residual / h);
     }
+    if (!m_systemExact && !newton) {
+      // A factor kept from an earlier step: its whole step while that
+      // leaves at most keepRatio of the error; else K₀ is made here (the
+      // step kept if it helped) and the iteration goes on with it.
+      applyImpulse(impulse, 1.0);
+      moveAll();
+      const double next = measure();
+      const bool fast = next <= m_keepRatio * largest;
+      if (next < largest) {
+        total += impulse;
+        largest = next;
+      } else {
+        applyImpulse(impulse, -1.0);
+        moveAll();
+        largest = measure();
+      }
+      ++m_projectIterations;
+      if (!fast) {
+        factorAtStart(bodies);
+        m_refreshed = true;
+      }
+      continue;
+    }
     double scale = 1.0, next = largest;
     for (int halving = 0; halving < 8; ++halving) {
       applyImpulse(impulse, scale);
@@ -323,6 +347,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
       measure();
     }
     if (next >= largest) break;  // no step along it helps: keep the best poses
+    ++m_projectIterations;
     total += scale * impulse;
     if (next > 0.25 * largest) newton = true;
     largest = next;
@@ -403,6 +428,20 @@ void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const st
   impulse = -impulse;
   solveRows(impulse);
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
+}
+
+void JointGroupSolver::factorAtStart(const std::vector<JointBody>& bodies) {
+  std::vector<Mat3> startInverseInertia;
+  startInverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  m_systemExact = true;
+}
+
+bool JointGroupSolver::mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const {
+  if (!(settings.keepRatio > 0.0)) return false;
+  return std::none_of(links.begin(), links.end(),
+                      [](const JointLink& l) { return l.inContact || (!l.isCoupling() && axisActs(*l.joint)); });
 }
 
 namespace {
@@ -693,7 +732,22 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  // K₀: the last step's end factor when this step starts where it ended
+  // (kept, bit-identical); else, for a group that may, the factor of an
+  // earlier step with the same pattern, kept while it converges (project);
+  // else made here.
+  m_keepRatio = mayKeep(links, settings) ? settings.keepRatio : 0.0;
+  m_refreshed = false;
+  {
+    const std::vector<double> inverseMass = inverseMasses(bodies);
+    if (m_keepRatio > 0.0 && m_system.ok() && m_system.madeFor(m_rows) &&
+        !m_system.madeFrom(m_rows, inverseMass, startInverseInertia)) {
+      m_systemExact = false;
+    } else {
+      m_system.factor(m_rows, inverseMass, startInverseInertia);
+      m_systemExact = true;
+    }
+  }
 
   // The motors, drives, damping and friction: their first half, on the
   // velocities the drift will use.
@@ -716,6 +770,8 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   Drift momenta;
   Eigen::VectorXd total;
   double left = 0.0;
+  const bool startedKept = !m_systemExact;
+  int firstIterations = 0;
   constexpr int kLimitRounds = 6;
   for (int round = 0; round < kLimitRounds; ++round) {
     momenta = Drift{};
@@ -734,6 +790,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     std::vector<double> allTargets = targets;
     for (const LimitRow& limit : m_limits) allTargets.push_back(heldBeyond(limit));
     total = project(links, bodies, bases, &allTargets, momenta, h, settings, left);
+    if (round == 0) firstIterations = m_projectIterations;
     // Which limits the end poses break, and which active ones pull.
     bool changed = false;
     std::vector<LimitRow> kept;
@@ -774,7 +831,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
       m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
     }
-    m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+    factorAtStart(bodies);
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
@@ -805,7 +862,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       added = true;
     }
     if (added) {
-      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      factorAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
     for (const LimitRow& limit : m_limits) {
@@ -868,10 +925,12 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
         added = true;
       }
       if (!added) break;
-      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      factorAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
   }
+
+  m_keepAtEnd = m_keepRatio > 0.0 && !m_refreshed && (startedKept || firstIterations <= 1);
 
   // What each joint did to B, and the error it leaves.
   const auto count = static_cast<Eigen::Index>(m_rows.size());
@@ -914,8 +973,27 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   // (RowSystem keeps a factor asked for again with the same inputs). The
   // limits moved into join it as a border (makeBorder), so that it stays
   // the joints' rows' alone.
-  m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);  // none for no rows
+  //
+  // A group that may keep a factor across steps (keepRatio) keeps the one
+  // it has while its iterations converge fast enough; K₁ is made when one
+  // does not.
+  const std::size_t jointRows = m_rows.size();
+  const std::vector<double> inverseMass = inverseMasses(bodies);
+  bool kept = m_keepAtEnd && m_system.ok() && m_system.madeFor(m_rows) &&
+              !m_system.madeFrom(m_rows, inverseMass, inverseInertia);
+  if (!kept) m_system.factor(m_rows, inverseMass, inverseInertia);  // none for no rows
+  m_systemExact = !kept;
   m_border.ok = true;
+  // K₁ of the joints' rows alone, the limits' rows set aside meanwhile.
+  const auto makeEndFactor = [&] {
+    const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(jointRows), m_rows.end());
+    m_rows.resize(jointRows);
+    m_system.factor(m_rows, inverseMass, inverseInertia);
+    m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
+    kept = false;
+    m_systemExact = true;
+    return makeBorder(bodies, inverseInertia);
+  };
   const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
   // A joint held at a limit leaves with no rate into it. Which limits are
   // moved into is looked at before the projection and again after it: the
@@ -947,15 +1025,27 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     if (round == 1 && !addLimitsMovedInto()) break;
     if (m_rows.empty() || !makeBorder(bodies, inverseInertia)) break;
     const auto count = static_cast<Eigen::Index>(m_rows.size());
-    // K is exact here, so one solve leaves rates of rounding size; the
-    // loop takes what rounding leaves above 1e-13.
+    // With K exact, one solve leaves rates of rounding size; the loop
+    // takes what rounding leaves above 1e-13. With a kept factor, each
+    // solve must leave at most keepRatio of the rates, else K₁ is made.
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
     Eigen::VectorXd rate(count);
     double previous = INFINITY;
-    for (int iteration = 0; iteration < 8; ++iteration) {
+    constexpr int kIterations = 8;
+    for (int exactIterations = 0, keptIterations = 0;;) {
       rowRates(m_rows, bodies, inverseInertia, rate);
       const double largest = rate.cwiseAbs().maxCoeff();
-      if (largest <= 1e-13 || largest >= previous) break;
+      if (largest <= 1e-13) break;
+      if (kept && (largest > m_keepRatio * previous || keptIterations == kIterations)) {
+        if (!makeEndFactor()) break;
+        previous = INFINITY;
+      }
+      if (kept) {
+        ++keptIterations;
+      } else {
+        if (largest >= previous || exactIterations == kIterations) break;
+        ++exactIterations;
+      }
       previous = largest;
       Eigen::VectorXd step = -rate;
       solveRows(step);
@@ -1108,6 +1198,19 @@ const RowSystem* JointSolver::keptFactor(const std::vector<JointSolverRow>& rows
   for (const JointGroupSolver& solver : m_solvers)
     if (solver.system().madeFrom(rows, inverseMass, inverseInertia)) return &solver.system();
   return nullptr;
+}
+
+std::vector<RowSystem::Inputs> JointSolver::factorInputs() const {
+  std::vector<RowSystem::Inputs> out;
+  out.reserve(m_solvers.size());
+  for (const JointGroupSolver& solver : m_solvers) out.push_back(solver.system().inputs());
+  return out;
+}
+
+void JointSolver::restoreFactors(const std::vector<RowSystem::Inputs>& inputs) {
+  m_solvers.assign(inputs.size(), JointGroupSolver{});
+  for (std::size_t g = 0; g < inputs.size(); ++g)
+    if (inputs[g].made) m_solvers[g].system().factor(inputs[g].rows, inputs[g].inverseMass, inputs[g].inverseInertia);
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,

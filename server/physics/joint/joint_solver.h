@@ -79,6 +79,9 @@ struct JointLink {
   JointSidePose fixedC;
   JointSidePose fixedD;
   double followerFrom = 0.0, leaderFrom = 0.0, errorFrom = 0.0;  // rad or m
+  // In an island that touches something: its group's factors are made
+  // exact every step (JointSolverSettings::keepRatio).
+  bool inContact = false;
   // An island in contact (the contact path's semi-implicit step): the
   // axis's laws act over the whole step before the contact solve
   // (JointSolver::actuateBeforeContacts), so that the contacts answer them,
@@ -106,6 +109,17 @@ double couplingError(const JointLink& link, const LinkPoses& poses);
 struct JointSolverSettings {
   double tolerance = 1e-12;  // m and rad: largest |C| left
   int maxIterations = 30;
+  // A group whose joint graph is unchanged keeps the factor of K from an
+  // earlier step (K is only the quasi-Newton matrix: the iterations stop on
+  // C itself) for as long as every iteration with it leaves at most this
+  // fraction of the error (or of the rates, in the velocity projection);
+  // the first that leaves more makes K afresh and goes on with it. Adaptive,
+  // never a fixed lag: a slowly moving grid keeps one factor for many steps,
+  // a whipped chain refactors at once. 0: a factor is kept only when its
+  // inputs are bit-identical. Not for a group in contact (the contact
+  // sweeps' projection needs its K₀ exact) or with an axis that acts (its
+  // laws need the joints' reply exact).
+  double keepRatio = 0.1;
 };
 
 // What the step did, per link: the impulses on side B (for JointState) and
@@ -152,6 +166,7 @@ class JointGroupSolver {
   // velocity projection (the joints' rows only), which is the next step's
   // K₀ when that starts where this one ended.
   const RowSystem& system() const { return m_system; }
+  RowSystem& system() { return m_system; }
 
  private:
   using Row = JointSolverRow;
@@ -189,6 +204,11 @@ class JointGroupSolver {
   // The second half at the end, into `results` (B's couple about its anchor).
   void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
+  // K of m_rows at the start poses, factorised (or kept, bit-identical).
+  void factorAtStart(const std::vector<JointBody>& bodies);
+  // Whether m_system may stay a factor of an earlier step's K for the rows
+  // now in m_rows (their pattern the same): keepRatio, no contact, no axis.
+  bool mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const;
   // Removes the rates along m_rows from the momenta (with K as m_system
   // and the border hold it).
   void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;
@@ -238,6 +258,21 @@ class JointGroupSolver {
   std::vector<LimitRow> m_limits;
   std::vector<double> m_startBeyond;  // by link: the coordinate's excess over a bound at the start, signed
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step; K₁ after the velocity projection
+  // Whether m_system is K of m_rows now (else an earlier step's, kept while
+  // it converges: JointSolverSettings::keepRatio).
+  bool m_systemExact = true;
+  double m_keepRatio = 0.0;  // the settings' of the step (for projectVelocities)
+  // Of the step's projections: how many solves the last one made, and
+  // whether one found the kept factor too slow and made K₀.
+  int m_projectIterations = 0;
+  bool m_refreshed = false;
+  // Whether the velocity projection keeps m_system rather than making K₁:
+  // for a group that may keep a factor, when this step's momentum
+  // projection ran on a kept factor without making K₀, or on an exact K₀
+  // in one iteration (the group moves slowly enough that an earlier K
+  // serves). A group whose K₀ needs several iterations (a whipped chain)
+  // makes K₁ at every end, as if it might not keep one.
+  bool m_keepAtEnd = false;
   Border m_border;
 };
 
@@ -280,6 +315,13 @@ class JointSolver {
   // contact finds its K₀ here, made at the end of the last step.
   const RowSystem* keptFactor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
                               const std::vector<Mat3>& inverseInertia) const;
+
+  // The inputs of each group's factor (RowSystem::Inputs), by group: a
+  // factor kept across steps (JointSolverSettings::keepRatio) is part of the
+  // state the next steps depend on, so a checkpoint holds them, and
+  // restoreFactors makes the same factors from them (world/snapshot.cpp).
+  std::vector<RowSystem::Inputs> factorInputs() const;
+  void restoreFactors(const std::vector<RowSystem::Inputs>& inputs);
 
  private:
   std::vector<JointGroupSolver> m_kickSolvers;  // by group, for actuateBeforeContacts

@@ -121,6 +121,17 @@ bool RowSystem::madeFrom(const std::vector<JointSolverRow>& rows, const std::vec
   return true;
 }
 
+bool RowSystem::madeFor(const std::vector<JointSolverRow>& rows) const {
+  if (!m_made || rows.size() != m_madeRows.size()) return false;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const JointSolverRow& a = rows[r];
+    const JointSolverRow& b = m_madeRows[r];
+    if (a.link != b.link || a.bodyA != b.bodyA || a.bodyB != b.bodyB || a.bodyC != b.bodyC || a.bodyD != b.bodyD)
+      return false;
+  }
+  return true;
+}
+
 RowSystemCounts RowSystem::counts() {
   return {g_factorisations.load(std::memory_order_relaxed), g_kept.load(std::memory_order_relaxed),
           g_solves.load(std::memory_order_relaxed)};

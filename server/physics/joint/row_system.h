@@ -86,6 +86,20 @@ class RowSystem {
   // Whether the last factor was made from exactly these inputs (every bit).
   bool madeFrom(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
                 const std::vector<Mat3>& inverseInertia) const;
+  // Whether the last factor was made from rows of these links and bodies,
+  // in this order (its numbers may differ): it is then a K of the same
+  // pattern, which the joint step may keep as its quasi-Newton matrix
+  // while it converges (JointSolverSettings::keepRatio).
+  bool madeFor(const std::vector<JointSolverRow>& rows) const;
+
+  // What a factor is made from; `made` false: no factor yet.
+  struct Inputs {
+    bool made = false;
+    std::vector<JointSolverRow> rows;
+    std::vector<double> inverseMass;
+    std::vector<Mat3> inverseInertia;
+  };
+  Inputs inputs() const { return {m_made, m_madeRows, m_madeInverseMass, m_madeInverseInertia}; }
   // False when there are no rows or K was not positive definite.
   bool ok() const { return m_ok; }
   Eigen::Index size() const { return m_rowCount; }

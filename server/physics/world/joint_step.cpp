@@ -285,6 +285,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   for (JointLink& link : links) {
     const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB >= 0 ? link.bodyB : link.bodyC >= 0 ? link.bodyC : link.bodyD;
     link.wholeKick = actuatedBefore && any >= 0 && staggered[static_cast<std::size_t>(any)] == 0;
+    link.inContact = any >= 0 && staggered[static_cast<std::size_t>(any)] == 0;
   }
 
   // The step in `parts` equal sub-steps, each a whole RATTLE step (half
