@@ -689,6 +689,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   m_rows.clear();
   m_limits.clear();
   m_border.ok = true;
+  m_keepAtEnd = false;  // until this step's momentum projection says
   // The rows at the step's start, and the errors there. An error from the
   // last step's rounding is closed with the rest; a larger one came from
   // outside and is kept by the momentum projection, then removed by the
@@ -1194,9 +1195,12 @@ void JointSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std
 
 const RowSystem* JointSolver::keptFactor(const std::vector<JointSolverRow>& rows,
                                          const std::vector<double>& inverseMass,
-                                         const std::vector<Mat3>& inverseInertia) const {
+                                         const std::vector<Mat3>& inverseInertia, bool orSamePattern) const {
   for (const JointGroupSolver& solver : m_solvers)
     if (solver.system().madeFrom(rows, inverseMass, inverseInertia)) return &solver.system();
+  if (orSamePattern)
+    for (const JointGroupSolver& solver : m_solvers)
+      if (solver.system().madeFor(rows)) return &solver.system();
   return nullptr;
 }
 

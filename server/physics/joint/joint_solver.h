@@ -312,9 +312,12 @@ class JointSolver {
                              std::vector<JointLinkResult>& results);
   // A factor one of the groups' solvers holds (system()) made from exactly
   // these inputs, or null: the contact sweeps' projection of a group in
-  // contact finds its K₀ here, made at the end of the last step.
+  // contact finds its K₀ here, made at the end of the last step. With
+  // `orSamePattern`, else one made for rows of the same joints and bodies:
+  // a copy of it factorises these rows keeping its elimination order and
+  // symbolic analysis (RowSystem::factor), the same bits as a fresh one.
   const RowSystem* keptFactor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
-                              const std::vector<Mat3>& inverseInertia) const;
+                              const std::vector<Mat3>& inverseInertia, bool orSamePattern = false) const;
 
   // The inputs of each group's factor (RowSystem::Inputs), by group: a
   // factor kept across steps (JointSolverSettings::keepRatio) is part of the

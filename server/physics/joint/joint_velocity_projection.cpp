@@ -39,8 +39,8 @@ JointGroupProjection::JointGroupProjection(const std::vector<JointLink>& links,
   if (!m_rows.empty()) {
     const std::vector<double> inverseMass = inverseMasses(bodies);
     if (kept != nullptr)
-      if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, inverseInertia)) m_system = *made;
-    m_system.factor(m_rows, inverseMass, inverseInertia);  // nothing to do when kept
+      if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, inverseInertia, true)) m_system = *made;
+    m_system.factor(m_rows, inverseMass, inverseInertia);  // nothing to do when kept, no analysis when its pattern
   }
   if (m_limits.empty()) return;
 

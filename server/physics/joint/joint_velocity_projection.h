@@ -30,7 +30,8 @@ class JointGroupProjection {
   // mass and inertia), and `solverIndex` maps those to the solver's bodies.
   // K₀ is taken from `kept` (may be null) when one of its factors was made
   // from exactly these rows and bodies (the joint step's of the last step,
-  // ending where this one starts), else made here.
+  // ending where this one starts), else made here (with the elimination
+  // order of one of its factors of the same joints, when it has one).
   JointGroupProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
                        std::vector<std::size_t> solverIndex, const JointSolver* kept = nullptr);
   void project(std::vector<SolverBody>& bodies) const;
