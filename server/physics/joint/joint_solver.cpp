@@ -284,7 +284,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   NewtonSystem exact;
   std::vector<JointSolverRow> currentRows;
   std::vector<Mat3> turns(bodies.size());
-  for (int iteration = 0; m_system.ok() && iteration < settings.maxIterations; ++iteration) {
+  for (int iteration = 0; systemOk() && iteration < settings.maxIterations; ++iteration) {
     if (largest <= settings.tolerance) break;
     Eigen::VectorXd impulse;
     if (newton) {
@@ -310,7 +310,8 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
       if (!exact.ok()) break;
       impulse = exact.solve(-residual);
     } else {
-      impulse = m_system.solve(-residual / h);
+      impulse = -residual / h;
+      solveRows(impulse);
     }
     if (!m_systemExact && !newton) {
       // A factor kept from an earlier step: its whole step while that
@@ -434,8 +435,20 @@ void JointGroupSolver::factorAtStart(const std::vector<JointBody>& bodies) {
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  // The joints' rows alone; the limits' rows set aside meanwhile.
+  const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(m_jointRows), m_rows.end());
+  m_rows.resize(m_jointRows);
   m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
   m_systemExact = true;
+  makeBorder(bodies, startInverseInertia);
+}
+
+void JointGroupSolver::borderAtStart(const std::vector<JointBody>& bodies) {
+  std::vector<Mat3> startInverseInertia;
+  startInverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  makeBorder(bodies, startInverseInertia);
 }
 
 bool JointGroupSolver::mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const {
@@ -671,6 +684,7 @@ void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
   const std::vector<double> inverseMass = inverseMasses(bodies);
+  m_jointRows = m_rows.size();
   if (kept != nullptr)
     if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, startInverseInertia)) m_system = *made;
   m_system.factor(m_rows, inverseMass, startInverseInertia);
@@ -730,6 +744,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   const bool anyAxis = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && axisActs(*l.joint); });
   if (m_rows.empty() && !anyLimit && !anyAxis) return true;
   const std::size_t jointRows = m_rows.size();
+  m_jointRows = jointRows;
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
@@ -748,6 +763,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       m_system.factor(m_rows, inverseMass, startInverseInertia);
       m_systemExact = true;
     }
+    makeBorder(bodies, startInverseInertia);  // none yet
   }
 
   // The motors, drives, damping and friction: their first half, on the
@@ -832,7 +848,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
       m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
     }
-    factorAtStart(bodies);
+    borderAtStart(bodies);  // the limits by their Schur complement: no factorisation
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
@@ -863,7 +879,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       added = true;
     }
     if (added) {
-      factorAtStart(bodies);
+      borderAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
     for (const LimitRow& limit : m_limits) {
@@ -926,7 +942,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
         added = true;
       }
       if (!added) break;
-      factorAtStart(bodies);
+      borderAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
   }
@@ -979,6 +995,7 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   // it has while its iterations converge fast enough; K₁ is made when one
   // does not.
   const std::size_t jointRows = m_rows.size();
+  m_jointRows = jointRows;
   const std::vector<double> inverseMass = inverseMasses(bodies);
   bool kept = m_keepAtEnd && m_system.ok() && m_system.madeFor(m_rows) &&
               !m_system.madeFrom(m_rows, inverseMass, inverseInertia);

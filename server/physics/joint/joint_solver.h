@@ -204,8 +204,11 @@ class JointGroupSolver {
   // The second half at the end, into `results` (B's couple about its anchor).
   void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
-  // K of m_rows at the start poses, factorised (or kept, bit-identical).
+  // K of the joints' rows of m_rows at the start poses, factorised (or
+  // kept, bit-identical), and the border of the limits' rows after them.
   void factorAtStart(const std::vector<JointBody>& bodies);
+  // The border alone, at the start poses, when the limits' rows changed.
+  void borderAtStart(const std::vector<JointBody>& bodies);
   // Whether m_system may stay a factor of an earlier step's K for the rows
   // now in m_rows (their pattern the same): keepRatio, no contact, no axis.
   bool mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const;
@@ -213,10 +216,12 @@ class JointGroupSolver {
   // and the border hold it).
   void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;
 
-  // Limit rows after the rows m_system holds (m_rows past m_system.size()):
-  // the velocity projection's, at the end poses. m_system keeps the joints'
-  // rows alone (the factor the next step starts with), and these are solved
-  // through the Schur complement on them,
+  // Limit rows after the rows m_system holds (m_rows past m_system.size(),
+  // the joints' m_jointRows): SHAKE's held limits at the start poses, the
+  // velocity projection's at the end poses. m_system keeps the joints' rows
+  // alone (the factor the next step starts with, and a change of the
+  // limits' active set makes none), and these are solved through the Schur
+  // complement on them,
   //   S = K_LL − K_LJ K_JJ⁻¹ K_JL,
   // one solve with K_JJ per limit row, no factorisation.
   struct Border {
@@ -255,6 +260,7 @@ class JointGroupSolver {
     return joint.def.type == JointType::Revolute || joint.def.type == JointType::Spherical ? 0.1 : 0.01;  // rad, m
   }
   std::vector<Row> m_rows;
+  std::size_t m_jointRows = 0;  // the joints' rows at the front of m_rows; limits' rows follow
   std::vector<LimitRow> m_limits;
   std::vector<double> m_startBeyond;  // by link: the coordinate's excess over a bound at the start, signed
   RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step; K₁ after the velocity projection
