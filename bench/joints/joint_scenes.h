@@ -369,6 +369,9 @@ class Engine {
   virtual Pose pose(int body) const = 0;
   virtual std::string settings() const = 0;  // solver settings, for the CFG line
   virtual std::string notes() const { return ""; }  // unsupported features, warnings
+  // The engine's own counts over the rep (its solver's work per step), for
+  // a STAT line after the REP line; empty: none.
+  virtual std::string repStats() const { return ""; }
 };
 
 struct Options {
@@ -526,6 +529,8 @@ inline int runMain(int argc, char** argv, const std::string& engineName, const s
                 "joint_err_end_m=%.6g joint_err_max_m=%.6g lowest_z_m=%.4f\n",
                 label.c_str(), s.name.c_str(), s.n, rep, r.setupSeconds, r.meanMs, r.p99Ms, r.maxMs, r.errorEnd,
                 r.errorMax, r.lowestZ);
+    const std::string stats = engine->repStats();
+    if (!stats.empty()) std::printf("STAT engine=%s scene=%s n=%d rep=%d %s\n", label.c_str(), s.name.c_str(), s.n, rep, stats.c_str());
     std::fflush(stdout);
     means.push_back(r.meanMs);
     p99s.push_back(r.p99Ms);

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "joint_scenes.h"
+#include "physics/joint/row_system.h"
 #include "rbsim/physics/world.h"
 
 namespace {
@@ -34,6 +35,8 @@ class RbsimEngine final : public jb::Engine {
     settings.contact.defaultMaterial.staticFriction = jb::kFriction;
     settings.contact.defaultMaterial.restitution = 0.0;
     m_world.emplace(settings);
+    m_start = rbsim::RowSystem::counts();
+    m_steps = 0;
     if (s.ground) {
       rbsim::BodyDef ground;
       ground.name = "ground";
@@ -79,7 +82,10 @@ class RbsimEngine final : public jb::Engine {
     }
   }
 
-  void step(double) override { m_world->step(); }
+  void step(double) override {
+    m_world->step();
+    ++m_steps;
+  }
 
   jb::Pose pose(int body) const override {
     const rbsim::BodyView b = m_world->body(m_bodies[static_cast<size_t>(body)]);
@@ -98,6 +104,19 @@ class RbsimEngine final : public jb::Engine {
     return text;
   }
 
+  // The joint systems' work per step (row_system.h): numeric
+  // factorisations, factors found already made, solves.
+  std::string repStats() const override {
+    const rbsim::RowSystemCounts now = rbsim::RowSystem::counts();
+    const double steps = m_steps > 0 ? static_cast<double>(m_steps) : 1.0;
+    char text[160];
+    std::snprintf(text, sizeof text, "factorisations_per_step=%.3f kept_per_step=%.3f solves_per_step=%.2f",
+                  static_cast<double>(now.factorisations - m_start.factorisations) / steps,
+                  static_cast<double>(now.kept - m_start.kept) / steps,
+                  static_cast<double>(now.solves - m_start.solves) / steps);
+    return text;
+  }
+
   std::string notes() const override {
     if (m_untwistedBalls == 0) return "";
     return std::to_string(m_untwistedBalls) + " ball joints with a cone but without their twist range "
@@ -109,6 +128,8 @@ class RbsimEngine final : public jb::Engine {
   std::vector<rbsim::BodyId> m_bodies;
   int m_joints = 0;
   int m_untwistedBalls = 0;
+  rbsim::RowSystemCounts m_start;
+  long m_steps = 0;
 };
 
 }  // namespace

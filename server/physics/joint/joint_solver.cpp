@@ -275,6 +275,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
 
   moveAll();
   largest = measure();
+  m_projectIterations = 0;
   // Quasi-Newton with the start's K while it converges fast (the usual
   // case: a few iterations); Newton with the exact derivative once it does
   // not (fast turns, where the start's rows are too far from the current
@@ -283,7 +284,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   NewtonSystem exact;
   std::vector<JointSolverRow> currentRows;
   std::vector<Mat3> turns(bodies.size());
-  for (int iteration = 0; m_system.ok() && iteration < settings.maxIterations; ++iteration) {
+  for (int iteration = 0; systemOk() && iteration < settings.maxIterations; ++iteration) {
     if (largest <= settings.tolerance) break;
     Eigen::VectorXd impulse;
     if (newton) {
@@ -309,7 +310,31 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
       if (!exact.ok()) break;
       impulse = exact.solve(-residual);
     } else {
-      impulse = m_system.solve(-residual / h);
+      impulse = -residual / h;
+      solveRows(impulse);
+    }
+    if (!m_systemExact && !newton) {
+      // A factor kept from an earlier step: its whole step while that
+      // leaves at most keepRatio of the error; else K₀ is made here (the
+      // step kept if it helped) and the iteration goes on with it.
+      applyImpulse(impulse, 1.0);
+      moveAll();
+      const double next = measure();
+      const bool fast = next <= m_keepRatio * largest;
+      if (next < largest) {
+        total += impulse;
+        largest = next;
+      } else {
+        applyImpulse(impulse, -1.0);
+        moveAll();
+        largest = measure();
+      }
+      ++m_projectIterations;
+      if (!fast) {
+        factorAtStart(bodies);
+        m_refreshed = true;
+      }
+      continue;
     }
     double scale = 1.0, next = largest;
     for (int halving = 0; halving < 8; ++halving) {
@@ -323,6 +348,7 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
       measure();
     }
     if (next >= largest) break;  // no step along it helps: keep the best poses
+    ++m_projectIterations;
     total += scale * impulse;
     if (next > 0.25 * largest) newton = true;
     largest = next;
@@ -398,10 +424,105 @@ double driveError(const JointConstraint& joint, double position) {
 
 void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
-  Eigen::VectorXd rate(count);
-  rowRates(m_rows, bodies, inverseInertia, rate);
-  const Eigen::VectorXd impulse = m_system.solve(-rate);
+  Eigen::VectorXd impulse(count);
+  rowRates(m_rows, bodies, inverseInertia, impulse);
+  impulse = -impulse;
+  solveRows(impulse);
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
+}
+
+void JointGroupSolver::factorAtStart(const std::vector<JointBody>& bodies) {
+  std::vector<Mat3> startInverseInertia;
+  startInverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  // The joints' rows alone; the limits' rows set aside meanwhile.
+  const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(m_jointRows), m_rows.end());
+  m_rows.resize(m_jointRows);
+  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
+  m_systemExact = true;
+  makeBorder(bodies, startInverseInertia);
+}
+
+void JointGroupSolver::borderAtStart(const std::vector<JointBody>& bodies) {
+  std::vector<Mat3> startInverseInertia;
+  startInverseInertia.reserve(bodies.size());
+  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  makeBorder(bodies, startInverseInertia);
+}
+
+bool JointGroupSolver::mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const {
+  if (!(settings.keepRatio > 0.0)) return false;
+  return std::none_of(links.begin(), links.end(),
+                      [](const JointLink& l) { return l.inContact || (!l.isCoupling() && axisActs(*l.joint)); });
+}
+
+namespace {
+
+// K's entry of two rows: over the bodies they share, m⁻¹ lᵢ·lⱼ + aᵢ·I⁻¹ aⱼ.
+double rowCoupling(const JointSolverRow& a, const JointSolverRow& b, const std::vector<JointBody>& bodies,
+                   const std::vector<Mat3>& inverseInertia) {
+  double k = 0.0;
+  for (int sa = 0; sa < a.sideCount(); ++sa) {
+    const int body = a.body(sa);
+    if (body < 0) continue;
+    for (int sb = 0; sb < b.sideCount(); ++sb) {
+      if (b.body(sb) != body) continue;
+      const auto i = static_cast<std::size_t>(body);
+      k += bodies[i].inverseMass * a.linear(sa).dot(b.linear(sb)) + a.angular(sa).dot(inverseInertia[i] * b.angular(sb));
+    }
+  }
+  return k;
+}
+
+}  // namespace
+
+bool JointGroupSolver::makeBorder(const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) {
+  const Eigen::Index joints = m_system.size();
+  const Eigen::Index limits = static_cast<Eigen::Index>(m_rows.size()) - joints;
+  m_border.ok = joints == 0 || m_system.ok();
+  if (!m_border.ok || limits == 0) return m_border.ok;
+  m_border.coupling.resize(joints, limits);
+  m_border.response.resize(joints, limits);
+  const auto row = [&](Eigen::Index r) -> const Row& { return m_rows[static_cast<std::size_t>(r)]; };
+  for (Eigen::Index j = 0; j < limits; ++j) {
+    for (Eigen::Index i = 0; i < joints; ++i)
+      m_border.coupling(i, j) = rowCoupling(row(i), row(joints + j), bodies, inverseInertia);
+    if (joints == 0) continue;  // limits alone (ropes): S is K_LL
+    Eigen::VectorXd column = m_border.coupling.col(j);
+    m_system.solveInPlace(column);
+    m_border.response.col(j) = column;
+  }
+  Eigen::MatrixXd schur(limits, limits);
+  for (Eigen::Index j = 0; j < limits; ++j)
+    for (Eigen::Index i = j; i < limits; ++i) {
+      schur(i, j) = rowCoupling(row(joints + i), row(joints + j), bodies, inverseInertia) -
+                    m_border.coupling.col(i).dot(m_border.response.col(j));
+      schur(j, i) = schur(i, j);
+    }
+  // The same tiny relative regularisation as K's (row_system.cpp): limits
+  // that hold one motion twice stay solvable.
+  schur.diagonal() *= 1.0 + 1e-10;
+  m_border.schur.compute(schur);
+  m_border.ok = m_border.schur.info() == Eigen::Success;
+  return m_border.ok;
+}
+
+void JointGroupSolver::solveRows(Eigen::VectorXd& x) const {
+  const Eigen::Index joints = m_system.size();
+  const Eigen::Index limits = x.size() - joints;
+  if (limits == 0) {
+    if (joints > 0) m_system.solveInPlace(x);
+    return;
+  }
+  // [K_JJ K_JL; K_LJ K_LL] [x_J; x_L] = [r_J; r_L]: x_J = K_JJ⁻¹ r_J − Y x_L,
+  // S x_L = r_L − K_LJ K_JJ⁻¹ r_J, Y = K_JJ⁻¹ K_JL.
+  Eigen::VectorXd jointPart = x.head(joints);
+  if (joints > 0) m_system.solveInPlace(jointPart);
+  const Eigen::VectorXd limitPart =
+      m_border.schur.solve(x.tail(limits) - m_border.coupling.transpose() * jointPart);
+  x.head(joints) = jointPart - m_border.response * limitPart;
+  x.tail(limits) = limitPart;
 }
 
 void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
@@ -475,7 +596,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
     }
     pushAlongRow(axes[i].row, 1.0, bodies);
     const double unconstrained = rowRate(axes[i].row, bodies, inverseInertia);
-    if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+    if (systemOk()) removeJointRates(bodies, inverseInertia);
     for (std::size_t j = 0; j < n; ++j)
       response(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) = rowRate(axes[j].row, bodies, inverseInertia);
     const auto ii = static_cast<Eigen::Index>(i);
@@ -483,7 +604,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   }
   // The free rates: the momenta with the joints' rates removed.
   bodies = start;
-  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  if (systemOk()) removeJointRates(bodies, inverseInertia);
   Eigen::VectorXd freeRate(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) freeRate[static_cast<Eigen::Index>(i)] = rowRate(axes[i].row, bodies, inverseInertia);
 
@@ -528,7 +649,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
   // the same end velocities as A says, by linearity.
   bodies = start;
   for (const Axis& axis : axes) pushAlongRow(axis.row, axis.impulse.total, bodies);
-  if (m_system.ok()) removeJointRates(bodies, inverseInertia);
+  if (systemOk()) removeJointRates(bodies, inverseInertia);
   for (const Axis& axis : axes) {
     JointLinkResult& result = results[axis.link];
     result.axisImpulse += axis.impulse.actuation;
@@ -546,8 +667,13 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
 }
 
 void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                                             double h, std::vector<JointLinkResult>& results) {
+                                             double h, std::vector<JointLinkResult>& results, const JointSolver* kept) {
   results.assign(links.size(), JointLinkResult{});
+  m_border.ok = true;
+  // Nothing acts along an axis (a ragdoll): no K₀ to make.
+  if (!std::any_of(links.begin(), links.end(),
+                   [](const JointLink& l) { return l.wholeKick && !l.isCoupling() && axisActs(*l.joint); }))
+    return;
   m_rows.clear();
   m_limits.clear();
   for (std::size_t l = 0; l < links.size(); ++l) {
@@ -557,7 +683,11 @@ void JointGroupSolver::actuateBeforeContacts(const std::vector<JointLink>& links
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  const std::vector<double> inverseMass = inverseMasses(bodies);
+  m_jointRows = m_rows.size();
+  if (kept != nullptr)
+    if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, startInverseInertia)) m_system = *made;
+  m_system.factor(m_rows, inverseMass, startInverseInertia);
   actuateAxes(links, bodies, h, startInverseInertia, false, results, true);
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointSidePose b = sidePose(links[l], bodies, true, true);
@@ -572,6 +702,8 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   results.assign(links.size(), JointLinkResult{});
   m_rows.clear();
   m_limits.clear();
+  m_border.ok = true;
+  m_keepAtEnd = false;  // until this step's momentum projection says
   // The rows at the step's start, and the errors there. An error from the
   // last step's rounding is closed with the rest; a larger one came from
   // outside and is kept by the momentum projection, then removed by the
@@ -612,10 +744,27 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   const bool anyAxis = std::any_of(links.begin(), links.end(), [](const JointLink& l) { return !l.isCoupling() && axisActs(*l.joint); });
   if (m_rows.empty() && !anyLimit && !anyAxis) return true;
   const std::size_t jointRows = m_rows.size();
+  m_jointRows = jointRows;
   std::vector<Mat3> startInverseInertia;
   startInverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  // K₀: the last step's end factor when this step starts where it ended
+  // (kept, bit-identical); else, for a group that may, the factor of an
+  // earlier step with the same pattern, kept while it converges (project);
+  // else made here.
+  m_keepRatio = mayKeep(links, settings) ? settings.keepRatio : 0.0;
+  m_refreshed = false;
+  {
+    const std::vector<double> inverseMass = inverseMasses(bodies);
+    if (m_keepRatio > 0.0 && m_system.ok() && m_system.madeFor(m_rows) &&
+        !m_system.madeFrom(m_rows, inverseMass, startInverseInertia)) {
+      m_systemExact = false;
+    } else {
+      m_system.factor(m_rows, inverseMass, startInverseInertia);
+      m_systemExact = true;
+    }
+    makeBorder(bodies, startInverseInertia);  // none yet
+  }
 
   // The motors, drives, damping and friction: their first half, on the
   // velocities the drift will use.
@@ -638,6 +787,8 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   Drift momenta;
   Eigen::VectorXd total;
   double left = 0.0;
+  const bool startedKept = !m_systemExact;
+  int firstIterations = 0;
   constexpr int kLimitRounds = 6;
   for (int round = 0; round < kLimitRounds; ++round) {
     momenta = Drift{};
@@ -656,6 +807,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     std::vector<double> allTargets = targets;
     for (const LimitRow& limit : m_limits) allTargets.push_back(heldBeyond(limit));
     total = project(links, bodies, bases, &allTargets, momenta, h, settings, left);
+    if (round == 0) firstIterations = m_projectIterations;
     // Which limits the end poses break, and which active ones pull.
     bool changed = false;
     std::vector<LimitRow> kept;
@@ -696,7 +848,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
       m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
     }
-    m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+    borderAtStart(bodies);  // the limits by their Schur complement: no factorisation
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
@@ -727,7 +879,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       added = true;
     }
     if (added) {
-      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      borderAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
     for (const LimitRow& limit : m_limits) {
@@ -790,10 +942,12 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
         added = true;
       }
       if (!added) break;
-      m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+      borderAtStart(bodies);
       total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
     }
   }
+
+  m_keepAtEnd = m_keepRatio > 0.0 && !m_refreshed && (startedKept || firstIterations <= 1);
 
   // What each joint did to B, and the error it leaves.
   const auto count = static_cast<Eigen::Index>(m_rows.size());
@@ -831,6 +985,33 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     const LinkPoses poses = linkPoses(link, bodies, false);
     appendLinkRows(link, static_cast<int>(l), poses, link.joint->basisAt(poses[0]), m_rows);
   }
+  // K₁ of the joints' rows at the end poses: the projection is exact with
+  // it, and the next step, which starts at these poses, finds it as its K₀
+  // (RowSystem keeps a factor asked for again with the same inputs). The
+  // limits moved into join it as a border (makeBorder), so that it stays
+  // the joints' rows' alone.
+  //
+  // A group that may keep a factor across steps (keepRatio) keeps the one
+  // it has while its iterations converge fast enough; K₁ is made when one
+  // does not.
+  const std::size_t jointRows = m_rows.size();
+  m_jointRows = jointRows;
+  const std::vector<double> inverseMass = inverseMasses(bodies);
+  bool kept = m_keepAtEnd && m_system.ok() && m_system.madeFor(m_rows) &&
+              !m_system.madeFrom(m_rows, inverseMass, inverseInertia);
+  if (!kept) m_system.factor(m_rows, inverseMass, inverseInertia);  // none for no rows
+  m_systemExact = !kept;
+  m_border.ok = true;
+  // K₁ of the joints' rows alone, the limits' rows set aside meanwhile.
+  const auto makeEndFactor = [&] {
+    const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(jointRows), m_rows.end());
+    m_rows.resize(jointRows);
+    m_system.factor(m_rows, inverseMass, inverseInertia);
+    m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
+    kept = false;
+    m_systemExact = true;
+    return makeBorder(bodies, inverseInertia);
+  };
   const auto rateOf = [&](const Row& row) { return rowRate(row, bodies, inverseInertia); };
   // A joint held at a limit leaves with no rate into it. Which limits are
   // moved into is looked at before the projection and again after it: the
@@ -854,31 +1035,38 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     }
     return added;
   };
-  // The axes' second half needs the end's K itself (its projection exact).
   const bool axesAct = std::any_of(links.begin(), links.end(), [](const JointLink& l) {
     return !l.isCoupling() && !l.wholeKick && axisActs(*l.joint);
   });
   addLimitsMovedInto();
   for (int round = 0; round < 2; ++round) {
     if (round == 1 && !addLimitsMovedInto()) break;
+    if (m_rows.empty() || !makeBorder(bodies, inverseInertia)) break;
     const auto count = static_cast<Eigen::Index>(m_rows.size());
-    // The step's K₀ when the rows are the ones it was made for (the usual
-    // case): a few quasi-Newton iterations, J₁ differing from J₀ by O(h);
-    // else K₁ made here.
-    bool reuse = round == 0 && !axesAct && m_system.ok() && m_system.size() == count &&
-                 endLimits.size() == m_limits.size();
-    for (std::size_t k = 0; reuse && k < endLimits.size(); ++k) reuse = endLimits[k] == m_limits[k].link;
-    if (!reuse) m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);  // none for no rows
-    if (m_rows.empty() || !m_system.ok()) break;
+    // With K exact, one solve leaves rates of rounding size; the loop
+    // takes what rounding leaves above 1e-13. With a kept factor, each
+    // solve must leave at most keepRatio of the rates, else K₁ is made.
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
     Eigen::VectorXd rate(count);
     double previous = INFINITY;
-    for (int iteration = 0; iteration < 8; ++iteration) {
+    constexpr int kIterations = 8;
+    for (int exactIterations = 0, keptIterations = 0;;) {
       rowRates(m_rows, bodies, inverseInertia, rate);
       const double largest = rate.cwiseAbs().maxCoeff();
-      if (largest <= 1e-13 || largest >= previous) break;
+      if (largest <= 1e-13) break;
+      if (kept && (largest > m_keepRatio * previous || keptIterations == kIterations)) {
+        if (!makeEndFactor()) break;
+        previous = INFINITY;
+      }
+      if (kept) {
+        ++keptIterations;
+      } else {
+        if (largest >= previous || exactIterations == kIterations) break;
+        ++exactIterations;
+      }
       previous = largest;
-      const Eigen::VectorXd step = m_system.solve(-rate);
+      Eigen::VectorXd step = -rate;
+      solveRows(step);
       for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
       impulse += step;
     }
@@ -1014,12 +1202,36 @@ void JointSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std
     for (const int i : group.bodies) groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
     groupLinks.clear();
     for (const int l : group.links) groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], localIndex));
-    m_kickSolvers[g].actuateBeforeContacts(groupLinks, groupBodies, h, groupResults);
+    m_kickSolvers[g].actuateBeforeContacts(groupLinks, groupBodies, h, groupResults, this);
     for (std::size_t k = 0; k < group.bodies.size(); ++k)
       bodies[static_cast<std::size_t>(group.bodies[k])] = groupBodies[k];
     for (std::size_t k = 0; k < group.links.size(); ++k)
       results[static_cast<std::size_t>(group.links[k])] = groupResults[k];
   }
+}
+
+const RowSystem* JointSolver::keptFactor(const std::vector<JointSolverRow>& rows,
+                                         const std::vector<double>& inverseMass,
+                                         const std::vector<Mat3>& inverseInertia, bool orSamePattern) const {
+  for (const JointGroupSolver& solver : m_solvers)
+    if (solver.system().madeFrom(rows, inverseMass, inverseInertia)) return &solver.system();
+  if (orSamePattern)
+    for (const JointGroupSolver& solver : m_solvers)
+      if (solver.system().madeFor(rows)) return &solver.system();
+  return nullptr;
+}
+
+std::vector<RowSystem::Inputs> JointSolver::factorInputs() const {
+  std::vector<RowSystem::Inputs> out;
+  out.reserve(m_solvers.size());
+  for (const JointGroupSolver& solver : m_solvers) out.push_back(solver.system().inputs());
+  return out;
+}
+
+void JointSolver::restoreFactors(const std::vector<RowSystem::Inputs>& inputs) {
+  m_solvers.assign(inputs.size(), JointGroupSolver{});
+  for (std::size_t g = 0; g < inputs.size(); ++g)
+    if (inputs[g].made) m_solvers[g].system().factor(inputs[g].rows, inputs[g].inverseMass, inputs[g].inverseInertia);
 }
 
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,

@@ -24,6 +24,7 @@
 // symplectic: a frictionless pendulum keeps its energy, its period is
 // right to O(h²).
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <array>
 #include <vector>
@@ -78,6 +79,9 @@ struct JointLink {
   JointSidePose fixedC;
   JointSidePose fixedD;
   double followerFrom = 0.0, leaderFrom = 0.0, errorFrom = 0.0;  // rad or m
+  // In an island that touches something: its group's factors are made
+  // exact every step (JointSolverSettings::keepRatio).
+  bool inContact = false;
   // An island in contact (the contact path's semi-implicit step): the
   // axis's laws act over the whole step before the contact solve
   // (JointSolver::actuateBeforeContacts), so that the contacts answer them,
@@ -105,6 +109,17 @@ double couplingError(const JointLink& link, const LinkPoses& poses);
 struct JointSolverSettings {
   double tolerance = 1e-12;  // m and rad: largest |C| left
   int maxIterations = 30;
+  // A group whose joint graph is unchanged keeps the factor of K from an
+  // earlier step (K is only the quasi-Newton matrix: the iterations stop on
+  // C itself) for as long as every iteration with it leaves at most this
+  // fraction of the error (or of the rates, in the velocity projection);
+  // the first that leaves more makes K afresh and goes on with it. Adaptive,
+  // never a fixed lag: a slowly moving grid keeps one factor for many steps,
+  // a whipped chain refactors at once. 0: a factor is kept only when its
+  // inputs are bit-identical. Not for a group in contact (the contact
+  // sweeps' projection needs its K₀ exact) or with an axis that acts (its
+  // laws need the joints' reply exact).
+  double keepRatio = 0.1;
 };
 
 // What the step did, per link: the impulses on side B (for JointState) and
@@ -117,6 +132,8 @@ struct JointLinkResult {
   int atLimit = 0;                     // -1, +1: held at the lower or upper limit
   double couplingError = 0.0;          // a coupling's signed error at the end poses
 };
+
+class JointSolver;
 
 // The step of one group of joints (bodies joined to each other, directly
 // or through others): JointSolver below gives it each group.
@@ -141,8 +158,15 @@ class JointGroupSolver {
   // take it), with the joints' rows kept, into the momenta, before the
   // contact solve sees them. `results` gets them (B's couple about its
   // anchor).
+  // `kept` (may be null): a solver whose factors may already be K₀'s.
   void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
-                             std::vector<JointLinkResult>& results);
+                             std::vector<JointLinkResult>& results, const JointSolver* kept = nullptr);
+
+  // The factor the group's last step left: K at the end poses of its
+  // velocity projection (the joints' rows only), which is the next step's
+  // K₀ when that starts where this one ended.
+  const RowSystem& system() const { return m_system; }
+  RowSystem& system() { return m_system; }
 
  private:
   using Row = JointSolverRow;
@@ -180,9 +204,42 @@ class JointGroupSolver {
   // The second half at the end, into `results` (B's couple about its anchor).
   void actuateAxesAtEnd(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                         const std::vector<Mat3>& inverseInertia, double h, std::vector<JointLinkResult>& results);
+  // K of the joints' rows of m_rows at the start poses, factorised (or
+  // kept, bit-identical), and the border of the limits' rows after them.
+  void factorAtStart(const std::vector<JointBody>& bodies);
+  // The border alone, at the start poses, when the limits' rows changed.
+  void borderAtStart(const std::vector<JointBody>& bodies);
+  // Whether m_system may stay a factor of an earlier step's K for the rows
+  // now in m_rows (their pattern the same): keepRatio, no contact, no axis.
+  bool mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const;
   // Removes the rates along m_rows from the momenta (with K as m_system
-  // holds it).
+  // and the border hold it).
   void removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const;
+
+  // Limit rows after the rows m_system holds (m_rows past m_system.size(),
+  // the joints' m_jointRows): SHAKE's held limits at the start poses, the
+  // velocity projection's at the end poses. m_system keeps the joints' rows
+  // alone (the factor the next step starts with, and a change of the
+  // limits' active set makes none), and these are solved through the Schur
+  // complement on them,
+  //   S = K_LL − K_LJ K_JJ⁻¹ K_JL,
+  // one solve with K_JJ per limit row, no factorisation.
+  struct Border {
+    Eigen::MatrixXd coupling;  // K_JL
+    Eigen::MatrixXd response;  // K_JJ⁻¹ K_JL
+    Eigen::LLT<Eigen::MatrixXd> schur;
+    bool ok = true;
+  };
+  // The border of m_rows past m_system.size() for bodies of these inverse
+  // inertias; false when K is not positive definite on the rows.
+  bool makeBorder(const std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia);
+  // K⁻¹ x over m_rows, with m_system and the border.
+  void solveRows(Eigen::VectorXd& x) const;
+  // Whether solveRows can solve: m_system's factor (if it has rows) and the
+  // border's.
+  bool systemOk() const {
+    return (m_system.size() == 0 || m_system.ok()) && m_border.ok && !m_rows.empty();
+  }
 
   // A limit held this step: its row follows the joints' rows in m_rows.
   struct LimitRow {
@@ -203,9 +260,26 @@ class JointGroupSolver {
     return joint.def.type == JointType::Revolute || joint.def.type == JointType::Spherical ? 0.1 : 0.01;  // rad, m
   }
   std::vector<Row> m_rows;
+  std::size_t m_jointRows = 0;  // the joints' rows at the front of m_rows; limits' rows follow
   std::vector<LimitRow> m_limits;
   std::vector<double> m_startBeyond;  // by link: the coordinate's excess over a bound at the start, signed
-  RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step
+  RowSystem m_system;  // K₀ = J₀ M₀⁻¹ J₀ᵀ of the step; K₁ after the velocity projection
+  // Whether m_system is K of m_rows now (else an earlier step's, kept while
+  // it converges: JointSolverSettings::keepRatio).
+  bool m_systemExact = true;
+  double m_keepRatio = 0.0;  // the settings' of the step (for projectVelocities)
+  // Of the step's projections: how many solves the last one made, and
+  // whether one found the kept factor too slow and made K₀.
+  int m_projectIterations = 0;
+  bool m_refreshed = false;
+  // Whether the velocity projection keeps m_system rather than making K₁:
+  // for a group that may keep a factor, when this step's momentum
+  // projection ran on a kept factor without making K₀, or on an exact K₀
+  // in one iteration (the group moves slowly enough that an earlier K
+  // serves). A group whose K₀ needs several iterations (a whipped chain)
+  // makes K₁ at every end, as if it might not keep one.
+  bool m_keepAtEnd = false;
+  Border m_border;
 };
 
 // Bodies joined to each other by links, directly or through others, and
@@ -242,6 +316,21 @@ class JointSolver {
   // that the step's keep their systems' analysis).
   void actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                              std::vector<JointLinkResult>& results);
+  // A factor one of the groups' solvers holds (system()) made from exactly
+  // these inputs, or null: the contact sweeps' projection of a group in
+  // contact finds its K₀ here, made at the end of the last step. With
+  // `orSamePattern`, else one made for rows of the same joints and bodies:
+  // a copy of it factorises these rows keeping its elimination order and
+  // symbolic analysis (RowSystem::factor), the same bits as a fresh one.
+  const RowSystem* keptFactor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
+                              const std::vector<Mat3>& inverseInertia, bool orSamePattern = false) const;
+
+  // The inputs of each group's factor (RowSystem::Inputs), by group: a
+  // factor kept across steps (JointSolverSettings::keepRatio) is part of the
+  // state the next steps depend on, so a checkpoint holds them, and
+  // restoreFactors makes the same factors from them (world/snapshot.cpp).
+  std::vector<RowSystem::Inputs> factorInputs() const;
+  void restoreFactors(const std::vector<RowSystem::Inputs>& inputs);
 
  private:
   std::vector<JointGroupSolver> m_kickSolvers;  // by group, for actuateBeforeContacts

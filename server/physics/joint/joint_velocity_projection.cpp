@@ -17,7 +17,7 @@ constexpr double kAtBound = 1e-9;  // m or rad
 
 JointGroupProjection::JointGroupProjection(const std::vector<JointLink>& links,
                                            const std::vector<JointBody>& bodies,
-                                           std::vector<std::size_t> solverIndex)
+                                           std::vector<std::size_t> solverIndex, const JointSolver* kept)
     : m_solverIndex(std::move(solverIndex)) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
@@ -36,7 +36,12 @@ JointGroupProjection::JointGroupProjection(const std::vector<JointLink>& links,
   std::vector<Mat3> inverseInertia;
   inverseInertia.reserve(bodies.size());
   for (const JointBody& body : bodies) inverseInertia.push_back(body.startInverseInertia);
-  if (!m_rows.empty()) m_system.factor(m_rows, inverseMasses(bodies), inverseInertia);
+  if (!m_rows.empty()) {
+    const std::vector<double> inverseMass = inverseMasses(bodies);
+    if (kept != nullptr)
+      if (const RowSystem* made = kept->keptFactor(m_rows, inverseMass, inverseInertia, true)) m_system = *made;
+    m_system.factor(m_rows, inverseMass, inverseInertia);  // nothing to do when kept, no analysis when its pattern
+  }
   if (m_limits.empty()) return;
 
   // The scratch bodies for the limits' response: their inverse mass and
@@ -213,7 +218,8 @@ void JointGroupProjection::project(std::vector<SolverBody>& bodies) const {
 
 JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& links,
                                                  const std::vector<JointBody>& bodies,
-                                                 const std::vector<std::size_t>& solverIndex) {
+                                                 const std::vector<std::size_t>& solverIndex,
+                                                 const JointSolver* kept) {
   std::vector<int> localIndex;
   for (const JointGroup& group : jointGroups(links, bodies.size(), localIndex)) {
     if (group.links.empty()) continue;
@@ -225,7 +231,7 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
       groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
       groupIndex.push_back(solverIndex[static_cast<std::size_t>(i)]);
     }
-    m_groups.emplace_back(groupLinks, groupBodies, std::move(groupIndex));
+    m_groups.emplace_back(groupLinks, groupBodies, std::move(groupIndex), kept);
   }
 }
 

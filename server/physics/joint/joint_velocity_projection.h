@@ -28,8 +28,12 @@ class JointGroupProjection {
  public:
   // `links` name their sides by index into `bodies` (start poses, inverse
   // mass and inertia), and `solverIndex` maps those to the solver's bodies.
+  // K₀ is taken from `kept` (may be null) when one of its factors was made
+  // from exactly these rows and bodies (the joint step's of the last step,
+  // ending where this one starts), else made here (with the elimination
+  // order of one of its factors of the same joints, when it has one).
   JointGroupProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                       std::vector<std::size_t> solverIndex);
+                       std::vector<std::size_t> solverIndex, const JointSolver* kept = nullptr);
   void project(std::vector<SolverBody>& bodies) const;
 
  private:
@@ -77,7 +81,7 @@ class JointVelocityProjection final : public VelocityProjection {
  public:
   // As JointGroupProjection's, for all the groups `links` make.
   JointVelocityProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                          const std::vector<std::size_t>& solverIndex);
+                          const std::vector<std::size_t>& solverIndex, const JointSolver* kept = nullptr);
   void project(std::vector<SolverBody>& bodies) const override;
 
  private:

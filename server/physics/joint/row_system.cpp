@@ -3,11 +3,17 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 
 namespace rbsim {
 
 namespace {
+
+std::atomic<std::uint64_t> g_factorisations{0};
+std::atomic<std::uint64_t> g_kept{0};
+std::atomic<std::uint64_t> g_solves{0};
 
 // Where row position `row` sits among column `column`'s off-diagonal blocks
 // (as an index into `below`); the symbolic factorisation guarantees it is
@@ -85,7 +91,51 @@ void updateFromColumn(double* values, const int* belowAt, const int* belowRow, i
   }
 }
 
+// Bit-for-bit equality (a -0 is not a 0 here, a NaN is its own bits): a
+// kept factor must give the bits a fresh one would.
+bool sameBits(const double* a, const double* b, std::size_t count) {
+  return std::memcmp(a, b, count * sizeof(double)) == 0;
+}
+bool sameBits(const Vec3& a, const Vec3& b) { return sameBits(a.data(), b.data(), 3); }
+bool sameBits(const JointRow& a, const JointRow& b) {
+  return sameBits(a.linearA, b.linearA) && sameBits(a.angularA, b.angularA) && sameBits(a.linearB, b.linearB) &&
+         sameBits(a.angularB, b.angularB);
+}
+bool sameBits(const JointSolverRow& a, const JointSolverRow& b) {
+  return a.bodyA == b.bodyA && a.bodyB == b.bodyB && a.bodyC == b.bodyC && a.bodyD == b.bodyD && a.link == b.link &&
+         sameBits(a.jacobian, b.jacobian) && sameBits(a.second, b.second);
+}
+
 }  // namespace
+
+bool RowSystem::madeFrom(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
+                         const std::vector<Mat3>& inverseInertia) const {
+  if (!m_made || rows.size() != m_madeRows.size() || inverseMass.size() != m_madeInverseMass.size() ||
+      inverseInertia.size() != m_madeInverseInertia.size())
+    return false;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (!sameBits(rows[r], m_madeRows[r])) return false;
+  if (!inverseMass.empty() && !sameBits(inverseMass.data(), m_madeInverseMass.data(), inverseMass.size())) return false;
+  for (std::size_t i = 0; i < inverseInertia.size(); ++i)
+    if (!sameBits(inverseInertia[i].data(), m_madeInverseInertia[i].data(), 9)) return false;
+  return true;
+}
+
+bool RowSystem::madeFor(const std::vector<JointSolverRow>& rows) const {
+  if (!m_made || rows.size() != m_madeRows.size()) return false;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const JointSolverRow& a = rows[r];
+    const JointSolverRow& b = m_madeRows[r];
+    if (a.link != b.link || a.bodyA != b.bodyA || a.bodyB != b.bodyB || a.bodyC != b.bodyC || a.bodyD != b.bodyD)
+      return false;
+  }
+  return true;
+}
+
+RowSystemCounts RowSystem::counts() {
+  return {g_factorisations.load(std::memory_order_relaxed), g_kept.load(std::memory_order_relaxed),
+          g_solves.load(std::memory_order_relaxed)};
+}
 
 void RowSystem::analyse() {
   const int blocks = static_cast<int>(m_keys.size());
@@ -179,6 +229,14 @@ void RowSystem::analyse() {
 
 void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
                        const std::vector<Mat3>& inverseInertia) {
+  if (madeFrom(rows, inverseMass, inverseInertia)) {
+    g_kept.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  m_madeRows = rows;
+  m_madeInverseMass = inverseMass;
+  m_madeInverseInertia = inverseInertia;
+  m_made = true;
   m_ok = false;
   m_rowCount = static_cast<Eigen::Index>(rows.size());
   if (rows.empty()) return;  // nothing to hold (ropes, all slack): no system
@@ -303,6 +361,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
     for (int k = 0; k < s; ++k) d[k + s * k] *= 1.0 + 1e-10;
   }
 
+  g_factorisations.fetch_add(1, std::memory_order_relaxed);
   // L Lᵀ, column by column (right-looking): factor the diagonal block,
   // scale the column's blocks below it, update the blocks they reach.
   const int* targets = m_updateTarget.data();
@@ -386,6 +445,7 @@ Eigen::VectorXd RowSystem::solve(const Eigen::VectorXd& rhs) const {
 }
 
 void RowSystem::solveInPlace(Eigen::VectorXd& x) const {
+  g_solves.fetch_add(1, std::memory_order_relaxed);
   // Into elimination order.
   m_scratch.resize(m_rowCount);
   double* z = m_scratch.data();

@@ -16,9 +16,19 @@
 // while that graph stays (step after step, and while limits come and go)
 // and are a pure function of it, so a kept analysis and a fresh one give
 // the same bits.
+//
+// The numeric factor is a pure function of the rows, the inverse masses and
+// the inverse inertias. RowSystem keeps a copy of those it was made from,
+// and a factor asked for with inputs bit-identical to them is kept rather
+// than made again: the joint step factors K at the step's end poses for
+// the velocity projection, and the next step, starting there, finds its K₀
+// already made (joint/joint_solver.h). Kept or made afresh, the bits are the
+// same, so replay, checkpoints (which store no factor) and copies of a
+// world stay bit-exact.
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "physics/joint/joint_constraint.h"
@@ -50,13 +60,46 @@ struct JointSolverRow {
   }
 };
 
+// How much work the joint systems of this process have done: numeric
+// factorisations of K, factorisations found already made (the inputs
+// bit-identical to the kept factor's, RowSystem::factor), and solves with a
+// factor. Always counted (a relaxed atomic add per factor or solve, far
+// below either's cost), for the benchmarks (bench/joints) and the tests
+// that check a factor is kept.
+struct RowSystemCounts {
+  std::uint64_t factorisations = 0;
+  std::uint64_t kept = 0;
+  std::uint64_t solves = 0;
+};
+
 class RowSystem {
  public:
+  // Since the process started, over every RowSystem of every thread.
+  static RowSystemCounts counts();
+
   // K of the rows for bodies of these inverse masses and (world) inverse
   // inertias, factorised. The rows of one link share a block; a link's rows
   // need not be next to each other (its limit's row may follow the rest).
+  // Nothing is done when the inputs are bit-identical to the last factor's.
   void factor(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
               const std::vector<Mat3>& inverseInertia);
+  // Whether the last factor was made from exactly these inputs (every bit).
+  bool madeFrom(const std::vector<JointSolverRow>& rows, const std::vector<double>& inverseMass,
+                const std::vector<Mat3>& inverseInertia) const;
+  // Whether the last factor was made from rows of these links and bodies,
+  // in this order (its numbers may differ): it is then a K of the same
+  // pattern, which the joint step may keep as its quasi-Newton matrix
+  // while it converges (JointSolverSettings::keepRatio).
+  bool madeFor(const std::vector<JointSolverRow>& rows) const;
+
+  // What a factor is made from; `made` false: no factor yet.
+  struct Inputs {
+    bool made = false;
+    std::vector<JointSolverRow> rows;
+    std::vector<double> inverseMass;
+    std::vector<Mat3> inverseInertia;
+  };
+  Inputs inputs() const { return {m_made, m_madeRows, m_madeInverseMass, m_madeInverseInertia}; }
   // False when there are no rows or K was not positive definite.
   bool ok() const { return m_ok; }
   Eigen::Index size() const { return m_rowCount; }
@@ -108,6 +151,12 @@ class RowSystem {
   // Per pair of touches of one body (first >= second in elimination
   // order), where their K block goes (as m_updateTarget).
   std::vector<int> m_assemblyTarget;
+
+  // --- the inputs of the last factor (madeFrom) ---
+  std::vector<JointSolverRow> m_madeRows;
+  std::vector<double> m_madeInverseMass;
+  std::vector<Mat3> m_madeInverseInertia;
+  bool m_made = false;
 
   // --- the numbers, per factor ---
   std::vector<std::array<int, kMaxBlock>> m_rowsOf;  // by block: its rows' indices

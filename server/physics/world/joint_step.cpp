@@ -183,7 +183,9 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
   std::vector<JointLink> inContact;
   for (const JointLink& link : links)
     if (link.bodyA >= 0 || link.bodyB >= 0 || link.bodyC >= 0 || link.bodyD >= 0) inContact.push_back(link);
-  return std::make_unique<JointVelocityProjection>(inContact, bodies, std::move(solverIndex));
+  // Their K₀ was made at the end of the last step (its velocity
+  // projection), where this one starts: the joint solver keeps it.
+  return std::make_unique<JointVelocityProjection>(inContact, bodies, solverIndex, world.jointSolver.get());
 }
 
 void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
@@ -283,6 +285,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   for (JointLink& link : links) {
     const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB >= 0 ? link.bodyB : link.bodyC >= 0 ? link.bodyC : link.bodyD;
     link.wholeKick = actuatedBefore && any >= 0 && staggered[static_cast<std::size_t>(any)] == 0;
+    link.inContact = any >= 0 && staggered[static_cast<std::size_t>(any)] == 0;
   }
 
   // The step in `parts` equal sub-steps, each a whole RATTLE step (half

@@ -13,9 +13,13 @@
 // last reaction, and the slot table behind JointIds; the pairs of bodies
 // excluded from collision (by serial); and the contact
 // solver's warm-start cache (last step's solved manifolds), because the
-// next step's impulses start from it. Colliders, body-space meshes, the
-// broad phase and the joint solver's kept factorisation pattern are rebuilt
-// from the above: they are functions of it.
+// next step's impulses start from it; and what the joint solver's factors
+// of K were made from (rows, inverse masses and inertias, per group),
+// because a group keeps a factor across steps while it converges
+// (JointSolverSettings::keepRatio), so the next steps depend on it: the
+// factors are made again from them on load, to the same bits. Colliders,
+// body-space meshes, the broad phase and the factors' elimination order are
+// rebuilt from the above: they are functions of it.
 //
 // World settings are not restored: they come from the config. The snapshot
 // records the ones a resumed run must share (dt, gravity, integrator,
@@ -41,6 +45,8 @@
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/collider.h"
 #include "physics/joint/joint_constraint.h"
+#include "physics/joint/joint_solver.h"
+#include "physics/joint/row_system.h"
 #include "rbsim/physics/byte_stream.h"
 #include "rbsim/physics/exact_text.h"
 
@@ -407,6 +413,71 @@ void writeWarmStart(const std::vector<SolvedManifold>& manifolds, ByteWriter& ou
   }
 }
 
+// The joint solver's factors' inputs, by group (JointSolver::factorInputs).
+void writeJointFactors(const std::vector<RowSystem::Inputs>& factors, ByteWriter& out) {
+  out.u32(static_cast<uint32_t>(factors.size()));
+  for (const RowSystem::Inputs& f : factors) {
+    out.boolean(f.made);
+    if (!f.made) continue;
+    out.u32(static_cast<uint32_t>(f.rows.size()));
+    for (const JointSolverRow& row : f.rows) {
+      for (const int body : {row.bodyA, row.bodyB, row.bodyC, row.bodyD, row.link}) out.i32(body);
+      for (const JointRow* part : {&row.jacobian, &row.second}) {
+        out.vec3(part->linearA);
+        out.vec3(part->angularA);
+        out.vec3(part->linearB);
+        out.vec3(part->angularB);
+      }
+    }
+    out.u32(static_cast<uint32_t>(f.inverseMass.size()));
+    for (std::size_t i = 0; i < f.inverseMass.size(); ++i) {
+      out.f64(f.inverseMass[i]);
+      out.mat3(f.inverseInertia[i]);
+    }
+  }
+}
+
+std::vector<RowSystem::Inputs> readJointFactors(ByteReader& in) {
+  std::vector<RowSystem::Inputs> factors;
+  const uint32_t count = in.count("joint factor count", 1);
+  for (uint32_t g = 0; g < count && !in.failed(); ++g) {
+    RowSystem::Inputs f;
+    f.made = in.boolean("joint factor flag");
+    if (f.made) {
+      const uint32_t rows = in.count("joint factor row count", 20 + 8 * 24);
+      for (uint32_t r = 0; r < rows && !in.failed(); ++r) {
+        JointSolverRow row;
+        for (int* field : {&row.bodyA, &row.bodyB, &row.bodyC, &row.bodyD, &row.link}) *field = in.i32("joint factor row index");
+        for (JointRow* part : {&row.jacobian, &row.second}) {
+          part->linearA = in.vec3("joint factor row");
+          part->angularA = in.vec3("joint factor row");
+          part->linearB = in.vec3("joint factor row");
+          part->angularB = in.vec3("joint factor row");
+        }
+        f.rows.push_back(row);
+      }
+      const uint32_t bodies = in.count("joint factor body count", 8 + 72);
+      for (uint32_t i = 0; i < bodies && !in.failed(); ++i) {
+        f.inverseMass.push_back(in.f64("joint factor inverse mass"));
+        f.inverseInertia.push_back(in.mat3("joint factor inverse inertia"));
+      }
+      // A row's sides are bodies of the factor, its link one of at most a
+      // block per row (factor() sizes its tables by them).
+      for (const JointSolverRow& row : f.rows) {
+        bool valid = row.link >= 0 && static_cast<std::size_t>(row.link) < f.rows.size() + 64;
+        for (const int body : {row.bodyA, row.bodyB, row.bodyC, row.bodyD})
+          valid = valid && body >= -1 && body < static_cast<int>(bodies);
+        if (!valid) {
+          in.fail("joint factor " + std::to_string(g) + " has a row with sides or link out of range");
+          break;
+        }
+      }
+    }
+    factors.push_back(std::move(f));
+  }
+  return factors;
+}
+
 std::vector<SolvedManifold> readWarmStart(ByteReader& in, int bodyCount) {
   std::vector<SolvedManifold> manifolds;
   const uint32_t count = in.count("warm-start manifold count", 101);
@@ -618,6 +689,7 @@ Expected<bool> writeSnapshot(const WorldData& world, ByteWriter& out) {
     out.i32(static_cast<int32_t>(static_cast<uint32_t>(key)));
   }
   writeWarmStart(world.contacts, out);
+  writeJointFactors(world.jointSolver->factorInputs(), out);
   return true;
 }
 
@@ -779,7 +851,9 @@ Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
   if (auto joints = readJointsSnapshot(world, in); !joints) return joints.error();
   if (auto excluded = readExcludedPairs(world, in); !excluded) return excluded.error();
   world.contacts = readWarmStart(in, static_cast<int>(world.bodies.size()));
+  const std::vector<RowSystem::Inputs> factors = readJointFactors(in);
   if (in.failed()) return failure();
+  world.jointSolver->restoreFactors(factors);
   return true;
 }
 

@@ -1,10 +1,12 @@
 // The joint step's block factorisation of K = J M⁻¹ Jᵀ (joint/row_system.h)
 // against a dense K built here from the same rows: trees, loops, limit rows
-// that follow the rest, blocks of every size, and a kept analysis giving the
-// same bits as a fresh one.
+// that follow the rest, blocks of every size, a kept analysis giving the
+// same bits as a fresh one, and a factor kept only for bit-identical inputs.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -181,6 +183,70 @@ TEST(RowSystem, AKeptAnalysisGivesTheBitsOfAFreshOne) {
     const Eigen::VectorXd b = randomRhs(static_cast<Eigen::Index>(rows.size()), random);
     EXPECT_TRUE(sameBits(kept.solve(b), fresh.solve(b))) << "with limit: " << withLimit;
     expectSolves(rows, bodies, random);
+  }
+}
+
+TEST(RowSystem, AFactorAskedForWithTheSameBitsIsKeptAndAnyOtherBitRefactors) {
+  std::mt19937 random(6);
+  Bodies bodies = randomBodies(12, random);
+  std::vector<JointSolverRow> rows;
+  for (int i = 0; i < 12; ++i) addLink(rows, i, i - 1, i, i % 2 ? 5 : 3, random);
+  RowSystem system;
+  system.factor(rows, bodies.inverseMass, bodies.inverseInertia);
+  ASSERT_TRUE(system.ok());
+  EXPECT_TRUE(system.madeFrom(rows, bodies.inverseMass, bodies.inverseInertia));
+  const Eigen::VectorXd b = randomRhs(static_cast<Eigen::Index>(rows.size()), random);
+  const Eigen::VectorXd first = system.solve(b);
+
+  // The same inputs (copies): kept, nothing factorised.
+  const RowSystemCounts before = RowSystem::counts();
+  const std::vector<JointSolverRow> sameRows = rows;
+  const Bodies sameBodies = bodies;
+  system.factor(sameRows, sameBodies.inverseMass, sameBodies.inverseInertia);
+  const RowSystemCounts after = RowSystem::counts();
+  EXPECT_EQ(after.factorisations, before.factorisations);
+  EXPECT_EQ(after.kept, before.kept + 1);
+  EXPECT_TRUE(sameBits(system.solve(b), first));
+
+  // One bit anywhere in the inputs (a row's number, a body index, a mass,
+  // an inertia, even a zero's sign) is another factor, and it is made.
+  const auto expectRefactors = [&](const std::vector<JointSolverRow>& otherRows, const Bodies& otherBodies,
+                                   const char* what) {
+    RowSystem copy = system;
+    EXPECT_FALSE(copy.madeFrom(otherRows, otherBodies.inverseMass, otherBodies.inverseInertia)) << what;
+    const std::uint64_t made = RowSystem::counts().factorisations;
+    copy.factor(otherRows, otherBodies.inverseMass, otherBodies.inverseInertia);
+    EXPECT_EQ(RowSystem::counts().factorisations, made + 1) << what;
+    RowSystem fresh;
+    fresh.factor(otherRows, otherBodies.inverseMass, otherBodies.inverseInertia);
+    if (copy.ok() && fresh.ok()) EXPECT_TRUE(sameBits(copy.solve(b), fresh.solve(b))) << what;
+  };
+  {
+    std::vector<JointSolverRow> other = rows;
+    other[7].jacobian.angularB.y() = std::nextafter(other[7].jacobian.angularB.y(), 2.0);
+    expectRefactors(other, bodies, "a row's number");
+  }
+  {
+    std::vector<JointSolverRow> other = rows;
+    other[0].bodyA = 11;  // the first link to the last body instead of the world
+    expectRefactors(other, bodies, "a row's side");
+  }
+  {
+    Bodies other = bodies;
+    other.inverseMass[3] = std::nextafter(other.inverseMass[3], 0.0);
+    expectRefactors(rows, other, "a mass");
+  }
+  {
+    Bodies other = bodies;
+    other.inverseInertia[5](1, 2) = std::nextafter(other.inverseInertia[5](1, 2), 10.0);
+    expectRefactors(rows, other, "an inertia");
+  }
+  {
+    std::vector<JointSolverRow> zero = rows, negativeZero = rows;
+    zero[2].jacobian.linearA.x() = 0.0;
+    negativeZero[2].jacobian.linearA.x() = -0.0;
+    system.factor(zero, bodies.inverseMass, bodies.inverseInertia);
+    expectRefactors(negativeZero, bodies, "a zero's sign");
   }
 }
 

@@ -155,8 +155,11 @@ TEST(ParallelDeterminism, ABusyWorldWithSoftStepsIsTheSameOnEveryThreadCount) {
 }
 
 TEST(ParallelDeterminism, ABusyWorldWithJointsContactsAndWrenchesIsTheSameOnEveryThreadCount) {
-  // Golden since the joint drift turns bodies as free rigid bodies do.
-  expectSameOnEveryThreadCount("busy world", [] { return makeBusyWorld(); }, 0x4becb00cb42d0705ull, 150,
+  // Golden since SHAKE holds its limits through their Schur complement on
+  // the joints' factor (issue 39; 0xb3f000c04034a800 before, since a group
+  // of joints in free flight that moves slowly keeps a factor of K across
+  // steps while it converges).
+  expectSameOnEveryThreadCount("busy world", [] { return makeBusyWorld(); }, 0x230a7f6ef457d44full, 150,
                                pushSomeBodies);
 }
 

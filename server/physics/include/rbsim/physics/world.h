@@ -229,8 +229,9 @@ class World {
   // group and mask (BodyDef::collisionFilter) and the excluded pairs
   // (setPairCollision); 9: a joint's mimic (JointDef::mimic) and its
   // coupling's error; 10: a drive's gravity compensation; 11: a drive's
-  // target rate.
-  static constexpr uint32_t kSnapshotVersion = 11;
+  // target rate; 12: the joint solver's factors' inputs (a factor kept
+  // across steps, JointSolverSettings::keepRatio).
+  static constexpr uint32_t kSnapshotVersion = 12;
   Expected<bool> writeSnapshot(ByteWriter& out) const;
   Expected<std::vector<uint8_t>> encodeSnapshot() const;
   static Expected<World> readSnapshot(ByteReader& in, const WorldSettings& settings);
