@@ -150,7 +150,8 @@ void pushSomeBodies(World& world, int step) {
 World makeBusySoftStepWorld() { return makeBusyWorld(ContactSolverKind::SoftStep); }
 
 TEST(ParallelDeterminism, ABusyWorldWithSoftStepsIsTheSameOnEveryThreadCount) {
-  expectSameOnEveryThreadCount("busy world, soft step", makeBusySoftStepWorld, 0x3ab5566eff24f5ffull, 150,
+  // (0x3ab5566eff24f5ff before the joint solver's factors of issue 39.)
+  expectSameOnEveryThreadCount("busy world, soft step", makeBusySoftStepWorld, 0x6714d80f4e8efe1full, 150,
                                pushSomeBodies);
 }
 
