@@ -472,6 +472,20 @@ std::vector<RowSystem::Inputs> readJointFactors(ByteReader& in) {
           break;
         }
       }
+      // The rows of one link are one joint's: they share its sides, and
+      // at least one side is a body (factor() keys its blocks by them).
+      std::vector<int> firstRowOf(in.failed() ? 0 : f.rows.size() + 64, -1);  // by link
+      for (std::size_t r = 0; r < f.rows.size() && !in.failed(); ++r) {
+        const JointSolverRow& row = f.rows[r];
+        const auto sidesOf = [](const JointSolverRow& x) {
+          return std::array<int, 4>{x.bodyA, x.bodyB, x.bodyC, x.bodyD};
+        };
+        int& first = firstRowOf[static_cast<std::size_t>(row.link)];
+        if (first < 0) first = static_cast<int>(r);
+        const bool valid = (row.bodyA >= 0 || row.bodyB >= 0) &&
+                           sidesOf(row) == sidesOf(f.rows[static_cast<std::size_t>(first)]);
+        if (!valid) in.fail("joint factor " + std::to_string(g) + " has a row whose sides are not its joint's");
+      }
     }
     factors.push_back(std::move(f));
   }
