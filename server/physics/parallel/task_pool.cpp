@@ -1,4 +1,5 @@
 #include "physics/parallel/task_pool.h"
+#include "physics/parallel/thread_sanitizer.h"
 
 #include <sched.h>
 
@@ -47,18 +48,6 @@ void waitUntil(std::chrono::microseconds yielding, Changed&& changed, Sleep&& sl
   while (!changed()) sleep();
 }
 
-// Whether this is a ThreadSanitizer build (clang's test, and GCC's macro).
-#if defined(__SANITIZE_THREAD__)
-constexpr bool kThreadSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-constexpr bool kThreadSanitizer = true;
-#else
-constexpr bool kThreadSanitizer = false;
-#endif
-#else
-constexpr bool kThreadSanitizer = false;
-#endif
 
 // m_unclaimed: [front, back) packed in one word.
 constexpr uint64_t packUnclaimed(uint64_t front, uint64_t back) { return front | (back << 32); }

@@ -276,26 +276,21 @@ void solveBySequentialImpulses(WorldData& world, const std::vector<BodyContact>&
                       h, solved, taskPool(world), contactLevels(world, active), equalities);
 }
 
-// The soft-step solver's share of the contacts: those of islands with no
-// collision in the step and no joint. The others go to sequential
-// impulses, which answer a collision at its time of impact (and a chain of
-// them pair by pair) and project joints between their sweeps. Islands
-// share no moving body, so the two solvers never touch the same one.
-void splitForSoftStep(const WorldData& world, const ContactStep& step, const std::vector<int>& islandOf,
-                      const std::vector<BodyContact>& active, std::vector<BodyContact>& soft,
-                      std::vector<BodyContact>& exact) {
+// Per island root: 1 when the island had a collision in the step or has
+// joints. Empty when no island has either (the usual case of a pile at
+// rest): every contact is the soft step's.
+std::vector<char> islandsForSequentialImpulses(const WorldData& world, const ContactStep& step,
+                                               const std::vector<int>& islandOf) {
   const std::size_t n = world.bodies.size();
-  std::vector<char> exactIsland(n, 0);  // by island root
+  std::vector<char> exactIsland;
   for (std::size_t i = 0; i < n; ++i) {
     const bool collides = !step.impactTime.empty() && step.impactTime[i] >= 0.0;
     const bool jointed = !step.jointed.empty() && step.jointed[i] && step.solving[i];
-    if (collides || jointed) exactIsland[static_cast<std::size_t>(islandOf[i])] = 1;
+    if (!collides && !jointed) continue;
+    if (exactIsland.empty()) exactIsland.assign(n, 0);
+    exactIsland[static_cast<std::size_t>(islandOf[i])] = 1;
   }
-  for (const BodyContact& c : active) {
-    const int moving = world.bodies[static_cast<std::size_t>(c.bodyA)].isStatic() ? c.bodyB : c.bodyA;
-    const bool toExact = exactIsland[static_cast<std::size_t>(islandOf[static_cast<std::size_t>(moving)])] != 0;
-    (toExact ? exact : soft).push_back(c);
-  }
+  return exactIsland;
 }
 
 void solveContacts(WorldData& world, const ContactStep& step, const std::vector<int>& islandOf,
@@ -307,8 +302,23 @@ void solveContacts(WorldData& world, const ContactStep& step, const std::vector<
     solveBySequentialImpulses(world, active, serials, settings, h, solved, equalities);
     return;
   }
+  // The soft step's share of the contacts: those of islands with no
+  // collision in the step and no joint. The others go to sequential
+  // impulses, which answer a collision at its time of impact (and a chain
+  // of them pair by pair) and project joints between their sweeps. Islands
+  // share no moving body, so the two solvers never touch the same one.
+  const std::vector<char> exactIsland = islandsForSequentialImpulses(world, step, islandOf);
+  if (exactIsland.empty()) {
+    world.softSolver->solve(active, materialsOf(world, active), world.solverBodies, serials, world.contacts,
+                            settings, h, solved, taskPool(world));
+    return;
+  }
   std::vector<BodyContact> soft, exact;
-  splitForSoftStep(world, step, islandOf, active, soft, exact);
+  for (const BodyContact& c : active) {
+    const int moving = world.bodies[static_cast<std::size_t>(c.bodyA)].isStatic() ? c.bodyB : c.bodyA;
+    const bool toExact = exactIsland[static_cast<std::size_t>(islandOf[static_cast<std::size_t>(moving)])] != 0;
+    (toExact ? exact : soft).push_back(c);
+  }
   std::vector<SolvedManifold> softSolved, exactSolved;
   if (!soft.empty())
     world.softSolver->solve(soft, materialsOf(world, soft), world.solverBodies, serials, world.contacts,

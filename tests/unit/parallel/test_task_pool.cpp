@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "physics/parallel/task_pool.h"
+#include "physics/parallel/thread_sanitizer.h"
 
 namespace rbsim {
 namespace {
@@ -106,17 +107,6 @@ TEST(TaskPool, ChunksCoverTheRangeOnceAndDoNotDependOnTheThreadCount) {
 // Not under ThreadSanitizer: it defers a signal until its thread calls an
 // intercepted function, and a worker asleep in the futex call of
 // std::atomic::wait may never make one.
-#if defined(__SANITIZE_THREAD__)
-constexpr bool kThreadSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-constexpr bool kThreadSanitizer = true;
-#else
-constexpr bool kThreadSanitizer = false;
-#endif
-#else
-constexpr bool kThreadSanitizer = false;
-#endif
 #define SKIP_UNDER_THREAD_SANITIZER() \
   if (kThreadSanitizer) GTEST_SKIP() << "holds a worker with a signal, which ThreadSanitizer may defer"
 
