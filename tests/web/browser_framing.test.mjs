@@ -121,6 +121,14 @@ test("Frame selected (button and key F) frames the selected body", async () => {
   assert.equal(await page.locator("#message").textContent(), "frame selected: no body selected (click one)");
 
   await page.keyboard.press("a");
+  // The box's place on screen once the view is still: the same camera over
+  // two drawn frames (the frame all and the bodies' last state drawn), so
+  // that the click lands where the box is drawn.
+  await page.waitForFunction(() => new Promise((resolve) => {
+    const before = JSON.stringify([rbview.camera(), rbview.screenOf("right_box")]);
+    requestAnimationFrame(() => requestAnimationFrame(() =>
+      resolve(before === JSON.stringify([rbview.camera(), rbview.screenOf("right_box")]))));
+  }));
   const at = await page.evaluate(() => rbview.screenOf("right_box"));
   await page.mouse.click(at.x, at.y);
   // Once (at load 7 on two cores, 6 frames/s) the click selected nothing:
