@@ -109,6 +109,9 @@ bool before(const Vec3& p, const Vec3& q) {
   }
   return false;
 }
+// Candidates whose depths spread less than this form a flat patch (see
+// reduceContacts): a fifth of the default linear slop.
+constexpr double kFlatSpread = 1e-4;  // m
 bool better(double value, const Vec3& position, double best, const Vec3& bestPosition) {
   const double tolerance = kTie * std::max(1.0, std::abs(best));
   if (value > best + tolerance) return true;
@@ -173,11 +176,34 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
   }
   const auto position = [&](std::size_t i) -> const Vec3& { return candidates[i].pointB; };
 
+  // The first point is the deepest, unless the candidates' depths spread
+  // less than kFlatSpread: then the contact is a flat patch, and the first
+  // point is the one farthest from the candidates' centroid, chosen by
+  // where the points are and not by how deep. At rest the points of a
+  // face contact differ in depth by what the solver leaves (a soft
+  // contact's springs share the load unevenly), and a choice that followed
+  // those differences would swap the manifold's points back and forth,
+  // each swap starting a point cold. The deepest point of a flat patch is
+  // one of its corners, which the area the reduction keeps nearly always
+  // holds, and it is at most kFlatSpread deeper than the points kept.
+  double deepest = candidates[0].depth, shallowest = candidates[0].depth;
+  Vec3 centroid = Vec3::Zero();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    deepest = std::max(deepest, candidates[i].depth);
+    shallowest = std::min(shallowest, candidates[i].depth);
+    centroid += position(i);
+  }
+  centroid /= static_cast<double>(candidates.size());
+  const bool flat = deepest - shallowest < kFlatSpread;
+  const auto key = [&](std::size_t i) {
+    if (!flat) return candidates[i].depth;
+    Vec3 offset = position(i) - centroid;
+    offset -= offset.dot(normal) * normal;
+    return offset.squaredNorm();
+  };
   std::size_t first = 0;
   for (std::size_t i = 1; i < candidates.size(); ++i) {
-    if (better(candidates[i].depth, position(i), candidates[first].depth, position(first))) {
-      first = i;
-    }
+    if (better(key(i), position(i), key(first), position(first))) first = i;
   }
 
   std::size_t second = first;

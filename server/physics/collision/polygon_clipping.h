@@ -28,8 +28,11 @@ void clipIncidentFeature(std::span<const Vec3> reference, const Vec3& referenceN
                          double margin, std::vector<ContactPoint>& out);
 
 // Keeps at most four of `candidates` (all sharing `normal`): the deepest
-// one, the one farthest from it, then the two that enclose the largest area,
-// which is what keeps a resting body from rocking (Gregorius 2015).
+// one (of a flat patch, whose depths spread less than 0.1 mm, the one
+// farthest from its centroid instead, so that the choice does not follow
+// a resting body's micrometre tilts), the one farthest from it, then the
+// two that enclose the largest area, which is what keeps a resting body
+// from rocking (Gregorius 2015).
 // The manifold's normal is left to the caller.
 void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal,
                     ContactManifold& out);

@@ -171,6 +171,49 @@ TEST(ReduceContacts, KeepsTheDeepestAndTheLargestQuadrilateral) {
   EXPECT_TRUE(ids.count(1) + ids.count(2) == 1 && ids.count(4) + ids.count(5) == 1);
 }
 
+TEST(ReduceContacts, AFlatPatchKeepsItsPointsWhateverTheirDepthsDifferBy) {
+  // An irregular octagon (two squares turned 0.3 rad apart), nearly flat:
+  // depths that differ by micrometres, as a soft contact's springs leave
+  // them, must not decide which four points are kept, or a resting body's
+  // manifold swaps points from one step to the next.
+  std::vector<ContactPoint> octagon;
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * kPi / 4 + (k % 2 == 0 ? 0.0 : 0.3);
+    const double radius = 1.0 + 0.05 * std::sin(2.0 * k);
+    ContactPoint p;
+    p.pointB = Vec3(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+    p.pointA = p.pointB;
+    p.featureId = static_cast<uint32_t>(k);
+    octagon.push_back(p);
+  }
+  const auto keptIds = [&](double depthScale, int tilt) {
+    for (int k = 0; k < 8; ++k) {
+      // Three tilts of the patch: the deepest corner moves around it.
+      octagon[static_cast<std::size_t>(k)].depth =
+          1e-5 + depthScale * std::cos(k * kPi / 4 - tilt * 2.1);
+    }
+    ContactManifold m;
+    reduceContacts(octagon, kZ, m);
+    std::set<uint32_t> ids;
+    for (int i = 0; i < m.pointCount; ++i) ids.insert(m.points[static_cast<std::size_t>(i)].featureId);
+    return ids;
+  };
+  const std::set<uint32_t> level = keptIds(0.0, 0);
+  ASSERT_EQ(level.size(), 4u);
+  for (int tilt = 0; tilt < 3; ++tilt) {
+    EXPECT_EQ(keptIds(1e-6, tilt), level) << "tilt " << tilt;
+    EXPECT_EQ(keptIds(3e-5, tilt), level) << "tilt " << tilt;
+  }
+  // A patch tilted by more than the flat spread keeps its deepest point.
+  for (int tilt = 0; tilt < 3; ++tilt) {
+    const std::set<uint32_t> ids = keptIds(1e-3, tilt);
+    const auto deepest = std::max_element(octagon.begin(), octagon.end(), [](const ContactPoint& a, const ContactPoint& b) {
+      return a.depth < b.depth;
+    });
+    EXPECT_EQ(ids.count(deepest->featureId), 1u) << "tilt " << tilt;
+  }
+}
+
 TEST(BoxBox, FeatureIdsPersistWhileTheBoxSlidesAndAreDistinct) {
   const auto ids = [](const ContactManifold& m) {
     std::set<uint32_t> result;

@@ -77,16 +77,7 @@ TEST(Stacking, StacksStandWithoutSleeping) {
 
 TEST(Stacking, IrregularTowerOfTwentyStandsWithoutSleeping) {
   const StackResult r = standStack(20, false, true);
-  if (testing::kTestContactSolver == ContactSolverKind::SoftStep) {
-    // The soft step does not yet hold this tower numerically still: the
-    // four points kept of two turned cubes' octagon of contact change now
-    // and then, and a point that starts cold leaves 9e-8 J of jitter
-    // (cubes at 0.03 mm/s), which issue 38 has still to remove. Bound here:
-    // nothing one could see (1 mm/s), as the pyramid's test asks.
-    EXPECT_LT(r.finalEnergy, 0.5 * 160.0 * 1e-3 * 1e-3) << "20 cubes of 8 kg, none faster than 1 mm/s";
-  } else {
-    EXPECT_LT(r.finalEnergy, 1e-9);
-  }
+  EXPECT_LT(r.finalEnergy, 1e-9);
   EXPECT_LT(r.maxDepth, 1e-3);
   EXPECT_LT(r.maxDrift, 1e-3);
 }
