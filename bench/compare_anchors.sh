@@ -10,7 +10,8 @@
 # ("rbsim bullet bullet-nosleep ode mujoco"), CPU the core (1). To compare a
 # change with the code before it in one run, build the earlier commit too and
 # add rbsim-before and rbsim-before-nosleep to ENGINES with BEFORE=its build dir.
-# rbsim-soft and rbsim-soft-nosleep are rbsim with contact.solver: soft_step.
+# rbsim is the default contact solver (soft_step); rbsim-si and
+# rbsim-si-nosleep are rbsim with contact.solver: sequential_impulses.
 #
 # Stacking cases run this repository's bench/stacks instead (rbsim, Bullet
 # and ODE through its own adapters, the same REP/ROW format; build
@@ -44,8 +45,8 @@ for case in $cases; do
       case $engine in
         rbsim) cmd="$stacks/bench_stacks_rbsim --sleep 1" ;;
         rbsim-nosleep) cmd="$stacks/bench_stacks_rbsim --sleep 0" ;;
-        rbsim-soft) cmd="$stacks/bench_stacks_rbsim --sleep 1 --solver soft_step" ;;
-        rbsim-soft-nosleep) cmd="$stacks/bench_stacks_rbsim --sleep 0 --solver soft_step" ;;
+        rbsim-si) cmd="$stacks/bench_stacks_rbsim --sleep 1 --solver sequential_impulses --label rbsim-si" ;;
+        rbsim-si-nosleep) cmd="$stacks/bench_stacks_rbsim --sleep 0 --solver sequential_impulses --label rbsim-si-nosleep" ;;
         rbsim-before) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/stacks/bench_stacks_rbsim --sleep 1 --label rbsim-before" ;;
         rbsim-before-nosleep) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/stacks/bench_stacks_rbsim --sleep 0 --label rbsim-before-nosleep" ;;
         bullet) cmd="$stacks/bench_stacks_bullet --sleep 1" ;;
@@ -63,8 +64,8 @@ for case in $cases; do
       case $engine in
         rbsim) cmd="$build/bench/bench_anchors_ours --sleep 1" ;;
         rbsim-nosleep) cmd="$build/bench/bench_anchors_ours --sleep 0 --label rbsim-nosleep" ;;
-        rbsim-soft) cmd="$build/bench/bench_anchors_ours --solver soft_step --sleep 1 --label rbsim-soft" ;;
-        rbsim-soft-nosleep) cmd="$build/bench/bench_anchors_ours --solver soft_step --sleep 0 --label rbsim-soft-nosleep" ;;
+        rbsim-si) cmd="$build/bench/bench_anchors_ours --solver sequential_impulses --sleep 1 --label rbsim-si" ;;
+        rbsim-si-nosleep) cmd="$build/bench/bench_anchors_ours --solver sequential_impulses --sleep 0 --label rbsim-si-nosleep" ;;
         rbsim-before) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/bench_anchors_ours --sleep 1 --label rbsim-before" ;;
         rbsim-before-nosleep) cmd="${BEFORE:?BEFORE=build dir of the earlier commit}/bench/bench_anchors_ours --sleep 0 --label rbsim-before-nosleep" ;;
         bullet) cmd="$anchors/bench_bullet --sleep 1" ;;

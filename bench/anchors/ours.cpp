@@ -6,13 +6,15 @@
 // --threads N (ours alone; taken out before the harness reads the options)
 // sets world.threads: 1 (the default here, one core as the peers) steps on
 // the caller alone, 0 on every core the process may run on (pin it to
-// both: taskset -c 0,1). --solver soft_step (ours alone, too) picks the
-// soft-step contact solver instead of sequential impulses.
+// both: taskset -c 0,1). --solver soft_step|sequential_impulses (ours
+// alone, too) picks the contact solver; without it, the world's default
+// (soft_step).
 // One timed step = World::step(): collision detection, contact response, integration.
 #include "scene.hpp"
 
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,7 @@ namespace {
 rbsim::Vec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
 
 int g_threads = 1;  // --threads
-bool g_softStep = false;  // --solver soft_step
+std::optional<rbsim::ContactSolverKind> g_solver;  // --solver; unset: the world's default
 
 struct RbsimEngine : anchors::Engine {
   std::optional<rbsim::World> world;
@@ -38,7 +40,7 @@ struct RbsimEngine : anchors::Engine {
     settings.gravity = rbsim::Vec3(0, 0, scene.gravity);
     settings.integrator = rbsim::IntegratorKind::SemiImplicitEuler;
     settings.threads = g_threads;
-    if (g_softStep) settings.contact.solver.kind = rbsim::ContactSolverKind::SoftStep;
+    if (g_solver) settings.contact.solver.kind = *g_solver;
     world.emplace(settings);
     int index = 0;
     for (const anchors::BodyDef& b : scene.bodies) {
@@ -118,7 +120,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "rbsim: unknown --solver %s\n", name.c_str());
         return 2;
       }
-      g_softStep = name == "soft_step";
+      g_solver = name == "soft_step" ? rbsim::ContactSolverKind::SoftStep
+                                     : rbsim::ContactSolverKind::SequentialImpulses;
       continue;
     }
     args.push_back(argv[i]);

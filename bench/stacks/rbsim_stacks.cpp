@@ -29,6 +29,8 @@ class RbsimEngine final : public sb::Engine {
     settings.threads = engineSettings.threads;
     if (engineSettings.solver == "soft_step") {
       settings.contact.solver.kind = rbsim::ContactSolverKind::SoftStep;
+    } else if (engineSettings.solver == "sequential_impulses") {
+      settings.contact.solver.kind = rbsim::ContactSolverKind::SequentialImpulses;
     } else if (!engineSettings.solver.empty() && engineSettings.solver != "sequential_impulses") {
       std::fprintf(stderr, "rbsim: unknown --solver %s\n", engineSettings.solver.c_str());
       std::exit(2);

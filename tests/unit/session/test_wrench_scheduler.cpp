@@ -15,11 +15,14 @@ World makeWorld() {
   settings.dt = kDt;
   settings.gravity = Vec3::Zero();
   World world(settings);
+  double x = 0.0;
   for (const char* name : {"a", "b"}) {
     BodyDef def;
     def.name = name;
     def.shape = SphereShape{0.1};
     def.mass = 2.0;
+    def.position = Vec3(x, 0.0, 0.0);  // 10 m apart: the pushes never bring them together
+    x -= 10.0;
     EXPECT_TRUE(world.createBody(def).ok());
   }
   return world;

@@ -93,14 +93,17 @@ TEST(Determinism, HashChangesWhenTheStateChanges) {
 // Golden hashes of 1000 steps of the busy world. They change only when the
 // physics changes on purpose: then update them here, in the same commit, and
 // say why in its message.
-// (0xc123038b1332506a and 0x9df4116e181c1215 before a flat patch's four contact points chosen by where they are, not by micrometre depth differences.)
+// (0xc123038b1332506a and 0x9df4116e181c1215 before a flat patch's four
+// contact points were chosen by where they are, not by micrometre depth
+// differences; 0x2b5635a142ede09b and 0x42277ac7f884c686 before the soft
+// step became the default contact solver.)
 TEST(Determinism, GoldenHash) {
   const uint64_t semiImplicit = runBusyWorld(IntegratorKind::SemiImplicitEuler, 1000);
   const uint64_t rk4 = runBusyWorld(IntegratorKind::Rk4, 1000);
   std::printf("golden: semi_implicit_euler 0x%016llx rk4 0x%016llx\n",
               static_cast<unsigned long long>(semiImplicit), static_cast<unsigned long long>(rk4));
-  EXPECT_EQ(semiImplicit, 0x2b5635a142ede09bull);
-  EXPECT_EQ(rk4, 0x42277ac7f884c686ull);
+  EXPECT_EQ(semiImplicit, 0xd426aa9e98349387ull);
+  EXPECT_EQ(rk4, 0x1885908343e5ffe6ull);
 }
 
 }  // namespace
