@@ -337,6 +337,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
         }
         jb.linearMomentum = momenta.linear;
         jb.angularMomentum = momenta.angular;
+        jb.startLinearMomentum = start.linearMomentum;
+        jb.startAngularMomentum = start.angularMomentum;
         if (part == 0) {
           jb.pseudoLinear = static_cast<double>(parts) * pseudoLinear[k];
           jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
