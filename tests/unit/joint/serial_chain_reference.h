@@ -14,7 +14,7 @@
 // every q is 0: each link's mass, centre of mass and inertia about it (world
 // frame), and the joint that moves it relative to the link before it (the
 // first: relative to the base), by its anchor and axis (world frame),
-// viscous damping and a constant effort. A positive q turns the link
+// viscous damping and a constant effort; and the body's own damping. A positive q turns the link
 // right-handed about the axis, as JointState::position counts.
 //
 // Spatial vectors here are (angular; linear) with the linear part taken at
@@ -47,6 +47,9 @@ struct ChainLink {
   Vec3 axis = Vec3::UnitZ();        // world, at q = 0 (normalised by the chain)
   double damping = 0.0;             // N·m·s/rad
   double effort = 0.0;              // N·m, on the link about the axis
+  // The body's own damping, as BodyDef's: dP/dt = −c P, dL/dt = −c' L.
+  double linearDamping = 0.0;   // 1/s
+  double angularDamping = 0.0;  // 1/s
 };
 
 // The link that a body of the world and the joint moving it make, from
@@ -61,6 +64,8 @@ inline ChainLink chainLinkOf(const BodyDef& body, const JointDef& joint) {
   link.axis = joint.axis;
   link.damping = joint.damping;
   link.effort = joint.effort;
+  link.linearDamping = body.linearDamping.value_or(0.0);
+  link.angularDamping = body.angularDamping.value_or(0.0);
   return link;
 }
 
@@ -191,10 +196,39 @@ class SerialChainReference {
     return tau;
   }
 
-  // q̈ = M⁻¹ (τ − D q̇ − h).
+  // The joint efforts of the bodies' own damping: each body's wrench
+  // (−c m v_c at its centre, −c' I_c ω) taken to the joints before it,
+  // Q_j = S_j · Σ_{i ≥ j} W_i.
+  Eigen::VectorXd bodyDampingEfforts(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+    std::vector<Motion> motions;
+    std::vector<Vec6> S;
+    kinematics(q, motions, S);
+    const std::size_t n = m_links.size();
+    std::vector<Vec6> W(n);
+    Vec6 V = Vec6::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const ChainLink& link = m_links[i];
+      V += S[i] * qd[static_cast<Eigen::Index>(i)];
+      const Vec3 omega = V.head<3>(), c = motions[i].apply(link.centre);
+      const Vec3 force = -link.linearDamping * link.mass * (V.tail<3>() + omega.cross(c));
+      const Vec3 couple = -link.angularDamping * (motions[i].R * link.inertia * motions[i].R.transpose() * omega);
+      W[i] << couple + c.cross(force), force;
+    }
+    Eigen::VectorXd Q(static_cast<Eigen::Index>(n));
+    Vec6 sum = Vec6::Zero();
+    for (std::size_t i = n; i-- > 0;) {
+      sum += W[i];
+      Q[static_cast<Eigen::Index>(i)] = S[i].dot(sum);
+    }
+    return Q;
+  }
+
+  // q̈ = M⁻¹ (τ − D q̇ − h + Q_bodies).
   Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
     Eigen::VectorXd rhs = -inverseDynamics(q, qd, Eigen::VectorXd::Zero(dof()));
     for (int i = 0; i < dof(); ++i) rhs[i] += m_links[static_cast<std::size_t>(i)].effort - m_links[static_cast<std::size_t>(i)].damping * qd[i];
+    if (std::any_of(m_links.begin(), m_links.end(), [](const ChainLink& l) { return l.linearDamping != 0.0 || l.angularDamping != 0.0; }))
+      rhs += bodyDampingEfforts(q, qd);
     return massMatrix(q).llt().solve(rhs);
   }
 

@@ -267,6 +267,48 @@ TEST(JointDrives, JointDampingSlowsAWheelAsTheExponentialDoes) {
   }
 }
 
+// The rate of a wheel on a hinge after 2 s from 4 rad/s, with its body's
+// own angular damping (1/s) and the hinge's damping (N·m·s/rad).
+double dampedWheelRate(double dt, double bodyDamping, double jointDamping, double& inertia) {
+  World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, dt));
+  BodyDef def;
+  def.name = "wheel";
+  def.shape = CylinderShape{0.2, 0.05};
+  def.mass = 2.0;
+  def.position = Vec3(0, 0, 1);
+  def.angularDamping = bodyDamping;
+  def.angularVelocity = Vec3(0, 0, 4.0);
+  const Expected<BodyId> wheel = world.createBody(def);
+  EXPECT_TRUE(wheel.ok());
+  if (!wheel.ok()) return NAN;
+  inertia = world.body(*wheel).inertiaWorld()(2, 2);
+  JointDef axle = hinge("axle", BodyId{}, *wheel, Vec3(0, 0, 1), Vec3::UnitZ());
+  axle.damping = jointDamping;
+  const JointId joint = addJoint(world, axle);
+  for (int k = 0; k < static_cast<int>(std::lround(2.0 / dt)); ++k) world.step();
+  return world.jointState(joint).rate;
+}
+
+TEST(JointDrives, AHingedWheelsOwnDampingSlowsItAsTheExponentialDoes) {
+  // The body's angular damping (dL/dt = −c L) in the joint step: e^(−c h)
+  // (1 + c h/2) of L left by the first half, 1 / (1 + c h/2) by the
+  // implicit second half: exactly e^(−c t), at any step.
+  double inertia = 0.0;
+  for (const double dt : {1e-3, 0.05}) {
+    SCOPED_TRACE(::testing::Message() << "dt " << dt);
+    EXPECT_NEAR(dampedWheelRate(dt, 0.3, 0.0, inertia), 4.0 * std::exp(-0.3 * 2.0), 1e-12);
+  }
+  // With the hinge's damping as well the rates add, to second order (each
+  // first half is exact alone, their sum to O((c h)³) a step).
+  double errors[2];
+  for (int k = 0; k < 2; ++k) {
+    const double rate = dampedWheelRate(1e-3 / (1 + k), 0.3, 0.02, inertia);
+    errors[k] = std::abs(rate - 4.0 * std::exp(-(0.3 + 0.02 / inertia) * 2.0));
+  }
+  EXPECT_LT(errors[0], 1e-7);
+  EXPECT_LT(errors[1], 0.3 * errors[0]) << errors[0] << " then " << errors[1];
+}
+
 TEST(JointDrives, StrongJointDampingStopsALightWheelWithoutTurningItBack) {
   // c h / I = 100 at 1 ms: the wheel stops within a step or two, its rate
   // never changing sign (an explicit half of −c (h/2) w would send it back
