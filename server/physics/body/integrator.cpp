@@ -1,5 +1,7 @@
 #include "physics/body/integrator.h"
 
+#include <cmath>
+
 namespace rbsim {
 
 StateRate stateRate(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
@@ -77,6 +79,21 @@ namespace {
 Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                          const ForceInputs& inputs, double dt) {
   return momentaAfterForces(state, rotation, dynamics, inputs, dt);
+}
+
+Momenta firstHalfKick(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                      const ForceInputs& inputs, double h) {
+  const NetWrench wrench = evaluateWrench(state, rotation, dynamics, inputs, false);
+  const double dt = 0.5 * h;
+  Momenta next{state.linearMomentum + dt * wrench.force, state.angularMomentum + dt * wrench.torque};
+  // 1 − e^(−x) (1 + x/2), x = c h, without cancellation for small x.
+  const auto share = [h](double c) {
+    const double x = c * h;
+    return -std::expm1(-x) - 0.5 * x * std::exp(-x);
+  };
+  if (dynamics.linearDamping != 0.0) next.linear -= share(dynamics.linearDamping) * state.linearMomentum;
+  if (dynamics.angularDamping != 0.0) next.angular -= share(dynamics.angularDamping) * state.angularMomentum;
+  return next;
 }
 
 RigidState semiImplicitEulerStep(const RigidState& state, const Mat3& rotation,

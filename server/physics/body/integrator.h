@@ -71,6 +71,18 @@ struct Momenta {
 Momenta integrateMomenta(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
                          const ForceInputs& inputs, double dt);
 
+// RATTLE's first half kick of a step of length h (the joint step's
+// islands that touch nothing): the forces at the start over h/2, and the
+// damping on the momenta the step starts with, e^(−c h) (1 + c h/2) of them
+// left, which is 1 − c h/2 to O((c h)³). Its second half is
+// integrateMomenta over h/2, implicit, 1 / (1 + c h/2): an explicit half
+// and an implicit one make a symmetric, second-order pair (two implicit
+// halves are first order), and undisturbed momenta decay by exactly
+// e^(−c h) a step, never past zero however large c h. Without damping,
+// the same bits as integrateMomenta over h/2.
+Momenta firstHalfKick(const RigidState& state, const Mat3& rotation, const BodyDynamics& dynamics,
+                      const ForceInputs& inputs, double h);
+
 // dq/dt = ½ [0, ω] q, ω in the world frame (quaternion kinematics as in
 // Baraff's rigid-body notes).
 inline Quaternion orientationRate(const Quaternion& q, const Vec3& omega) {

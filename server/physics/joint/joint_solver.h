@@ -43,6 +43,11 @@ struct JointBody {
   Quaternion startOrientation = Quaternion::identity();
   Mat3 startInverseInertia = Mat3::Zero();  // world, 1/(kg·m²)
   double inverseMass = 0.0;                 // 1/kg
+  // The momenta at the step's start, before its first half kick: the rates
+  // joint damping's first half acts on (RATTLE's islands; unused in
+  // contact).
+  Vec3 startLinearMomentum = Vec3::Zero();   // kg·m/s
+  Vec3 startAngularMomentum = Vec3::Zero();  // kg·m²/s
   // Solved for.
   Vec3 linearMomentum = Vec3::Zero();   // kg·m/s
   Vec3 angularMomentum = Vec3::Zero();  // kg·m²/s

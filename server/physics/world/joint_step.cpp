@@ -261,8 +261,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
     dense.push_back(i);
     const bool halves = contactIsland.empty() || !contactIsland[static_cast<std::size_t>(islandOf[i])];
     staggered.push_back(halves ? 1 : 0);
-    const Momenta free =
-        integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(world, i), halves ? 0.5 * h : h);
+    const Momenta free = halves ? firstHalfKick(body.state(), body.rotation(), body.dynamics(), forcesOn(world, i), h)
+                                : integrateMomenta(body.state(), body.rotation(), body.dynamics(), forcesOn(world, i), h);
     Momenta withContacts = free;
     Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
     if (!solving.empty() && solving[i]) {
@@ -329,7 +329,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
         jb.inverseMass = body.inverseMass();
         Momenta momenta = kicked[k];
         if (parts > 1) {
-          momenta = integrateMomenta(start, rotation, body.dynamics(), forcesOn(world, dense[k]), staggered[k] ? 0.5 * s : s);
+          momenta = staggered[k] ? firstHalfKick(start, rotation, body.dynamics(), forcesOn(world, dense[k]), s)
+                                 : integrateMomenta(start, rotation, body.dynamics(), forcesOn(world, dense[k]), s);
           if (part == 0) {
             momenta.linear += contactImpulse[k].linear;
             momenta.angular += contactImpulse[k].angular;
@@ -337,6 +338,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
         }
         jb.linearMomentum = momenta.linear;
         jb.angularMomentum = momenta.angular;
+        jb.startLinearMomentum = start.linearMomentum;
+        jb.startAngularMomentum = start.angularMomentum;
         if (part == 0) {
           jb.pseudoLinear = static_cast<double>(parts) * pseudoLinear[k];
           jb.pseudoAngular = static_cast<double>(parts) * pseudoAngular[k];
@@ -346,22 +349,50 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
       std::vector<JointLinkResult> results;
       converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
       // The second half kick at the end poses, then the velocities tangent
-      // to the joints there.
+      // to the joints there. A body's own damping is implicit over all that
+      // the half adds, forces, efforts, the joints' and their axes' impulses:
+      // P = (P½ + the half's impulses) / (1 + c s/2). The projection then
+      // sees the body's inverse mass and inertia shrunk by that factor (its
+      // velocity per impulse), and the momenta shrink after it; damping the
+      // forces alone and projecting after it was first order, each step's
+      // constraint impulse O(s) missing its share of c s/2.
       std::vector<Mat3> endInverseInertia(bodies.size());
+      struct Shrink {
+        double linear = 1.0, angular = 1.0;  // 1 / (1 + c s/2) of P and of L
+        double inverseMass = 0.0;            // the body's own, given back after the projection
+      };
+      std::vector<Shrink> shrink(bodies.size());
+      bool damped = false;
       for (std::size_t k = 0; k < bodies.size(); ++k) {
         const Body& body = world.bodies[dense[k]];
         JointBody& jb = bodies[k];
         const RigidState state{jb.position, jb.orientation, jb.linearMomentum, jb.angularMomentum};
         const Mat3 rotation = state.orientation.toRotationMatrix();
-        if (staggered[k]) {
-          const Momenta end = integrateMomenta(state, rotation, body.dynamics(), forcesOn(world, dense[k]), 0.5 * s);
-          jb.linearMomentum = end.linear;
-          jb.angularMomentum = end.angular;
-        }
         endInverseInertia[k] = rotatedDiagonal(rotation, body.dynamics().inverseInertiaBody);
+        if (!staggered[k]) continue;
+        BodyDynamics undamped = body.dynamics();
+        undamped.linearDamping = undamped.angularDamping = 0.0;
+        const Momenta end = integrateMomenta(state, rotation, undamped, forcesOn(world, dense[k]), 0.5 * s);
+        jb.linearMomentum = end.linear;
+        jb.angularMomentum = end.angular;
+        const BodyDynamics& dynamics = body.dynamics();
+        if (dynamics.linearDamping == 0.0 && dynamics.angularDamping == 0.0) continue;
+        damped = true;
+        shrink[k] = {1.0 / (1.0 + 0.5 * s * dynamics.linearDamping), 1.0 / (1.0 + 0.5 * s * dynamics.angularDamping),
+                     jb.inverseMass};
+        jb.inverseMass *= shrink[k].linear;
+        endInverseInertia[k] *= shrink[k].angular;
       }
       applyEfforts(bodies, false, 0.5 * s, true);  // the second half kick
       solver.projectVelocities(links, bodies, endInverseInertia, s, results);
+      if (damped) {
+        for (std::size_t k = 0; k < bodies.size(); ++k) {
+          if (shrink[k].linear == 1.0 && shrink[k].angular == 1.0) continue;
+          bodies[k].linearMomentum *= shrink[k].linear;
+          bodies[k].angularMomentum *= shrink[k].angular;
+          bodies[k].inverseMass = shrink[k].inverseMass;
+        }
+      }
       for (std::size_t k = 0; k < bodies.size(); ++k)
         ends[k] = {bodies[k].position, bodies[k].orientation, bodies[k].linearMomentum, bodies[k].angularMomentum};
       for (std::size_t l = 0; l < links.size(); ++l) {

@@ -245,8 +245,12 @@ TEST(JointDrives, ATargetRateLetsADriveFollowARampWithoutLag) {
   }
 }
 
-TEST(JointDrives, JointDampingSlowsAWheelAsItsTwoImplicitHalfStepsSay) {
-  for (const double dt : {1e-3, 5e-4}) {
+TEST(JointDrives, JointDampingSlowsAWheelAsTheExponentialDoes) {
+  // Damping's first half acts on the step's start rate, e⁻ˣ (1 + x/2) of it
+  // left, its second half implicitly, 1 / (1 + x/2) (x = c h / I): a lone
+  // damped axis follows the flow e^(−c t / I) exactly, at any step. (Two
+  // implicit halves, (1 + x/2)⁻², were x²/4 a step off it: first order.)
+  for (const double dt : {1e-3, 5e-4, 0.05}) {
     SCOPED_TRACE(::testing::Message() << "dt " << dt);
     Wheel wheel = makeWheel(dt);
     JointDef def = hinge("axle", BodyId{}, wheel.body, Vec3(0, 0, 1), Vec3::UnitZ());
@@ -258,11 +262,71 @@ TEST(JointDrives, JointDampingSlowsAWheelAsItsTwoImplicitHalfStepsSay) {
     for (int k = 0; k < steps; ++k) wheel.world.step();
     const double rate = wheel.world.jointState(wheel.joint).rate;
     const double decay = 0.02 / wheel.inertia;
-    EXPECT_NEAR(rate, 4.0 * std::pow(1.0 + 0.5 * dt * decay, -2 * steps), 1e-12);
-    // (1 + x/2)⁻² = e^(−x + x²/4 − …): the flow to x²/4 per step.
-    const double flow = 4.0 * std::exp(-decay * 2.0);
-    EXPECT_NEAR(rate, flow, flow * steps * std::pow(dt * decay, 2) / 4.0 * 1.05) << "within O(h) of the flow";
+    EXPECT_NEAR(rate, 4.0 * std::exp(-decay * 2.0), 1e-12);
     EXPECT_NEAR(wheel.world.jointState(wheel.joint).axisEffort, 0.0, 0.0) << "damping is not actuation";
+  }
+}
+
+// The rate of a wheel on a hinge after 2 s from 4 rad/s, with its body's
+// own angular damping (1/s) and the hinge's damping (N·m·s/rad).
+double dampedWheelRate(double dt, double bodyDamping, double jointDamping, double& inertia) {
+  World world(jointWorldSettings(IntegratorKind::SemiImplicitEuler, dt));
+  BodyDef def;
+  def.name = "wheel";
+  def.shape = CylinderShape{0.2, 0.05};
+  def.mass = 2.0;
+  def.position = Vec3(0, 0, 1);
+  def.angularDamping = bodyDamping;
+  def.angularVelocity = Vec3(0, 0, 4.0);
+  const Expected<BodyId> wheel = world.createBody(def);
+  EXPECT_TRUE(wheel.ok());
+  if (!wheel.ok()) return NAN;
+  inertia = world.body(*wheel).inertiaWorld()(2, 2);
+  JointDef axle = hinge("axle", BodyId{}, *wheel, Vec3(0, 0, 1), Vec3::UnitZ());
+  axle.damping = jointDamping;
+  const JointId joint = addJoint(world, axle);
+  for (int k = 0; k < static_cast<int>(std::lround(2.0 / dt)); ++k) world.step();
+  return world.jointState(joint).rate;
+}
+
+TEST(JointDrives, AHingedWheelsOwnDampingSlowsItAsTheExponentialDoes) {
+  // The body's angular damping (dL/dt = −c L) in the joint step: e^(−c h)
+  // (1 + c h/2) of L left by the first half, 1 / (1 + c h/2) by the
+  // implicit second half: exactly e^(−c t), at any step.
+  double inertia = 0.0;
+  for (const double dt : {1e-3, 0.05}) {
+    SCOPED_TRACE(::testing::Message() << "dt " << dt);
+    EXPECT_NEAR(dampedWheelRate(dt, 0.3, 0.0, inertia), 4.0 * std::exp(-0.3 * 2.0), 1e-12);
+  }
+  // With the hinge's damping as well the rates add, to second order (each
+  // first half is exact alone, their sum to O((c h)³) a step).
+  double errors[2];
+  for (int k = 0; k < 2; ++k) {
+    const double rate = dampedWheelRate(1e-3 / (1 + k), 0.3, 0.02, inertia);
+    errors[k] = std::abs(rate - 4.0 * std::exp(-(0.3 + 0.02 / inertia) * 2.0));
+  }
+  EXPECT_LT(errors[0], 1e-7);
+  EXPECT_LT(errors[1], 0.3 * errors[0]) << errors[0] << " then " << errors[1];
+}
+
+TEST(JointDrives, StrongJointDampingStopsALightWheelWithoutTurningItBack) {
+  // c h / I = 100 at 1 ms: the wheel stops within a step or two, its rate
+  // never changing sign (an explicit half of −c (h/2) w would send it back
+  // at 0.96 of its speed, step after step).
+  Wheel wheel = makeWheel(1e-3);
+  JointDef def = hinge("axle", BodyId{}, wheel.body, Vec3(0, 0, 1), Vec3::UnitZ());
+  ASSERT_TRUE(wheel.world.removeJoint(wheel.joint).ok());
+  def.damping = 100.0 * wheel.inertia / 1e-3;
+  wheel.joint = addJoint(wheel.world, def);
+  ASSERT_TRUE(wheel.world.setBodyVelocities(wheel.body, Vec3::Zero(), Vec3(0, 0, 4.0)).ok());
+  double previous = 4.0;
+  for (int k = 0; k < 5; ++k) {
+    wheel.world.step();
+    const double rate = wheel.world.jointState(wheel.joint).rate;
+    EXPECT_GE(rate, 0.0) << "step " << k;
+    EXPECT_LE(rate, 4.0 * std::exp(-100.0 * (k + 1)) + 1e-15) << "step " << k;
+    EXPECT_LE(rate, previous);
+    previous = rate;
   }
 }
 
