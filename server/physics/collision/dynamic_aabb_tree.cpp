@@ -296,6 +296,51 @@ int DynamicAabbTree::rotateUp(int node, int tallChild) {
   return c;
 }
 
+void DynamicAabbTree::rebuildTopDown() {
+  if (m_root == kNull) return;
+  std::vector<int> leaves;
+  leaves.reserve(static_cast<std::size_t>(m_proxyCount));
+  // Gather the leaves in the order of their ids, so that the build depends
+  // on the boxes and ids alone, and free every inner node.
+  for (std::size_t i = 0; i < m_nodes.size(); ++i) {
+    if (m_nodes[i].height == 0) {
+      leaves.push_back(static_cast<int>(i));
+    }
+  }
+  for (std::size_t i = 0; i < m_nodes.size(); ++i)
+    if (m_nodes[i].height > 0) freeNode(static_cast<int>(i));
+  m_root = buildTopDown(leaves.data(), leaves.size());
+  m_nodes[at(m_root)].parent = kNull;
+}
+
+int DynamicAabbTree::buildTopDown(int* leaves, std::size_t count) {
+  if (count == 1) return leaves[0];
+  Aabb centers = Aabb::empty();
+  for (std::size_t i = 0; i < count; ++i) centers.include(m_nodes[at(leaves[i])].box.center());
+  int axis = 0;
+  const Vec3 extent = centers.max - centers.min;
+  if (extent.y() > extent[axis]) axis = 1;
+  if (extent.z() > extent[axis]) axis = 2;
+  // The median by centre along the axis, ties by id: a total order, so the
+  // halves do not depend on how nth_element breaks ties.
+  const std::size_t half = count / 2;
+  std::nth_element(leaves, leaves + half, leaves + count, [&](int a, int b) {
+    const double ca = m_nodes[at(a)].box.min[axis] + m_nodes[at(a)].box.max[axis];
+    const double cb = m_nodes[at(b)].box.min[axis] + m_nodes[at(b)].box.max[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+  const int child1 = buildTopDown(leaves, half);
+  const int child2 = buildTopDown(leaves + half, count - half);
+  const int node = allocateNode();
+  Node& parent = m_nodes[at(node)];
+  parent.child1 = child1;
+  parent.child2 = child2;
+  m_nodes[at(child1)].parent = node;
+  m_nodes[at(child2)].parent = node;
+  refit(node);
+  return node;
+}
+
 bool DynamicAabbTree::isValid() const {
   if (m_root == kNull) return m_proxyCount == 0;
   if (m_nodes[at(m_root)].parent != kNull) return false;

@@ -3,8 +3,9 @@
 // t in [0, 1] (of the whole segment), and the slab test of such a segment
 // against an axis-aligned box, which the AABB tree's ray walk uses to prune.
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
-#include <utility>
 
 #include "physics/collision/aabb.h"
 #include "rbsim/physics/math_types.h"
@@ -12,13 +13,24 @@
 namespace rbsim {
 
 struct RaySegment {
-  Vec3 origin = Vec3::Zero();        // m
-  Vec3 delta = Vec3::UnitX();        // m: the segment's end minus its start
-  Vec3 inverseDelta = Vec3::UnitX();  // 1/delta per axis; ±inf where delta is ±0
+  Vec3 origin = Vec3::Zero();         // m
+  Vec3 delta = Vec3::UnitX();         // m: the segment's end minus its start
+  Vec3 inverseDelta = Vec3::UnitX();  // 1/delta per axis, finite: see inverseOrHuge
 
   RaySegment() = default;
   RaySegment(const Vec3& start, const Vec3& startToEnd)
-      : origin(start), delta(startToEnd), inverseDelta(startToEnd.cwiseInverse()) {}
+      : origin(start),
+        delta(startToEnd),
+        inverseDelta(inverseOrHuge(startToEnd.x()), inverseOrHuge(startToEnd.y()), inverseOrHuge(startToEnd.z())) {}
+
+  // 1/d, or ±1e300 (d's sign) for |d| <= 1e-300 (zero, and denormals whose
+  // inverse overflows). A finite stand-in for ±inf keeps 0 × inverse from
+  // giving NaN for a segment parallel to a slab that starts on one of its
+  // planes: the slab then holds it from fraction 0, the safe side, and any
+  // other start gives fractions of ±1e300 or more, as inf would.
+  static double inverseOrHuge(double d) {
+    return std::abs(d) > 1e-300 ? 1.0 / d : std::copysign(1e300, d);
+  }
 };
 
 // The fraction at which the segment enters `box` (0 when it starts inside),
@@ -26,21 +38,13 @@ struct RaySegment {
 // The slab test (Kay and Kajiya 1986; Williams, Barrus, Morley and Shirley,
 // "An efficient and robust ray-box intersection algorithm", 2005): each
 // axis's slab holds the segment between two fractions, and the box holds
-// it where all three intervals overlap. A zero component of delta gives
-// ±inf fractions, so a segment parallel to a slab is inside it everywhere
-// or nowhere; when it lies exactly in a slab's face plane the product is
-// 0 × inf = NaN, and NaN fails every comparison below, so that axis
-// restricts nothing: the box is kept, which for pruning is the safe side.
+// it where all three intervals overlap. Branch-free: the walk of the tree
+// runs it twice per node.
 inline double segmentEntersBox(const RaySegment& ray, const Aabb& box, double maxFraction) {
-  double near = 0.0;
-  double far = maxFraction;
-  for (int axis = 0; axis < 3; ++axis) {
-    double t0 = (box.min[axis] - ray.origin[axis]) * ray.inverseDelta[axis];
-    double t1 = (box.max[axis] - ray.origin[axis]) * ray.inverseDelta[axis];
-    if (ray.inverseDelta[axis] < 0.0) std::swap(t0, t1);
-    if (t0 > near) near = t0;
-    if (t1 < far) far = t1;
-  }
+  const Eigen::Array3d t0 = (box.min - ray.origin).array() * ray.inverseDelta.array();
+  const Eigen::Array3d t1 = (box.max - ray.origin).array() * ray.inverseDelta.array();
+  const double near = std::max(t0.min(t1).maxCoeff(), 0.0);
+  const double far = std::min(t0.max(t1).minCoeff(), maxFraction);
   return near <= far ? near : std::numeric_limits<double>::infinity();
 }
 

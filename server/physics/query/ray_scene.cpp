@@ -87,6 +87,7 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
     }
     ++next;
   }
+  if (m_rebuilt) m_tree.rebuildTopDown();
 }
 
 std::optional<SceneHit> RayScene::hitBody(const Entry& entry, const RaySegment& segment,
