@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "physics/collision/aabb.h"
-#include "physics/collision/ray_segment.h"
 
 namespace rbsim {
 
@@ -47,17 +46,6 @@ class DynamicAabbTree {
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const;
 
-  // Calls visit(proxy) for every proxy whose fat box the ray meets at a
-  // fraction in [0, maxFraction], nearer boxes first (by the fraction where
-  // the ray enters them); visit returns the new maxFraction (at most the
-  // one in force: hits narrow the search, as in Box2D's b2DynamicTree
-  // RayCast), or a negative value to stop. Boxes entered exactly at
-  // maxFraction are still visited, so that ties can be settled by the
-  // caller whatever the tree's shape. Reentrant: it keeps its stack on the
-  // caller's, so any number of threads may walk the tree at once.
-  template <class Visit>
-  void rayCast(const RaySegment& ray, double maxFraction, Visit&& visit) const;
-
   // Rebuilds the tree's inner nodes from its leaves, top down: each node's
   // leaves are split in two halves at the median of their centres along the
   // longest axis of those centres' box (a median-split BVH, as in Bullet's
@@ -67,6 +55,15 @@ class DynamicAabbTree {
   // every node. Deterministic: the split depends only on the leaves' boxes
   // and ids.
   void rebuildTopDown();
+
+  // The tree's shape, read only, for walks of its own (the ray casts'
+  // query/ray_tree.h): the root (kNull when empty) and, for an inner node,
+  // its two children; a node's box (a leaf's is its fat box).
+  int root() const { return m_root; }
+  bool isLeaf(int node) const { return m_nodes[static_cast<std::size_t>(node)].isLeaf(); }
+  int child1(int node) const { return m_nodes[static_cast<std::size_t>(node)].child1; }
+  int child2(int node) const { return m_nodes[static_cast<std::size_t>(node)].child2; }
+  const Aabb& box(int node) const { return m_nodes[static_cast<std::size_t>(node)].box; }
 
   int proxyCount() const { return m_proxyCount; }
   int height() const;  // edges on the longest root-to-leaf path; 0 when empty
@@ -123,47 +120,6 @@ void DynamicAabbTree::query(const Aabb& box, Visit&& visit) const {
       m_stack.push_back(node.child1);
       m_stack.push_back(node.child2);
     }
-  }
-}
-
-template <class Visit>
-void DynamicAabbTree::rayCast(const RaySegment& ray, double maxFraction, Visit&& visit) const {
-  if (m_root == kNull) return;
-  struct Pending {
-    int node;
-    double enter;  // where the ray enters the node's box
-  };
-  // Each step pops one node and pushes at most its two children, so the
-  // stack never holds more than the tree's height + 1 nodes.
-  constexpr std::size_t kInlineDepth = 64;
-  Pending inlineStack[kInlineDepth];
-  std::vector<Pending> tallStack;
-  Pending* stack = inlineStack;
-  if (static_cast<std::size_t>(height()) + 2 > kInlineDepth) {
-    tallStack.resize(static_cast<std::size_t>(height()) + 2);
-    stack = tallStack.data();
-  }
-  std::size_t size = 0;
-  const double rootEnter = segmentEntersBox(ray, m_nodes[static_cast<std::size_t>(m_root)].box, maxFraction);
-  if (rootEnter <= maxFraction) stack[size++] = {m_root, rootEnter};
-  while (size > 0) {
-    const Pending pending = stack[--size];
-    if (pending.enter > maxFraction) continue;  // a hit found since it was pushed is nearer
-    const Node& node = m_nodes[static_cast<std::size_t>(pending.node)];
-    if (node.isLeaf()) {
-      const double narrowed = visit(pending.node);
-      if (narrowed < 0.0) return;
-      maxFraction = narrowed < maxFraction ? narrowed : maxFraction;
-      continue;
-    }
-    const double enter1 = segmentEntersBox(ray, m_nodes[static_cast<std::size_t>(node.child1)].box, maxFraction);
-    const double enter2 = segmentEntersBox(ray, m_nodes[static_cast<std::size_t>(node.child2)].box, maxFraction);
-    // The nearer child goes on top, to be walked first.
-    const bool firstNearer = enter1 <= enter2;
-    const Pending near{firstNearer ? node.child1 : node.child2, firstNearer ? enter1 : enter2};
-    const Pending far{firstNearer ? node.child2 : node.child1, firstNearer ? enter2 : enter1};
-    if (far.enter <= maxFraction) stack[size++] = far;
-    if (near.enter <= maxFraction) stack[size++] = near;
   }
 }
 

@@ -51,8 +51,9 @@ bool RayScene::sameBodies(std::span<const Body> bodies) const {
 }
 
 void RayScene::rebuild(std::span<const Body> bodies) const {
-  m_rebuilt = !sameBodies(bodies);
-  if (m_rebuilt) {
+  const bool rebuilt = !sameBodies(bodies);
+  bool moved = rebuilt;
+  if (rebuilt) {
     m_tree = DynamicAabbTree(kFatMargin);
     m_entries.clear();
   }
@@ -68,7 +69,7 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
       m_planes.push_back({worldHalfSpace(*collider->plane, pose), body.serial(), static_cast<int>(i),
                           body.description().collisionFilter});
     if (collider->pieces.empty()) continue;
-    if (m_rebuilt) m_entries.emplace_back();
+    if (rebuilt) m_entries.emplace_back();
     Entry& entry = m_entries[next];
     entry.serial = body.serial();
     entry.bodyIndex = static_cast<int>(i);
@@ -83,11 +84,12 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
     if (entry.proxy == DynamicAabbTree::kNull) {
       entry.proxy = m_tree.createProxy(box, static_cast<int32_t>(next));
     } else {
-      m_tree.moveProxy(entry.proxy, box, Vec3::Zero());
+      moved = m_tree.moveProxy(entry.proxy, box, Vec3::Zero()) || moved;
     }
     ++next;
   }
-  if (m_rebuilt) m_tree.rebuildTopDown();
+  if (rebuilt) m_tree.rebuildTopDown();
+  if (moved) m_rayTree.assign(m_tree);
 }
 
 std::optional<SceneHit> RayScene::hitBody(const Entry& entry, const RaySegment& segment,
@@ -122,8 +124,8 @@ std::optional<SceneHit> RayScene::closest(const SceneRay& ray) const {
   };
   for (const Plane& plane : m_planes)
     if (mayHit(ray, plane.bodyIndex, plane.filter)) consider(hitPlane(plane, ray.segment));
-  m_tree.rayCast(ray.segment, best ? best->fraction : 1.0, [&](int proxy) {
-    const Entry& entry = m_entries[at(m_tree.userData(proxy))];
+  m_rayTree.cast(ray.segment, best ? best->fraction : 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
     const double maxFraction = best ? best->fraction : 1.0;
     if (mayHit(ray, entry.bodyIndex, entry.filter)) consider(hitBody(entry, ray.segment, maxFraction));
     return best ? best->fraction : 1.0;
@@ -135,8 +137,8 @@ bool RayScene::any(const SceneRay& ray) const {
   for (const Plane& plane : m_planes)
     if (mayHit(ray, plane.bodyIndex, plane.filter) && hitPlane(plane, ray.segment)) return true;
   bool found = false;
-  m_tree.rayCast(ray.segment, 1.0, [&](int proxy) {
-    const Entry& entry = m_entries[at(m_tree.userData(proxy))];
+  m_rayTree.cast(ray.segment, 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
     found = mayHit(ray, entry.bodyIndex, entry.filter) && hitBody(entry, ray.segment, 1.0).has_value();
     return found ? -1.0 : 1.0;
   });
@@ -148,8 +150,8 @@ void RayScene::all(const SceneRay& ray, std::vector<SceneHit>& hits) const {
   for (const Plane& plane : m_planes)
     if (mayHit(ray, plane.bodyIndex, plane.filter))
       if (const auto hit = hitPlane(plane, ray.segment)) hits.push_back(*hit);
-  m_tree.rayCast(ray.segment, 1.0, [&](int proxy) {
-    const Entry& entry = m_entries[at(m_tree.userData(proxy))];
+  m_rayTree.cast(ray.segment, 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
     if (mayHit(ray, entry.bodyIndex, entry.filter))
       if (const auto hit = hitBody(entry, ray.segment, 1.0)) hits.push_back(*hit);
     return 1.0;

@@ -2,9 +2,12 @@
 // The bodies as ray casts see them: one proxy per body with convex pieces
 // in a dynamic AABB tree (the broad phase's kind, collision/
 // dynamic_aabb_tree.h), each piece placed in the world, and the planes
-// aside (infinite, they are tested on every ray). The three queries walk
-// the tree with the slab test, nearest boxes first, and test the pieces of
-// the bodies whose boxes the ray crosses.
+// aside (infinite, they are tested on every ray). The tree is kept as the
+// broad phase keeps its own (a proxy moves only when its body leaves its
+// fat box), rebuilt top down when the bodies change, and copied after each
+// change into a layout made for rays (query/ray_tree.h). The three queries
+// walk that copy with the slab test, nearest boxes first, and test the
+// pieces of the bodies whose boxes the ray crosses.
 //
 // Why a tree of its own and not the collision detector's: the detector
 // updates its tree at the start of a step, before the bodies move, and not
@@ -36,8 +39,8 @@
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/collider.h"
 #include "physics/collision/dynamic_aabb_tree.h"
-#include "physics/collision/ray_segment.h"
-#include "physics/parallel/task_pool.h"
+#include "physics/query/ray_segment.h"
+#include "physics/query/ray_tree.h"
 #include "rbsim/physics/collision_filter.h"
 
 namespace rbsim {
@@ -88,9 +91,6 @@ class RayScene {
     return std::unique_lock<std::mutex>(m_poolLock, std::try_to_lock);
   }
 
-  // For tests: the tree, and whether the last refresh rebuilt it.
-  const DynamicAabbTree& tree() const { return m_tree; }
-  bool lastRefreshRebuilt() const { return m_rebuilt; }
 
  private:
   static constexpr uint64_t kNever = std::numeric_limits<uint64_t>::max();
@@ -128,10 +128,10 @@ class RayScene {
   mutable std::mutex m_poolLock;
   mutable std::atomic<uint64_t> m_builtRevision{kNever};
   mutable DynamicAabbTree m_tree{kFatMargin};
+  mutable RayTree m_rayTree;  // m_tree laid out for the walk, after every refresh that changed it
   mutable std::vector<Entry> m_entries;  // in serial order; the tree's user data indexes it
   mutable std::vector<Piece> m_pieces;
   mutable std::vector<Plane> m_planes;
-  mutable bool m_rebuilt = false;
 
  public:
   // m: how far a body may move before its proxy moves in the tree. Small:

@@ -1,7 +1,7 @@
 #pragma once
 // A ray as the queries cast it: the segment origin + t delta for fractions
 // t in [0, 1] (of the whole segment), and the slab test of such a segment
-// against an axis-aligned box, which the AABB tree's ray walk uses to prune.
+// against an axis-aligned box, with which the ray tree's walk prunes.
 
 #include <algorithm>
 #include <cmath>
@@ -40,12 +40,16 @@ struct RaySegment {
 // axis's slab holds the segment between two fractions, and the box holds
 // it where all three intervals overlap. Branch-free: the walk of the tree
 // runs it twice per node.
-inline double segmentEntersBox(const RaySegment& ray, const Aabb& box, double maxFraction) {
-  const Eigen::Array3d t0 = (box.min - ray.origin).array() * ray.inverseDelta.array();
-  const Eigen::Array3d t1 = (box.max - ray.origin).array() * ray.inverseDelta.array();
+inline double segmentEntersBox(const RaySegment& ray, const Eigen::Array3d& lower, const Eigen::Array3d& upper,
+                               double maxFraction) {
+  const Eigen::Array3d t0 = (lower - ray.origin.array()) * ray.inverseDelta.array();
+  const Eigen::Array3d t1 = (upper - ray.origin.array()) * ray.inverseDelta.array();
   const double near = std::max(t0.min(t1).maxCoeff(), 0.0);
   const double far = std::min(t0.max(t1).minCoeff(), maxFraction);
   return near <= far ? near : std::numeric_limits<double>::infinity();
+}
+inline double segmentEntersBox(const RaySegment& ray, const Aabb& box, double maxFraction) {
+  return segmentEntersBox(ray, box.min.array(), box.max.array(), maxFraction);
 }
 
 }  // namespace rbsim
