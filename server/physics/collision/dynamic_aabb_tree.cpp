@@ -309,28 +309,95 @@ void DynamicAabbTree::rebuildTopDown() {
   }
   for (std::size_t i = 0; i < m_nodes.size(); ++i)
     if (m_nodes[i].height > 0) freeNode(static_cast<int>(i));
-  m_root = buildTopDown(leaves.data(), leaves.size());
+  m_root = buildSubtree(leaves.data(), leaves.size());
   m_nodes[at(m_root)].parent = kNull;
 }
 
-int DynamicAabbTree::buildTopDown(int* leaves, std::size_t count) {
+// Splits the leaves in two by the surface-area heuristic, binned (Wald,
+// "On fast construction of SAH-based bounding volume hierarchies", 2007):
+// along each axis the leaves' centres fall into kBins bins, and of the
+// kBins − 1 planes between bins the one with the least
+// count(left) area(left) + count(right) area(right) wins. Leaves whose
+// centres all fall in one bin are split at the median instead.
+std::vector<int> DynamicAabbTree::createProxiesTopDown(const std::vector<Aabb>& tight) {
+  assert(m_root == kNull);
+  std::vector<int> proxies;
+  proxies.reserve(tight.size());
+  for (std::size_t k = 0; k < tight.size(); ++k) {
+    assert(!tight[k].isEmpty());
+    const int proxy = allocateNode();
+    m_nodes[at(proxy)].box = tight[k].fattened(m_fatMargin);
+    m_nodes[at(proxy)].userData = static_cast<int32_t>(k);
+    proxies.push_back(proxy);
+  }
+  m_proxyCount += static_cast<int>(tight.size());
+  if (proxies.empty()) return proxies;
+  std::vector<int> leaves = proxies;
+  m_root = buildSubtree(leaves.data(), leaves.size());
+  m_nodes[at(m_root)].parent = kNull;
+  return proxies;
+}
+
+int DynamicAabbTree::buildSubtree(int* leaves, std::size_t count) {
   if (count == 1) return leaves[0];
+  constexpr int kBins = 16;
   Aabb centers = Aabb::empty();
   for (std::size_t i = 0; i < count; ++i) centers.include(m_nodes[at(leaves[i])].box.center());
-  int axis = 0;
   const Vec3 extent = centers.max - centers.min;
-  if (extent.y() > extent[axis]) axis = 1;
-  if (extent.z() > extent[axis]) axis = 2;
-  // The median by centre along the axis, ties by id: a total order, so the
-  // halves do not depend on how nth_element breaks ties.
-  const std::size_t half = count / 2;
-  std::nth_element(leaves, leaves + half, leaves + count, [&](int a, int b) {
-    const double ca = m_nodes[at(a)].box.min[axis] + m_nodes[at(a)].box.max[axis];
-    const double cb = m_nodes[at(b)].box.min[axis] + m_nodes[at(b)].box.max[axis];
-    return ca < cb || (ca == cb && a < b);
-  });
-  const int child1 = buildTopDown(leaves, half);
-  const int child2 = buildTopDown(leaves + half, count - half);
+  const auto binOf = [&](int leaf, int axis) {
+    const double offset = m_nodes[at(leaf)].box.center()[axis] - centers.min[axis];
+    return std::min(static_cast<int>(kBins * offset / extent[axis]), kBins - 1);
+  };
+  int bestAxis = -1;
+  int bestPlane = 0;  // leaves in bins [0, bestPlane] go left
+  double bestCost = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(extent[axis] > 0.0)) continue;
+    Aabb boxes[kBins];
+    int counts[kBins] = {};
+    for (std::size_t i = 0; i < count; ++i) {
+      const int bin = binOf(leaves[i], axis);
+      boxes[bin] = boxes[bin].merged(m_nodes[at(leaves[i])].box);
+      ++counts[bin];
+    }
+    // Sweeps from the right, then from the left: cost of each plane.
+    double rightArea[kBins];
+    int rightCount[kBins];
+    Aabb right = Aabb::empty();
+    int rightLeaves = 0;
+    for (int bin = kBins - 1; bin > 0; --bin) {
+      right = right.merged(boxes[bin]);
+      rightLeaves += counts[bin];
+      rightArea[bin] = right.isEmpty() ? 0.0 : right.halfSurfaceArea();
+      rightCount[bin] = rightLeaves;
+    }
+    Aabb left = Aabb::empty();
+    int leftLeaves = 0;
+    for (int plane = 0; plane < kBins - 1; ++plane) {
+      left = left.merged(boxes[plane]);
+      leftLeaves += counts[plane];
+      if (leftLeaves == 0 || rightCount[plane + 1] == 0) continue;
+      const double cost = leftLeaves * left.halfSurfaceArea() + rightCount[plane + 1] * rightArea[plane + 1];
+      if (cost < bestCost) {
+        bestCost = cost;
+        bestAxis = axis;
+        bestPlane = plane;
+      }
+    }
+  }
+  std::size_t half;
+  if (bestAxis >= 0) {
+    // A stable partition: the order within each side stays that of the
+    // input, so the result depends only on the leaves.
+    half = static_cast<std::size_t>(
+        std::stable_partition(leaves, leaves + count, [&](int leaf) { return binOf(leaf, bestAxis) <= bestPlane; }) -
+        leaves);
+  } else {
+    // Centres all in one point: the median by id.
+    half = count / 2;
+  }
+  const int child1 = buildSubtree(leaves, half);
+  const int child2 = buildSubtree(leaves + half, count - half);
   const int node = allocateNode();
   Node& parent = m_nodes[at(node)];
   parent.child1 = child1;

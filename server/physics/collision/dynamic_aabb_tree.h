@@ -46,15 +46,19 @@ class DynamicAabbTree {
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const;
 
-  // Rebuilds the tree's inner nodes from its leaves, top down: each node's
-  // leaves are split in two halves at the median of their centres along the
-  // longest axis of those centres' box (a median-split BVH, as in Bullet's
+  // Rebuilds the tree's inner nodes from its leaves, top down, splitting
+  // each node's leaves by the binned surface-area heuristic (the
+  // insertion's cost measure, applied to all leaves at once; cf. Bullet's
   // btDbvt::optimizeTopDown). Proxies keep their ids and boxes. Insertions
   // one at a time leave a tree built for pairs; the top-down tree is
   // shallower and its nodes overlap less, which a ray walk pays for at
   // every node. Deterministic: the split depends only on the leaves' boxes
   // and ids.
   void rebuildTopDown();
+  // For an empty tree: a proxy for each of `tight` (fattened), proxy k with
+  // user data k, built top down at once as rebuildTopDown does, rather than
+  // inserted one by one. Returns the proxies' ids.
+  std::vector<int> createProxiesTopDown(const std::vector<Aabb>& tight);
 
   // The tree's shape, read only, for walks of its own (the ray casts'
   // query/ray_tree.h): the root (kNull when empty) and, for an inner node,
@@ -94,7 +98,7 @@ class DynamicAabbTree {
   void refit(int node);
   void replaceChild(int parent, int oldChild, int newChild);
   bool isLeafProxy(int proxy) const;
-  int buildTopDown(int* leaves, std::size_t count);
+  int buildSubtree(int* leaves, std::size_t count);
 
   std::vector<Node> m_nodes;
   int m_root = kNull;

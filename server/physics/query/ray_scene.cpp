@@ -51,15 +51,15 @@ bool RayScene::sameBodies(std::span<const Body> bodies) const {
 }
 
 void RayScene::rebuild(std::span<const Body> bodies) const {
-  const bool rebuilt = !sameBodies(bodies);
-  bool moved = rebuilt;
-  if (rebuilt) {
-    m_tree = DynamicAabbTree(kFatMargin);
-    m_entries.clear();
-  }
+  // The entries, pieces and planes of the bodies as they are now, and each
+  // entry's box.
+  const bool sameEntries = sameBodies(bodies);
+  if (!sameEntries) m_entries.clear();
   m_pieces.clear();
   m_planes.clear();
+  m_boxes.clear();
   std::size_t next = 0;
+  std::size_t leaving = 0;  // entries whose body left its fat box
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const Collider* collider = castableCollider(body);
@@ -69,8 +69,8 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
       m_planes.push_back({worldHalfSpace(*collider->plane, pose), body.serial(), static_cast<int>(i),
                           body.description().collisionFilter});
     if (collider->pieces.empty()) continue;
-    if (rebuilt) m_entries.emplace_back();
-    Entry& entry = m_entries[next];
+    if (!sameEntries) m_entries.emplace_back();
+    Entry& entry = m_entries[next++];
     entry.serial = body.serial();
     entry.bodyIndex = static_cast<int>(i);
     entry.filter = body.description().collisionFilter;
@@ -80,16 +80,25 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
       const ConvexPiece& piece = collider->pieces[p];
       m_pieces.push_back({pose * piece.placement, &piece.geometry, partOfPiece(*collider, p)});
     }
-    const Aabb box = transformedAabb(collider->bounds, pose);
-    if (entry.proxy == DynamicAabbTree::kNull) {
-      entry.proxy = m_tree.createProxy(box, static_cast<int32_t>(next));
-    } else {
-      moved = m_tree.moveProxy(entry.proxy, box, Vec3::Zero()) || moved;
-    }
-    ++next;
+    const Aabb& box = m_boxes.emplace_back(transformedAabb(collider->bounds, pose));
+    if (sameEntries && !m_tree.fatAabb(entry.proxy).contains(box)) ++leaving;
   }
-  if (rebuilt) m_tree.rebuildTopDown();
-  if (moved) m_rayTree.assign(m_tree);
+
+  // The tree: built anew, top down, when the bodies changed or many of them
+  // left their fat boxes (one insertion per moved proxy would cost more
+  // than the whole build, and leave a worse tree); else its proxies follow
+  // their bodies one by one, and a pile at rest moves none.
+  bool changed = true;
+  if (!sameEntries || leaving > m_entries.size() / kRebuildShare) {
+    m_tree = DynamicAabbTree(kFatMargin);
+    const std::vector<int> proxies = m_tree.createProxiesTopDown(m_boxes);
+    for (std::size_t e = 0; e < m_entries.size(); ++e) m_entries[e].proxy = proxies[e];
+  } else {
+    changed = false;
+    for (std::size_t e = 0; e < m_entries.size(); ++e)
+      changed = m_tree.moveProxy(m_entries[e].proxy, m_boxes[e], Vec3::Zero()) || changed;
+  }
+  if (changed) m_rayTree.assign(m_tree);
 }
 
 std::optional<SceneHit> RayScene::hitBody(const Entry& entry, const RaySegment& segment,

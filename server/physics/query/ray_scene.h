@@ -132,12 +132,16 @@ class RayScene {
   mutable std::vector<Entry> m_entries;  // in serial order; the tree's user data indexes it
   mutable std::vector<Piece> m_pieces;
   mutable std::vector<Plane> m_planes;
+  mutable std::vector<Aabb> m_boxes;  // scratch of a refresh: each entry's box
 
  public:
   // m: how far a body may move before its proxy moves in the tree. Small:
   // a fat box only costs rays false candidates, and the scene is refreshed
   // at most once a step.
   static constexpr double kFatMargin = 0.01;
+  // When more than 1/kRebuildShare of the bodies left their fat boxes
+  // since the last refresh, the tree is rebuilt rather than followed.
+  static constexpr std::size_t kRebuildShare = 8;
 };
 
 // Whether `a` is a nearer hit than `b`: by fraction, then body serial, then
