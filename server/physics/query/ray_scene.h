@@ -4,8 +4,9 @@
 // dynamic_aabb_tree.h), each piece placed in the world, and the planes
 // aside (infinite, they are tested on every ray). The tree is kept as the
 // broad phase keeps its own (a proxy moves only when its body leaves its
-// fat box), rebuilt top down when the bodies change, and copied after each
-// change into a layout made for rays (query/ray_tree.h). The three queries
+// fat box), built anew top down when the bodies change or many of them
+// left their fat boxes, and copied after each change into a layout made
+// for rays (query/ray_tree.h). The three queries
 // walk that copy with the slab test, nearest boxes first, and test the
 // pieces of the bodies whose boxes the ray crosses.
 //
