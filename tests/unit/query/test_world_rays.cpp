@@ -254,6 +254,24 @@ TEST(WorldRays, SeesTheBodiesWhereTheyAreNow) {
   EXPECT_FALSE(copy.castRay(down));
 }
 
+// A body moved by less than the ray tree's fat margin keeps its proxy where
+// it was, yet the rays see it where it is now.
+TEST(WorldRays, SmallMovesInsideTheFatBoxAreSeen) {
+  World world;
+  const BodyId box = add(world, "box", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0});
+  add(world, "other", SphereShape{0.5}, {0, 5, 0});
+  const Ray ray{{0, 0, 0}, {4, 0, 0}};
+  EXPECT_NEAR(world.castRay(ray)->point.x(), 1.5, kTol);
+  for (const double x : {2.001, 1.997, 2.004}) {
+    RigidState state = world.body(box).state();
+    state.position.x() = x;
+    ASSERT_TRUE(world.setBodyState(box, state));
+    const auto hit = world.castRay(ray);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->point.x(), x - 0.5, kTol);
+  }
+}
+
 // Random rays through the pile's bounds, from outside it.
 std::vector<Ray> pileRays(int count, uint64_t seed) {
   scenes::SceneRandom random(seed);
