@@ -18,7 +18,10 @@ import sys
 
 # Lowest first. common/ holds plain utilities (Expected, DeepCopyPtr) that
 # know nothing of physics; parallel/ the thread pool the step's loops share; world/ sits on top and ties the others together.
-LAYERS = ["common", "parallel", "math", "geometry", "mass", "body", "collision", "solver", "joint", "world"]
+# query/ holds the ray casts through the bodies' tree, which the world
+# answers with.
+LAYERS = ["common", "parallel", "math", "geometry", "mass", "body", "collision", "query", "solver", "joint",
+          "world"]
 
 # The public headers (include/rbsim/physics/, the library's API) sit in the
 # layers of what they declare.
@@ -43,6 +46,7 @@ PUBLIC_HEADERS = {
     "body_definition.h": "body",
     "body_view.h": "body",
     "contact_settings.h": "collision",
+    "ray_cast.h": "collision",
     "contacts.h": "solver",
     "joint_definition.h": "joint",
     "numerical_guard.h": "world",

@@ -137,8 +137,10 @@ Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBod
             auto partCollider = buildCollider(toShape(part.shape), partToBody,
                                               sourceName + " compound part " + std::to_string(i));
             if (!partCollider) return partCollider.error();
-            for (ConvexPiece& piece : partCollider->pieces)
+            for (ConvexPiece& piece : partCollider->pieces) {
               collider.pieces.push_back(std::move(piece));
+              collider.partOfPiece.push_back(static_cast<int>(i));
+            }
             collider.bounds = collider.bounds.merged(partCollider->bounds);
           }
           return collider;

@@ -25,7 +25,16 @@ struct Collider {
   std::vector<ConvexPiece> pieces;  // empty for a plane
   std::optional<PlaneShape> plane;  // a half-space, in the body frame
   Aabb bounds = Aabb::empty();      // body frame; everything for a plane
+  // Per piece, the compound part it came from (a mesh part may give several
+  // pieces, one per connected component); empty for any other shape, whose
+  // pieces are all part 0. What a ray cast reports as the part it hit.
+  std::vector<int> partOfPiece;
 };
+
+// The compound part of `piece` (0 for shapes that are not compounds).
+inline int partOfPiece(const Collider& collider, std::size_t piece) {
+  return collider.partOfPiece.empty() ? 0 : collider.partOfPiece[piece];
+}
 
 // Builds the collider of `shape`, whose frame sits at `shapeToBody` in body
 // space. Meshes become the convex hulls of their connected components

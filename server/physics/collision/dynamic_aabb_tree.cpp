@@ -296,6 +296,118 @@ int DynamicAabbTree::rotateUp(int node, int tallChild) {
   return c;
 }
 
+void DynamicAabbTree::rebuildTopDown() {
+  if (m_root == kNull) return;
+  std::vector<int> leaves;
+  leaves.reserve(static_cast<std::size_t>(m_proxyCount));
+  // Gather the leaves in the order of their ids, so that the build depends
+  // on the boxes and ids alone, and free every inner node.
+  for (std::size_t i = 0; i < m_nodes.size(); ++i) {
+    if (m_nodes[i].height == 0) {
+      leaves.push_back(static_cast<int>(i));
+    }
+  }
+  for (std::size_t i = 0; i < m_nodes.size(); ++i)
+    if (m_nodes[i].height > 0) freeNode(static_cast<int>(i));
+  m_root = buildSubtree(leaves.data(), leaves.size());
+  m_nodes[at(m_root)].parent = kNull;
+}
+
+// Splits the leaves in two by the surface-area heuristic, binned (Wald,
+// "On fast construction of SAH-based bounding volume hierarchies", 2007):
+// along each axis the leaves' centres fall into kBins bins, and of the
+// kBins − 1 planes between bins the one with the least
+// count(left) area(left) + count(right) area(right) wins. Leaves whose
+// centres all fall in one bin are split at the median instead.
+std::vector<int> DynamicAabbTree::createProxiesTopDown(const std::vector<Aabb>& tight) {
+  assert(m_root == kNull);
+  std::vector<int> proxies;
+  proxies.reserve(tight.size());
+  for (std::size_t k = 0; k < tight.size(); ++k) {
+    assert(!tight[k].isEmpty());
+    const int proxy = allocateNode();
+    m_nodes[at(proxy)].box = tight[k].fattened(m_fatMargin);
+    m_nodes[at(proxy)].userData = static_cast<int32_t>(k);
+    proxies.push_back(proxy);
+  }
+  m_proxyCount += static_cast<int>(tight.size());
+  if (proxies.empty()) return proxies;
+  std::vector<int> leaves = proxies;
+  m_root = buildSubtree(leaves.data(), leaves.size());
+  m_nodes[at(m_root)].parent = kNull;
+  return proxies;
+}
+
+int DynamicAabbTree::buildSubtree(int* leaves, std::size_t count) {
+  if (count == 1) return leaves[0];
+  constexpr int kBins = 16;
+  Aabb centers = Aabb::empty();
+  for (std::size_t i = 0; i < count; ++i) centers.include(m_nodes[at(leaves[i])].box.center());
+  const Vec3 extent = centers.max - centers.min;
+  const auto binOf = [&](int leaf, int axis) {
+    const double offset = m_nodes[at(leaf)].box.center()[axis] - centers.min[axis];
+    return std::min(static_cast<int>(kBins * offset / extent[axis]), kBins - 1);
+  };
+  int bestAxis = -1;
+  int bestPlane = 0;  // leaves in bins [0, bestPlane] go left
+  double bestCost = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(extent[axis] > 0.0)) continue;
+    Aabb boxes[kBins];
+    int counts[kBins] = {};
+    for (std::size_t i = 0; i < count; ++i) {
+      const int bin = binOf(leaves[i], axis);
+      boxes[bin] = boxes[bin].merged(m_nodes[at(leaves[i])].box);
+      ++counts[bin];
+    }
+    // Sweeps from the right, then from the left: cost of each plane.
+    double rightArea[kBins];
+    int rightCount[kBins];
+    Aabb right = Aabb::empty();
+    int rightLeaves = 0;
+    for (int bin = kBins - 1; bin > 0; --bin) {
+      right = right.merged(boxes[bin]);
+      rightLeaves += counts[bin];
+      rightArea[bin] = right.isEmpty() ? 0.0 : right.halfSurfaceArea();
+      rightCount[bin] = rightLeaves;
+    }
+    Aabb left = Aabb::empty();
+    int leftLeaves = 0;
+    for (int plane = 0; plane < kBins - 1; ++plane) {
+      left = left.merged(boxes[plane]);
+      leftLeaves += counts[plane];
+      if (leftLeaves == 0 || rightCount[plane + 1] == 0) continue;
+      const double cost = leftLeaves * left.halfSurfaceArea() + rightCount[plane + 1] * rightArea[plane + 1];
+      if (cost < bestCost) {
+        bestCost = cost;
+        bestAxis = axis;
+        bestPlane = plane;
+      }
+    }
+  }
+  std::size_t half;
+  if (bestAxis >= 0) {
+    // A stable partition: the order within each side stays that of the
+    // input, so the result depends only on the leaves.
+    half = static_cast<std::size_t>(
+        std::stable_partition(leaves, leaves + count, [&](int leaf) { return binOf(leaf, bestAxis) <= bestPlane; }) -
+        leaves);
+  } else {
+    // Centres all in one point: the median by id.
+    half = count / 2;
+  }
+  const int child1 = buildSubtree(leaves, half);
+  const int child2 = buildSubtree(leaves + half, count - half);
+  const int node = allocateNode();
+  Node& parent = m_nodes[at(node)];
+  parent.child1 = child1;
+  parent.child2 = child2;
+  m_nodes[at(child1)].parent = node;
+  m_nodes[at(child2)].parent = node;
+  refit(node);
+  return node;
+}
+
 bool DynamicAabbTree::isValid() const {
   if (m_root == kNull) return m_proxyCount == 0;
   if (m_nodes[at(m_root)].parent != kNull) return false;

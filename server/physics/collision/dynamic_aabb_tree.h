@@ -46,6 +46,29 @@ class DynamicAabbTree {
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const;
 
+  // Rebuilds the tree's inner nodes from its leaves, top down, splitting
+  // each node's leaves by the binned surface-area heuristic (the
+  // insertion's cost measure, applied to all leaves at once; cf. Bullet's
+  // btDbvt::optimizeTopDown). Proxies keep their ids and boxes. Insertions
+  // one at a time leave a tree built for pairs; the top-down tree is
+  // shallower and its nodes overlap less, which a ray walk pays for at
+  // every node. Deterministic: the split depends only on the leaves' boxes
+  // and ids.
+  void rebuildTopDown();
+  // For an empty tree: a proxy for each of `tight` (fattened), proxy k with
+  // user data k, built top down at once as rebuildTopDown does, rather than
+  // inserted one by one. Returns the proxies' ids.
+  std::vector<int> createProxiesTopDown(const std::vector<Aabb>& tight);
+
+  // The tree's shape, read only, for walks of its own (the ray casts'
+  // query/ray_tree.h): the root (kNull when empty) and, for an inner node,
+  // its two children; a node's box (a leaf's is its fat box).
+  int root() const { return m_root; }
+  bool isLeaf(int node) const { return m_nodes[static_cast<std::size_t>(node)].isLeaf(); }
+  int child1(int node) const { return m_nodes[static_cast<std::size_t>(node)].child1; }
+  int child2(int node) const { return m_nodes[static_cast<std::size_t>(node)].child2; }
+  const Aabb& box(int node) const { return m_nodes[static_cast<std::size_t>(node)].box; }
+
   int proxyCount() const { return m_proxyCount; }
   int height() const;  // edges on the longest root-to-leaf path; 0 when empty
   // Checks parent links, heights, that each parent box holds its children
@@ -75,6 +98,7 @@ class DynamicAabbTree {
   void refit(int node);
   void replaceChild(int parent, int oldChild, int newChild);
   bool isLeafProxy(int proxy) const;
+  int buildSubtree(int* leaves, std::size_t count);
 
   std::vector<Node> m_nodes;
   int m_root = kNull;

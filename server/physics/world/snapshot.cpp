@@ -854,6 +854,7 @@ Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
     world.loads.push_back(load);
     world.loadsSeen = world.loadsSeen || load.active;
     world.denseIds.push_back(id);
+    ++world.revision;
   }
   if (in.failed()) return failure();
   std::size_t slotsInUse = 0;

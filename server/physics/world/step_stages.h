@@ -10,6 +10,7 @@
 //   continuous_collision.cpp  no tunnelling for flagged fast bodies
 //   collision_filtering.cpp   which pairs of bodies never collide
 //   snapshot.cpp              the world as bytes and back
+//   ray_queries.cpp           ray casts between steps (query/ray_scene.h)
 // World (world.cpp) forwards its public functions to them.
 
 #include <cstdint>

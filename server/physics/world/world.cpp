@@ -315,6 +315,7 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   m_data->loads.emplace_back();
   m_data->maxSquaredSpeed = m_data->maxSquaredSpin = -1.0;  // its velocities are the caller's
   m_data->denseIds.push_back(id);
+  ++m_data->revision;
   return id;
 }
 
@@ -337,6 +338,7 @@ Expected<bool> World::removeBody(BodyId id) {
   slot.denseIndex = -1;
   ++slot.generation;
   m_data->freeSlots.push_back(id.index - 1);
+  ++m_data->revision;
   return true;
 }
 
@@ -436,6 +438,7 @@ Expected<bool> World::setBodyState(BodyId id, const RigidState& state) {
     return Error{"body '" + target.name() + "': a state must be finite, its quaternion non-zero"};
   target.setState(state);
   target.wake();
+  ++m_data->revision;
   m_data->maxSquaredSpeed = m_data->maxSquaredSpin = -1.0;
   return true;
 }
@@ -479,6 +482,7 @@ Expected<bool> World::freezeBody(BodyId id, FreezeReason reason) {
   frozen.setFreezeReason(reason);
   ++m_data->frozenBodies;
   frozen.holdAtLastGoodPose();
+  ++m_data->revision;
   m_data->loads[denseIndexOf(*m_data, id)].clear();
   (void)removeJointsOf(*m_data, id);
   return true;

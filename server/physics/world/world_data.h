@@ -20,6 +20,7 @@
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
 #include "physics/parallel/task_pool.h"
+#include "physics/query/ray_scene.h"
 #include "physics/solver/contact_solver.h"
 #include "physics/solver/soft_step_solver.h"
 #include "rbsim/physics/world.h"
@@ -92,6 +93,13 @@ struct WorldData {
   // Name lookup only; never iterated, so its order cannot leak into a step.
   std::unordered_map<std::string, BodyId> idByName;
   int64_t stepCount = 0;
+  // Bumped by every change of a body's pose or of the set of bodies that
+  // rays may hit: each step, createBody, removeBody, setBodyState and
+  // freezeBody. The ray-cast scene is refreshed when it has changed.
+  uint64_t revision = 0;
+  // The bodies as ray casts see them, refreshed lazily (query/ray_scene.h);
+  // a copy starts empty.
+  RayScene rayScene;
   int32_t lastSerial = 0;
   int collidingBodies = 0;   // bodies with collision geometry
   int continuousBodies = 0;  // dynamic bodies flagged for continuous collision

@@ -94,6 +94,7 @@ void stepWorld(WorldData& world) {
   clearLoads(world);
   ++world.stepCount;
   guardStates(world);
+  ++world.revision;  // the bodies moved: the ray-cast scene follows at its next query
 }
 
 ForceInputs forcesOn(const WorldData& world, std::size_t denseIndex) {

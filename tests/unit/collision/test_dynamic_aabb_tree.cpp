@@ -154,6 +154,38 @@ TEST(DynamicAabbTree, QueryStopsWhenTheVisitorSaysSo) {
   EXPECT_EQ(visits, 3);
 }
 
+// The ray casts' rebuild: the same proxies, ids and boxes under new inner
+// nodes, a valid tree, no taller than the insertions' one, that keeps
+// working with moves and removals afterwards.
+TEST(DynamicAabbTree, RebuiltTopDownKeepsItsProxiesAndStaysValid) {
+  SceneRandom random(0x70D0);
+  DynamicAabbTree tree(0.05);
+  std::vector<int> proxies;
+  for (int i = 0; i < 500; ++i) proxies.push_back(tree.createProxy(randomBox(random, 10.0), i));
+  const int insertedHeight = tree.height();
+  std::vector<Aabb> boxes;
+  for (const int proxy : proxies) boxes.push_back(tree.fatAabb(proxy));
+  tree.rebuildTopDown();
+  ASSERT_TRUE(tree.isValid());
+  EXPECT_EQ(tree.proxyCount(), 500);
+  EXPECT_LE(tree.height(), insertedHeight);
+  for (std::size_t i = 0; i < proxies.size(); ++i) {
+    EXPECT_EQ(tree.userData(proxies[i]), static_cast<int32_t>(i));
+    EXPECT_EQ(tree.fatAabb(proxies[i]).min, boxes[i].min);
+  }
+  for (int round = 0; round < 50; ++round) {
+    const Aabb box = randomBox(random, 12.0);
+    ASSERT_EQ(queried(tree, box), bruteForce(tree, proxies, box));
+  }
+  for (int i = 0; i < 100; ++i) tree.moveProxy(proxies[static_cast<std::size_t>(i)], randomBox(random, 10.0), Vec3::Zero());
+  for (int i = 100; i < 200; ++i) tree.destroyProxy(proxies[static_cast<std::size_t>(i)]);
+  EXPECT_TRUE(tree.isValid());
+  DynamicAabbTree single(0.05);
+  single.createProxy(randomBox(random, 1.0), 0);
+  single.rebuildTopDown();
+  EXPECT_TRUE(single.isValid());
+}
+
 TEST(DynamicAabbTree, SameCallsGiveTheSameTree) {
   const auto build = [] {
     SceneRandom random(0x5EEDu);

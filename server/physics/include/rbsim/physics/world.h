@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -24,6 +25,7 @@
 #include "rbsim/physics/contacts.h"
 #include "rbsim/physics/ids.h"
 #include "rbsim/physics/joint_definition.h"
+#include "rbsim/physics/ray_cast.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world_settings.h"
 
@@ -181,6 +183,28 @@ class World {
   Expected<bool> setPairCollision(BodyId a, BodyId b, bool collide);
   bool canCollide(BodyId a, BodyId b) const;
   std::vector<std::pair<BodyId, BodyId>> excludedPairs() const;
+
+  // Ray casts against the bodies as they are now (rbsim/physics/ray_cast.h
+  // says what a ray hits and what a hit reports; docs/queries.md). Between
+  // steps only, never during one; any number of threads may cast at once.
+  // The first cast after a change (a step, a body added, removed, placed
+  // or frozen) brings the world's ray-cast tree up to date. An invalid
+  // (non-null) filter.excluded throws std::invalid_argument, as body().
+  //  - castRay: the nearest hit, ties going to the body created first and
+  //    then to its lower piece.
+  //  - castRayAll: every body the ray hits, once each (where it first
+  //    enters the body), nearest first, ties as for castRay.
+  //  - castRayAny: whether the ray hits anything; stops at the first hit
+  //    found (an occlusion test).
+  //  - castRays: castRay of every ray, hits[i] for rays[i] (hits.size()
+  //    must equal rays.size(), or std::invalid_argument), shared among the
+  //    world's threads (settings().threads). Each answer is bit for bit
+  //    castRay's, on any number of threads.
+  std::optional<RayHit> castRay(const Ray& ray, const RayFilter& filter = {}) const;
+  std::vector<RayHit> castRayAll(const Ray& ray, const RayFilter& filter = {}) const;
+  bool castRayAny(const Ray& ray, const RayFilter& filter = {}) const;
+  void castRays(std::span<const Ray> rays, std::span<std::optional<RayHit>> hits,
+                const RayFilter& filter = {}) const;
 
   // The contacts of the last step (solved impulses included), sorted by
   // (serial A, serial B, piece A, piece B).

@@ -1,0 +1,171 @@
+#include "physics/query/ray_scene.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "physics/query/ray_shapes.h"
+
+namespace rbsim {
+
+namespace {
+
+constexpr std::size_t at(int index) {
+  return static_cast<std::size_t>(index);
+}
+
+// What the scene takes of a body: colliding, and not frozen (a frozen body
+// is out of the simulation, as the broad phase has it).
+const Collider* castableCollider(const Body& body) {
+  if (body.isFrozen()) return nullptr;
+  return body.description().collider.get();
+}
+
+// The normal of a hit: the span's, turned into the world, or opposite the
+// ray for a ray that starts inside.
+Vec3 worldNormal(const RayEntry& entry, const Mat3& rotation, const Vec3& delta) {
+  if (entry.inside) return -delta.normalized();
+  return rotation * entry.normal;
+}
+
+}  // namespace
+
+void RayScene::refresh(std::span<const Body> bodies, uint64_t revision) const {
+  if (m_builtRevision.load(std::memory_order_acquire) == revision) return;
+  const std::lock_guard lock(m_refreshLock);
+  if (m_builtRevision.load(std::memory_order_relaxed) == revision) return;
+  rebuild(bodies);
+  m_builtRevision.store(revision, std::memory_order_release);
+}
+
+// Whether the bodies with pieces are the entries' bodies, in the same order:
+// then the tree is kept and its proxies follow the bodies.
+bool RayScene::sameBodies(std::span<const Body> bodies) const {
+  std::size_t next = 0;
+  for (const Body& body : bodies) {
+    const Collider* collider = castableCollider(body);
+    if (!collider || collider->pieces.empty()) continue;
+    if (next == m_entries.size() || m_entries[next].serial != body.serial()) return false;
+    ++next;
+  }
+  return next == m_entries.size();
+}
+
+void RayScene::rebuild(std::span<const Body> bodies) const {
+  // The entries, pieces and planes of the bodies as they are now, and each
+  // entry's box.
+  const bool sameEntries = sameBodies(bodies);
+  if (!sameEntries) m_entries.clear();
+  m_pieces.clear();
+  m_planes.clear();
+  m_boxes.clear();
+  std::size_t next = 0;
+  std::size_t leaving = 0;  // entries whose body left its fat box
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    const Collider* collider = castableCollider(body);
+    if (!collider) continue;
+    const Transform pose{body.rotation(), body.position()};
+    if (collider->plane)
+      m_planes.push_back({worldHalfSpace(*collider->plane, pose), body.serial(), static_cast<int>(i),
+                          body.description().collisionFilter});
+    if (collider->pieces.empty()) continue;
+    if (!sameEntries) m_entries.emplace_back();
+    Entry& entry = m_entries[next++];
+    entry.serial = body.serial();
+    entry.bodyIndex = static_cast<int>(i);
+    entry.filter = body.description().collisionFilter;
+    entry.firstPiece = static_cast<int>(m_pieces.size());
+    entry.pieceCount = static_cast<int>(collider->pieces.size());
+    for (std::size_t p = 0; p < collider->pieces.size(); ++p) {
+      const ConvexPiece& piece = collider->pieces[p];
+      m_pieces.push_back({pose * piece.placement, &piece.geometry, partOfPiece(*collider, p)});
+    }
+    const Aabb& box = m_boxes.emplace_back(transformedAabb(collider->bounds, pose));
+    if (sameEntries && !m_tree.fatAabb(entry.proxy).contains(box)) ++leaving;
+  }
+
+  // The tree: built anew, top down, when the bodies changed or many of them
+  // left their fat boxes (one insertion per moved proxy would cost more
+  // than the whole build, and leave a worse tree); else its proxies follow
+  // their bodies one by one, and a pile at rest moves none.
+  bool changed = true;
+  if (!sameEntries || leaving > m_entries.size() / kRebuildShare) {
+    m_tree = DynamicAabbTree(kFatMargin);
+    const std::vector<int> proxies = m_tree.createProxiesTopDown(m_boxes);
+    for (std::size_t e = 0; e < m_entries.size(); ++e) m_entries[e].proxy = proxies[e];
+  } else {
+    changed = false;
+    for (std::size_t e = 0; e < m_entries.size(); ++e)
+      changed = m_tree.moveProxy(m_entries[e].proxy, m_boxes[e], Vec3::Zero()) || changed;
+  }
+  if (changed) m_rayTree.assign(m_tree);
+}
+
+std::optional<SceneHit> RayScene::hitBody(const Entry& entry, const RaySegment& segment,
+                                          double maxFraction) const {
+  std::optional<SceneHit> best;
+  for (int p = 0; p < entry.pieceCount; ++p) {
+    const Piece& piece = m_pieces[at(entry.firstPiece + p)];
+    // The ray in the piece's frame: fractions are the same in every frame.
+    const Vec3 origin = piece.pose.applyInverse(segment.origin);
+    const Vec3 direction = piece.pose.inverseRotate(segment.delta);
+    const std::optional<RayEntry> hit = firstEntry(convexSpan(*piece.geometry, origin, direction), maxFraction);
+    if (!hit || (best && !(hit->fraction < best->fraction))) continue;
+    best = SceneHit{entry.bodyIndex, entry.serial, p, piece.part, hit->fraction,
+                    worldNormal(*hit, piece.pose.rotation, segment.delta)};
+    maxFraction = hit->fraction;
+  }
+  return best;
+}
+
+std::optional<SceneHit> RayScene::hitPlane(const Plane& plane, const RaySegment& segment) const {
+  const RaySpan span = halfSpaceSpan(plane.halfSpace.normal, plane.halfSpace.offset, segment.origin, segment.delta);
+  const std::optional<RayEntry> hit = firstEntry(span, 1.0);
+  if (!hit) return std::nullopt;
+  return SceneHit{plane.bodyIndex, plane.serial, 0, 0, hit->fraction,
+                  worldNormal(*hit, Mat3::Identity(), segment.delta)};
+}
+
+std::optional<SceneHit> RayScene::closest(const SceneRay& ray) const {
+  std::optional<SceneHit> best;
+  const auto consider = [&](const std::optional<SceneHit>& hit) {
+    if (hit && (!best || isNearer(*hit, *best))) best = hit;
+  };
+  for (const Plane& plane : m_planes)
+    if (mayHit(ray, plane.bodyIndex, plane.filter)) consider(hitPlane(plane, ray.segment));
+  m_rayTree.cast(ray.segment, best ? best->fraction : 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
+    const double maxFraction = best ? best->fraction : 1.0;
+    if (mayHit(ray, entry.bodyIndex, entry.filter)) consider(hitBody(entry, ray.segment, maxFraction));
+    return best ? best->fraction : 1.0;
+  });
+  return best;
+}
+
+bool RayScene::any(const SceneRay& ray) const {
+  for (const Plane& plane : m_planes)
+    if (mayHit(ray, plane.bodyIndex, plane.filter) && hitPlane(plane, ray.segment)) return true;
+  bool found = false;
+  m_rayTree.cast(ray.segment, 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
+    found = mayHit(ray, entry.bodyIndex, entry.filter) && hitBody(entry, ray.segment, 1.0).has_value();
+    return found ? -1.0 : 1.0;
+  });
+  return found;
+}
+
+void RayScene::all(const SceneRay& ray, std::vector<SceneHit>& hits) const {
+  hits.clear();
+  for (const Plane& plane : m_planes)
+    if (mayHit(ray, plane.bodyIndex, plane.filter))
+      if (const auto hit = hitPlane(plane, ray.segment)) hits.push_back(*hit);
+  m_rayTree.cast(ray.segment, 1.0, [&](int entryIndex) {
+    const Entry& entry = m_entries[at(entryIndex)];
+    if (mayHit(ray, entry.bodyIndex, entry.filter))
+      if (const auto hit = hitBody(entry, ray.segment, 1.0)) hits.push_back(*hit);
+    return 1.0;
+  });
+  std::sort(hits.begin(), hits.end(), isNearer);
+}
+
+}  // namespace rbsim
