@@ -110,8 +110,12 @@ bool before(const Vec3& p, const Vec3& q) {
   return false;
 }
 // Candidates whose depths spread less than this form a flat patch (see
-// reduceContacts): a fifth of the default linear slop.
-constexpr double kFlatSpread = 1e-4;  // m
+// reduceContacts): ten micrometres, a few times what a soft contact's
+// springs leave between the points of a resting face (3 µm under a tower of
+// 20 cubes). A wider band (0.1 mm) took the deepest point away from boxes
+// settling on an edge, which then rocked: the anchors' pile of 1000 boxes
+// kept 0.45 J after 4 s, against 1e-24 J with this one.
+constexpr double kFlatSpread = 1e-5;  // m
 bool better(double value, const Vec3& position, double best, const Vec3& bestPosition) {
   const double tolerance = kTie * std::max(1.0, std::abs(best));
   if (value > best + tolerance) return true;

@@ -28,7 +28,7 @@ void clipIncidentFeature(std::span<const Vec3> reference, const Vec3& referenceN
                          double margin, std::vector<ContactPoint>& out);
 
 // Keeps at most four of `candidates` (all sharing `normal`): the deepest
-// one (of a flat patch, whose depths spread less than 0.1 mm, the one
+// one (of a flat patch, whose depths spread less than 10 µm, the one
 // farthest from its centroid instead, so that the choice does not follow
 // a resting body's micrometre tilts), the one farthest from it, then the
 // two that enclose the largest area, which is what keeps a resting body
