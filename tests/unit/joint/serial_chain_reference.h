@@ -254,6 +254,18 @@ class SerialChainReference {
     }
   }
 
+  // The links' centres of mass at `samples` equal times over `seconds`,
+  // released from rest at q = 0 (RK4 at 1e-5 s).
+  std::vector<std::vector<Vec3>> centresReleasedFromRest(double seconds, int samples) const {
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(dof()), qd = q;
+    std::vector<std::vector<Vec3>> sampled;
+    for (int s = 0; s < samples; ++s) {
+      integrate(q, qd, seconds / samples, 1e-5);
+      sampled.push_back(centres(q));
+    }
+    return sampled;
+  }
+
  private:
   std::vector<Mat6> inertias(const std::vector<Motion>& motions) const {
     std::vector<Mat6> I;

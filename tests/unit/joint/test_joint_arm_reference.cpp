@@ -160,14 +160,7 @@ Arm makeArm(const ArmOptions& options, IntegratorKind integrator, double dt) {
 
 // The reference's centres of mass at `samples` equal times over `seconds`.
 std::vector<std::vector<Vec3>> referenceCentres(const Arm& arm, double seconds, int samples) {
-  const SerialChainReference chain(arm.chain, arm.def.settings.gravity);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(chain.dof()), qd = q;
-  std::vector<std::vector<Vec3>> centres;
-  for (int s = 0; s < samples; ++s) {
-    chain.integrate(q, qd, seconds / samples, 1e-5);
-    centres.push_back(chain.centres(q));
-  }
-  return centres;
+  return SerialChainReference(arm.chain, arm.def.settings.gravity).centresReleasedFromRest(seconds, samples);
 }
 
 struct ArmRun {

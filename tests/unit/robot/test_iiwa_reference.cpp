@@ -70,19 +70,13 @@ Iiwa loadIiwa(double dt, bool damping) {
   return iiwa;
 }
 
-// The largest distance of a link's centre of mass from the reference's,
-// sampled `samples` times over `seconds`, and the largest joint error seen.
+// The reference's centres of mass at `samples` equal times over `seconds`.
 std::vector<std::vector<Vec3>> referenceCentres(const Iiwa& iiwa, double seconds, int samples) {
-  const SerialChainReference chain(iiwa.chain, iiwa.def.settings.gravity);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(chain.dof()), qd = q;
-  std::vector<std::vector<Vec3>> centres;
-  for (int s = 0; s < samples; ++s) {
-    chain.integrate(q, qd, seconds / samples, 1e-5);
-    centres.push_back(chain.centres(q));
-  }
-  return centres;
+  return SerialChainReference(iiwa.chain, iiwa.def.settings.gravity).centresReleasedFromRest(seconds, samples);
 }
 
+// The largest distance of a link's centre of mass from the reference's at
+// its samples over `seconds`, and (in jointError) the largest joint error seen.
 double worstError(const Iiwa& iiwa, const std::vector<std::vector<Vec3>>& reference, double seconds,
                   double& jointError) {
   Expected<World> made = World::fromDef(iiwa.def);
