@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "physics/common/step_part.h"
+
 namespace rbsim {
 
 namespace {
@@ -236,6 +238,7 @@ JointVelocityProjection::JointVelocityProjection(const std::vector<JointLink>& l
 }
 
 void JointVelocityProjection::project(std::vector<SolverBody>& bodies) const {
+  const StepPartScope part(StepPart::Joints);  // called from the contact sweeps
   for (const JointGroupProjection& group : m_groups) group.project(bodies);
 }
 

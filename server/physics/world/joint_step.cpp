@@ -11,6 +11,7 @@
 #include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/body_contact.h"
+#include "physics/common/step_part.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
 #include "physics/joint/joint_velocity_projection.h"
@@ -113,6 +114,7 @@ void pushAlongAxis(const JointLink& link, std::vector<JointBody>& bodies, bool a
 }  // namespace
 
 std::vector<char> findActuatedBodies(const WorldData& world) {
+  const StepPartScope part(StepPart::Joints);
   // A drive moves its joint until it settles; a body's own sleep thresholds
   // (cm/s) are too coarse for a servo creeping to its target, so a drive's
   // joint counts as moving down to this rate.
@@ -132,6 +134,7 @@ std::vector<char> findActuatedBodies(const WorldData& world) {
 }
 
 std::vector<char> findJointedBodies(const WorldData& world) {
+  const StepPartScope part(StepPart::Joints);
   std::vector<char> jointed;
   for (const JointConstraint& joint : world.joints) {
     if (!jointIsEnforced(world, joint)) continue;
@@ -151,6 +154,7 @@ std::vector<char> findJointedBodies(const WorldData& world) {
 std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
                                                                const std::vector<char>& jointed,
                                                                const std::vector<int>& islandOf) {
+  const StepPartScope part(StepPart::Joints);
   const std::size_t n = world.bodies.size();
   std::vector<char> touching(n, 0);  // per island root
   bool any = false;
@@ -190,6 +194,7 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
 
 void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
                                     double h) {
+  const StepPartScope part(StepPart::Joints);
   world.contactActuation.clear();
   const std::size_t n = world.bodies.size();
   std::vector<int> local(n, -1);
@@ -237,6 +242,7 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
 
 void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const std::vector<char>& solving,
                        const std::vector<int>& islandOf, double h) {
+  const StepPartScope part(StepPart::Joints);
   if (jointed.empty()) return;
   const std::size_t n = world.bodies.size();
   // Islands with a jointed body in contact take the semi-implicit step.
