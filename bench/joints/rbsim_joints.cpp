@@ -95,9 +95,11 @@ class RbsimEngine final : public jb::Engine {
     const rbsim::testing::AllocationCounts c = scope.counts();
     m_allocations.total += c.total;
     m_allocations.joints += c.joints;
+    m_allocations.jointNewton += c.jointNewton;
     if (2 * m_steps >= m_sceneSteps) {
       m_steadyAllocations.total += c.total;
       m_steadyAllocations.joints += c.joints;
+      m_steadyAllocations.jointNewton += c.jointNewton;
       ++m_steadySteps;
     }
     ++m_steps;
@@ -131,13 +133,16 @@ class RbsimEngine final : public jb::Engine {
     char text[400];
     std::snprintf(text, sizeof text,
                   "factorisations_per_step=%.3f kept_per_step=%.3f solves_per_step=%.2f allocs_per_step=%.1f "
-                  "joint_allocs_per_step=%.1f steady_allocs_per_step=%.2f steady_joint_allocs_per_step=%.2f",
+                  "joint_allocs_per_step=%.1f newton_allocs_per_step=%.1f steady_allocs_per_step=%.2f "
+                  "steady_joint_allocs_per_step=%.2f steady_newton_allocs_per_step=%.2f",
                   static_cast<double>(now.factorisations - m_start.factorisations) / steps,
                   static_cast<double>(now.kept - m_start.kept) / steps,
                   static_cast<double>(now.solves - m_start.solves) / steps,
                   static_cast<double>(m_allocations.total) / steps, static_cast<double>(m_allocations.joints) / steps,
+                  static_cast<double>(m_allocations.jointNewton) / steps,
                   static_cast<double>(m_steadyAllocations.total) / steady,
-                  static_cast<double>(m_steadyAllocations.joints) / steady);
+                  static_cast<double>(m_steadyAllocations.joints) / steady,
+                  static_cast<double>(m_steadyAllocations.jointNewton) / steady);
     return text;
   }
 

@@ -26,10 +26,28 @@ namespace {
 // initialise (so malloc may count before anything else has run).
 constinit thread_local std::uint64_t t_total = 0;
 constinit thread_local std::uint64_t t_joints = 0;
+constinit thread_local std::uint64_t t_jointNewton = 0;
+constinit thread_local bool t_trace = false;
+
+}  // namespace
+
+// Called for each allocation in joint code while traceJointAllocations is
+// on: to see where one comes from,
+//   gdb -ex 'break rbsim_joint_allocation' -ex run --args build/tests/test_joint_allocations
+// and `bt` at the break.
+extern "C" __attribute__((noinline)) void rbsim_joint_allocation() { asm volatile(""); }
+
+namespace {
 
 inline void count() {
   ++t_total;
-  if (rbsim::currentStepPart() == rbsim::StepPart::Joints) ++t_joints;
+  const rbsim::StepPart part = rbsim::currentStepPart();
+  if (part == rbsim::StepPart::Joints) {
+    ++t_joints;
+    if (t_trace) rbsim_joint_allocation();
+  } else if (part == rbsim::StepPart::JointNewton) {
+    ++t_jointNewton;
+  }
 }
 
 }  // namespace
@@ -59,7 +77,9 @@ void free(void* pointer) { __libc_free(pointer); }
 
 namespace rbsim::testing {
 
-AllocationCounts allocationCounts() { return {t_total, t_joints}; }
+AllocationCounts allocationCounts() { return {t_total, t_joints, t_jointNewton}; }
+
+void traceJointAllocations(bool on) { t_trace = on; }
 
 bool allocationCountingWorks() {
   const std::uint64_t before = t_total;

@@ -19,10 +19,15 @@ namespace rbsim::testing {
 struct AllocationCounts {
   std::uint64_t total = 0;   // every allocation of this thread
   std::uint64_t joints = 0;  // those made in StepPart::Joints
+  std::uint64_t jointNewton = 0;  // those made in StepPart::JointNewton (not in `joints`)
 };
 
 // Since the thread started.
 AllocationCounts allocationCounts();
+
+// While on, each allocation in joint code on this thread calls the empty
+// function rbsim_joint_allocation, for a debugger's breakpoint.
+void traceJointAllocations(bool on);
 
 // Whether the counter is in this executable and counting (not under a
 // sanitizer, which replaces malloc itself).
@@ -34,7 +39,7 @@ class AllocationScope {
   AllocationScope() : m_start(allocationCounts()) {}
   AllocationCounts counts() const {
     const AllocationCounts now = allocationCounts();
-    return {now.total - m_start.total, now.joints - m_start.joints};
+    return {now.total - m_start.total, now.joints - m_start.joints, now.jointNewton - m_start.jointNewton};
   }
 
  private:

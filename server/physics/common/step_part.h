@@ -11,6 +11,10 @@ namespace rbsim {
 enum class StepPart : unsigned char {
   Other,
   Joints,  // the joint step and the joints' part of the contact step
+  // Within the joint step, the Newton fallback of its position projection
+  // (a step whose start's rows converge too slowly): Eigen's sparse LU,
+  // which allocates at every factorisation.
+  JointNewton,
 };
 
 inline constinit thread_local StepPart t_stepPart = StepPart::Other;

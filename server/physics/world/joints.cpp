@@ -184,7 +184,7 @@ Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follo
 }
 
 void computeGravityFeedForward(WorldData& world) {
-  const StepPartScope part(StepPart::Joints);
+  const StepPartScope inJoints(StepPart::Joints);
   // Most worlds have no compensated drive: nothing to walk.
   bool any = false;
   for (JointConstraint& joint : world.joints) {
