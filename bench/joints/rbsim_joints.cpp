@@ -15,6 +15,7 @@
 #include "joint_scenes.h"
 #include "physics/joint/row_system.h"
 #include "rbsim/physics/world.h"
+#include "support/allocation_counter.h"
 
 namespace {
 
@@ -37,6 +38,9 @@ class RbsimEngine final : public jb::Engine {
     m_world.emplace(settings);
     m_start = rbsim::RowSystem::counts();
     m_steps = 0;
+    m_sceneSteps = s.steps;
+    m_allocations = m_steadyAllocations = {};
+    m_steadySteps = 0;
     if (s.ground) {
       rbsim::BodyDef ground;
       ground.name = "ground";
@@ -82,8 +86,22 @@ class RbsimEngine final : public jb::Engine {
     }
   }
 
+  // Each step's heap allocations are counted (allocation_counter.h: a
+  // thread-local add per allocation, none when there are none), those of
+  // the second half of the run apart: the steady state.
   void step(double) override {
+    const rbsim::testing::AllocationScope scope;
     m_world->step();
+    const rbsim::testing::AllocationCounts c = scope.counts();
+    m_allocations.total += c.total;
+    m_allocations.joints += c.joints;
+    m_allocations.jointNewton += c.jointNewton;
+    if (2 * m_steps >= m_sceneSteps) {
+      m_steadyAllocations.total += c.total;
+      m_steadyAllocations.joints += c.joints;
+      m_steadyAllocations.jointNewton += c.jointNewton;
+      ++m_steadySteps;
+    }
     ++m_steps;
   }
 
@@ -105,15 +123,26 @@ class RbsimEngine final : public jb::Engine {
   }
 
   // The joint systems' work per step (row_system.h): numeric
-  // factorisations, factors found already made, solves.
+  // factorisations, factors found already made, solves; and the heap
+  // allocations per step, in all and in joint code, over the run and over
+  // its second half.
   std::string repStats() const override {
     const rbsim::RowSystemCounts now = rbsim::RowSystem::counts();
     const double steps = m_steps > 0 ? static_cast<double>(m_steps) : 1.0;
-    char text[160];
-    std::snprintf(text, sizeof text, "factorisations_per_step=%.3f kept_per_step=%.3f solves_per_step=%.2f",
+    const double steady = m_steadySteps > 0 ? static_cast<double>(m_steadySteps) : 1.0;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "factorisations_per_step=%.3f kept_per_step=%.3f solves_per_step=%.2f allocs_per_step=%.1f "
+                  "joint_allocs_per_step=%.1f newton_allocs_per_step=%.1f steady_allocs_per_step=%.2f "
+                  "steady_joint_allocs_per_step=%.2f steady_newton_allocs_per_step=%.2f",
                   static_cast<double>(now.factorisations - m_start.factorisations) / steps,
                   static_cast<double>(now.kept - m_start.kept) / steps,
-                  static_cast<double>(now.solves - m_start.solves) / steps);
+                  static_cast<double>(now.solves - m_start.solves) / steps,
+                  static_cast<double>(m_allocations.total) / steps, static_cast<double>(m_allocations.joints) / steps,
+                  static_cast<double>(m_allocations.jointNewton) / steps,
+                  static_cast<double>(m_steadyAllocations.total) / steady,
+                  static_cast<double>(m_steadyAllocations.joints) / steady,
+                  static_cast<double>(m_steadyAllocations.jointNewton) / steady);
     return text;
   }
 
@@ -130,6 +159,9 @@ class RbsimEngine final : public jb::Engine {
   int m_untwistedBalls = 0;
   rbsim::RowSystemCounts m_start;
   long m_steps = 0;
+  long m_sceneSteps = 0;
+  rbsim::testing::AllocationCounts m_allocations, m_steadyAllocations;
+  long m_steadySteps = 0;
 };
 
 }  // namespace

@@ -4,15 +4,27 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "physics/body/integrator.h"
+#include "physics/common/step_part.h"
 #include "physics/joint/axis_actuation.h"
 #include "physics/math/rotation_matrix.h"
 
 namespace rbsim {
 
 namespace {
+
+// A vector of n numbers from `pool`, kept by size (pool[n]): an Eigen
+// vector reallocates whenever its size changes, and a step's counts of rows
+// change as limits engage and let go, so each count keeps its own vector
+// (allocated the first time that count is seen, not at every step).
+Eigen::VectorXd& sizedVector(std::vector<Eigen::VectorXd>& pool, std::size_t n) {
+  if (pool.size() <= n) pool.resize(n + 1);
+  pool[n].resize(static_cast<Eigen::Index>(n));
+  return pool[n];
+}
 
 JointSidePose poseOf(const Vec3& position, const Quaternion& orientation) {
   return {position, orientation, orientation.toRotationMatrix()};
@@ -78,7 +90,11 @@ Mat3 turnResponse(const Quaternion& from, const Vec3& omega, double h) {
 
 std::vector<double> inverseMasses(const std::vector<JointBody>& bodies) {
   std::vector<double> out;
-  out.reserve(bodies.size());
+  return inverseMasses(bodies, out);
+}
+
+std::vector<double>& inverseMasses(const std::vector<JointBody>& bodies, std::vector<double>& out) {
+  out.clear();
   for (const JointBody& body : bodies) out.push_back(body.inverseMass);
   return out;
 }
@@ -179,16 +195,50 @@ void appendLinkRows(const JointLink& link, int index, const LinkPoses& poses, co
   out.push_back(row);
 }
 
-Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                                     const std::vector<JointConstraint::Basis>& bases,
-                                     const std::vector<double>* targets, Drift& drift, double h,
-                                     const JointSolverSettings& settings, double& largest) {
+void JointGroupSolver::Workspace::reserve(std::size_t jointRows, std::size_t limits) {
+  limits = std::min(limits, kReserved);
+  const auto joints = static_cast<Eigen::Index>(jointRows);
+  for (std::size_t l = 0; l <= limits; ++l) {
+    const std::size_t rows = jointRows + l;
+    for (std::vector<Eigen::VectorXd>* pool : {&totalBySize, &pseudoTotalBySize, &residualBySize, &impulseBySize,
+                                               &rateBySize, &stepBySize, &rateImpulseBySize})
+      sizedVector(*pool, rows);
+    if (l == 0) continue;
+    BorderNumbers& numbers = border(rows, l);
+    if (numbers.reserved) continue;
+    const auto k = static_cast<Eigen::Index>(l);
+    numbers.coupling.resize(joints, k);
+    numbers.response.resize(joints, k);
+    numbers.schurMatrix.resize(k, k);
+    numbers.schur = Eigen::LLT<Eigen::MatrixXd>(k);  // its factor made
+    numbers.column.resize(joints);
+    numbers.jointPart.resize(joints);
+    numbers.limitPart.resize(k);
+    numbers.reserved = true;
+  }
+}
+
+void JointGroupSolver::clearDrift(Drift& drift) {
+  drift.fromPosition.clear();
+  drift.fromOrientation.clear();
+  drift.linearVelocity.clear();
+  drift.angularVelocity.clear();
+  drift.linearImpulse.clear();
+  drift.angularImpulse.clear();
+  drift.angularMomentum.clear();
+}
+
+void JointGroupSolver::project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+                               const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets,
+                               Drift& drift, double h, const JointSolverSettings& settings, double& largest,
+                               Eigen::VectorXd& total) {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
-  Eigen::VectorXd total = Eigen::VectorXd::Zero(count);
-  Eigen::VectorXd residual(count);
+  total.setZero(count);
+  Eigen::VectorXd& residual = sizedVector(work().residualBySize, m_rows.size());
   // The bodies' current rotations, made once per move (a body is the side
   // of several joints).
-  std::vector<Mat3> rotation(bodies.size());
+  std::vector<Mat3>& rotation = work().rotation;
+  rotation.resize(bodies.size());
   const auto currentSide = [&](int index, const JointSidePose& fixed) {
     if (index < 0) return fixed;
     const JointBody& body = bodies[static_cast<std::size_t>(index)];
@@ -281,13 +331,17 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
   // not (fast turns, where the start's rows are too far from the current
   // ones); an iterate that makes the error larger is halved back.
   bool newton = false;
-  NewtonSystem exact;
-  std::vector<JointSolverRow> currentRows;
-  std::vector<Mat3> turns(bodies.size());
+  std::optional<NewtonSystem> exact;  // made when first needed (its sparse LU allocates when made)
+  std::vector<JointSolverRow>& currentRows = work().currentRows;
+  std::vector<Mat3>& turns = work().turns;
+  turns.resize(bodies.size());
+  Eigen::VectorXd& impulse = sizedVector(work().impulseBySize, m_rows.size());
   for (int iteration = 0; systemOk() && iteration < settings.maxIterations; ++iteration) {
     if (largest <= settings.tolerance) break;
-    Eigen::VectorXd impulse;
     if (newton) {
+      // Eigen's sparse LU allocates at every factorisation: the one part of
+      // the joint step that does (counted apart, physics/common/step_part.h).
+      const StepPartScope fallback(StepPart::JointNewton);
       currentRows.clear();
       for (std::size_t l = 0; l < links.size(); ++l)
         appendLinkRows(links[l], static_cast<int>(l), linkPoses(links[l], bodies, false), bases[l], currentRows);
@@ -306,9 +360,10 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
         turns[i] = turnResponse(drift.fromOrientation[i], omega, h);
         if (freeRotation) turns[i] = turns[i] * halfInverseInertia * bodies[i].startInverseInertia.inverse();
       }
-      exact.factor(m_rows, currentRows, bodies, turns, h);
-      if (!exact.ok()) break;
-      impulse = exact.solve(-residual);
+      if (!exact) exact.emplace();
+      exact->factor(m_rows, currentRows, bodies, turns, h);
+      if (!exact->ok()) break;
+      impulse = exact->solve(-residual);
     } else {
       impulse = -residual / h;
       solveRows(impulse);
@@ -353,7 +408,6 @@ Eigen::VectorXd JointGroupSolver::project(const std::vector<JointLink>& links, s
     if (next > 0.25 * largest) newton = true;
     largest = next;
   }
-  return total;
 }
 
 namespace {
@@ -374,9 +428,12 @@ double rowRate(const JointSolverRow& row, const std::vector<JointBody>& bodies, 
 
 // Every row's rate at once: each body's velocities made once (a body is
 // the side of several rows), then the rows' dot products.
+// `linear` and `angular` are scratch (kept by the caller: no allocation).
 void rowRates(const std::vector<JointSolverRow>& rows, const std::vector<JointBody>& bodies,
-              const std::vector<Mat3>& inverseInertia, Eigen::VectorXd& out) {
-  std::vector<Vec3> linear(bodies.size()), angular(bodies.size());
+              const std::vector<Mat3>& inverseInertia, Eigen::VectorXd& out, std::vector<Vec3>& linear,
+              std::vector<Vec3>& angular) {
+  linear.resize(bodies.size());
+  angular.resize(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     linear[i] = bodies[i].inverseMass * bodies[i].linearMomentum;
     angular[i] = inverseInertia[i] * bodies[i].angularMomentum;
@@ -425,30 +482,34 @@ double driveError(const JointConstraint& joint, double position) {
 void JointGroupSolver::removeJointRates(std::vector<JointBody>& bodies, const std::vector<Mat3>& inverseInertia) const {
   const auto count = static_cast<Eigen::Index>(m_rows.size());
   Eigen::VectorXd impulse(count);
-  rowRates(m_rows, bodies, inverseInertia, impulse);
+  std::vector<Vec3> linear, angular;
+  rowRates(m_rows, bodies, inverseInertia, impulse, linear, angular);
   impulse = -impulse;
   solveRows(impulse);
   for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], impulse[r], bodies);
 }
 
 void JointGroupSolver::factorAtStart(const std::vector<JointBody>& bodies) {
-  std::vector<Mat3> startInverseInertia;
-  startInverseInertia.reserve(bodies.size());
-  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  std::vector<Mat3>& startInverseInertia = startInverseInertias(bodies);
   // The joints' rows alone; the limits' rows set aside meanwhile.
-  const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(m_jointRows), m_rows.end());
+  std::vector<Row>& limitRows = work().limitRows;
+  limitRows.assign(m_rows.begin() + static_cast<std::ptrdiff_t>(m_jointRows), m_rows.end());
   m_rows.resize(m_jointRows);
-  m_system.factor(m_rows, inverseMasses(bodies), startInverseInertia);
+  m_system.factor(m_rows, inverseMasses(bodies, work().inverseMass), startInverseInertia);
   m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
   m_systemExact = true;
   makeBorder(bodies, startInverseInertia);
 }
 
 void JointGroupSolver::borderAtStart(const std::vector<JointBody>& bodies) {
-  std::vector<Mat3> startInverseInertia;
-  startInverseInertia.reserve(bodies.size());
-  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
-  makeBorder(bodies, startInverseInertia);
+  makeBorder(bodies, startInverseInertias(bodies));
+}
+
+std::vector<Mat3>& JointGroupSolver::startInverseInertias(const std::vector<JointBody>& bodies) {
+  std::vector<Mat3>& out = work().startInverseInertia;
+  out.clear();
+  for (const JointBody& body : bodies) out.push_back(body.startInverseInertia);
+  return out;
 }
 
 bool JointGroupSolver::mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const {
@@ -482,29 +543,32 @@ bool JointGroupSolver::makeBorder(const std::vector<JointBody>& bodies, const st
   const Eigen::Index limits = static_cast<Eigen::Index>(m_rows.size()) - joints;
   m_border.ok = joints == 0 || m_system.ok();
   if (!m_border.ok || limits == 0) return m_border.ok;
-  m_border.coupling.resize(joints, limits);
-  m_border.response.resize(joints, limits);
+  BorderNumbers& border = work().border(m_rows.size(), static_cast<std::size_t>(limits));
+  border.coupling.resize(joints, limits);
+  border.response.resize(joints, limits);
   const auto row = [&](Eigen::Index r) -> const Row& { return m_rows[static_cast<std::size_t>(r)]; };
   for (Eigen::Index j = 0; j < limits; ++j) {
     for (Eigen::Index i = 0; i < joints; ++i)
-      m_border.coupling(i, j) = rowCoupling(row(i), row(joints + j), bodies, inverseInertia);
+      border.coupling(i, j) = rowCoupling(row(i), row(joints + j), bodies, inverseInertia);
     if (joints == 0) continue;  // limits alone (ropes): S is K_LL
-    Eigen::VectorXd column = m_border.coupling.col(j);
+    Eigen::VectorXd& column = border.column;
+    column = border.coupling.col(j);
     m_system.solveInPlace(column);
-    m_border.response.col(j) = column;
+    border.response.col(j) = column;
   }
-  Eigen::MatrixXd schur(limits, limits);
+  Eigen::MatrixXd& schur = border.schurMatrix;
+  schur.resize(limits, limits);
   for (Eigen::Index j = 0; j < limits; ++j)
     for (Eigen::Index i = j; i < limits; ++i) {
       schur(i, j) = rowCoupling(row(joints + i), row(joints + j), bodies, inverseInertia) -
-                    m_border.coupling.col(i).dot(m_border.response.col(j));
+                    border.coupling.col(i).dot(border.response.col(j));
       schur(j, i) = schur(i, j);
     }
   // The same tiny relative regularisation as K's (row_system.cpp): limits
   // that hold one motion twice stay solvable.
   schur.diagonal() *= 1.0 + 1e-10;
-  m_border.schur.compute(schur);
-  m_border.ok = m_border.schur.info() == Eigen::Success;
+  border.schur.compute(schur);
+  m_border.ok = border.schur.info() == Eigen::Success;
   return m_border.ok;
 }
 
@@ -517,11 +581,18 @@ void JointGroupSolver::solveRows(Eigen::VectorXd& x) const {
   }
   // [K_JJ K_JL; K_LJ K_LL] [x_J; x_L] = [r_J; r_L]: x_J = K_JJ⁻¹ r_J − Y x_L,
   // S x_L = r_L − K_LJ K_JJ⁻¹ r_J, Y = K_JJ⁻¹ K_JL.
-  Eigen::VectorXd jointPart = x.head(joints);
+  // (Into the border's own vectors, and without Eigen's temporaries:
+  // a = b − A c made as a = b, a −= A c, which is what Eigen does with a
+  // temporary, to the same bits.)
+  const BorderNumbers& border =
+      work().bordersBySize[static_cast<std::size_t>(x.size())][static_cast<std::size_t>(limits)];
+  Eigen::VectorXd& jointPart = border.jointPart;
+  Eigen::VectorXd& limitPart = border.limitPart;
+  jointPart = x.head(joints);
   if (joints > 0) m_system.solveInPlace(jointPart);
-  const Eigen::VectorXd limitPart =
-      m_border.schur.solve(x.tail(limits) - m_border.coupling.transpose() * jointPart);
-  x.head(joints) = jointPart - m_border.response * limitPart;
+  limitPart.noalias() = x.tail(limits) - border.coupling.transpose() * jointPart;
+  border.schur.solveInPlace(limitPart);
+  x.head(joints).noalias() = jointPart - border.response * limitPart;
   x.tail(limits) = limitPart;
 }
 
@@ -742,6 +813,10 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   results.assign(links.size(), JointLinkResult{});
   m_rows.clear();
   m_limits.clear();
+  // Room for a limit row per link (the most a step holds), so that a step
+  // with more limits held than any before allocates nothing.
+  m_limits.reserve(links.size());
+  work().keptLimits.reserve(links.size());
   m_border.ok = true;
   m_keepAtEnd = false;  // until this step's momentum projection says
   // The rows at the step's start, and the errors there. An error from the
@@ -749,8 +824,10 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   // outside and is kept by the momentum projection, then removed by the
   // positions-only one (so that it turns into no velocity).
   constexpr double kOutsideError = 1e-9;  // m or rad
-  std::vector<JointConstraint::Basis> bases(links.size());
-  std::vector<double> targets;
+  std::vector<JointConstraint::Basis>& bases = work().bases;
+  bases.resize(links.size());
+  std::vector<double>& targets = work().targets;
+  targets.clear();
   bool outsideError = false;
   // A joint that starts beyond a limit (created there, or set there) is
   // held where it is by the momentum projection and brought back by the
@@ -785,9 +862,13 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   if (m_rows.empty() && !anyLimit && !anyAxis) return true;
   const std::size_t jointRows = m_rows.size();
   m_jointRows = jointRows;
-  std::vector<Mat3> startInverseInertia;
-  startInverseInertia.reserve(bodies.size());
-  for (const JointBody& body : bodies) startInverseInertia.push_back(body.startInverseInertia);
+  m_rows.reserve(jointRows + links.size());
+  work().reserve(jointRows, static_cast<std::size_t>(std::count_if(links.begin(), links.end(), [](const JointLink& l) {
+                   return !l.isCoupling() && l.joint->hasLimit();
+                 })));
+  work().allTargets.reserve(jointRows + links.size());
+  work().positionTargets.reserve(jointRows + links.size());
+  const std::vector<Mat3>& startInverseInertia = startInverseInertias(bodies);
   // K₀: the last step's end factor when this step starts where it ended
   // (kept, bit-identical); else, for a group that may, the factor of an
   // earlier step with the same pattern, kept while it converges (project);
@@ -795,7 +876,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   m_keepRatio = mayKeep(links, settings) ? settings.keepRatio : 0.0;
   m_refreshed = false;
   {
-    const std::vector<double> inverseMass = inverseMasses(bodies);
+    const std::vector<double>& inverseMass = inverseMasses(bodies, work().inverseMass);
     if (m_keepRatio > 0.0 && m_system.ok() && m_system.madeFor(m_rows) &&
         !m_system.madeFrom(m_rows, inverseMass, startInverseInertia)) {
       m_systemExact = false;
@@ -814,24 +895,22 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   // impulses change the momenta. Limits by active set: a coordinate that
   // the drift carries beyond a bound gets a row holding it there, and a
   // limit row that pulls is dropped; each change solves the step again.
-  const std::vector<Vec3> kickedLinear = [&] {
-    std::vector<Vec3> out;
-    for (const JointBody& body : bodies) out.push_back(body.linearMomentum);
-    return out;
-  }();
-  const std::vector<Vec3> kickedAngular = [&] {
-    std::vector<Vec3> out;
-    for (const JointBody& body : bodies) out.push_back(body.angularMomentum);
-    return out;
-  }();
-  Drift momenta;
-  Eigen::VectorXd total;
+  std::vector<Vec3>& kickedLinear = work().kickedLinear;
+  std::vector<Vec3>& kickedAngular = work().kickedAngular;
+  kickedLinear.clear();
+  kickedAngular.clear();
+  for (const JointBody& body : bodies) {
+    kickedLinear.push_back(body.linearMomentum);
+    kickedAngular.push_back(body.angularMomentum);
+  }
+  Drift& momenta = work().momenta;
+  Eigen::VectorXd* total = nullptr;  // the last round's impulses, by row
   double left = 0.0;
   const bool startedKept = !m_systemExact;
   int firstIterations = 0;
   constexpr int kLimitRounds = 6;
   for (int round = 0; round < kLimitRounds; ++round) {
-    momenta = Drift{};
+    clearDrift(momenta);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const JointBody& body = bodies[i];
       momenta.fromPosition.push_back(body.startPosition);
@@ -844,15 +923,18 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     momenta.angularImpulse.assign(bodies.size(), Vec3::Zero());
     // A limit held where its joint started beyond it (offset from its
     // bound by the start's excess); every other at its bound.
-    std::vector<double> allTargets = targets;
+    std::vector<double>& allTargets = work().allTargets;
+    allTargets.assign(targets.begin(), targets.end());
     for (const LimitRow& limit : m_limits) allTargets.push_back(heldBeyond(limit));
-    total = project(links, bodies, bases, &allTargets, momenta, h, settings, left);
+    total = &sizedVector(work().totalBySize, m_rows.size());
+    project(links, bodies, bases, &allTargets, momenta, h, settings, left, *total);
     if (round == 0) firstIterations = m_projectIterations;
     // Which limits the end poses break, and which active ones pull.
     bool changed = false;
-    std::vector<LimitRow> kept;
+    std::vector<LimitRow>& kept = work().keptLimits;
+    kept.clear();
     for (std::size_t k = 0; k < m_limits.size(); ++k) {
-      const double lambda = total[static_cast<Eigen::Index>(jointRows + k)];
+      const double lambda = (*total)[static_cast<Eigen::Index>(jointRows + k)];
       // A lower bound pushes the coordinate up (λ >= 0), an upper one down.
       if (lambda * m_limits[k].side > 0.0) {
         changed = true;
@@ -880,7 +962,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     // The last round keeps the set it was solved with: the impulses, the
     // rows and the factor below must all be of one set of limits.
     if (!changed || round == kLimitRounds - 1) break;
-    m_limits = kept;
+    m_limits.assign(kept.begin(), kept.end());
     m_rows.resize(jointRows);
     for (const LimitRow& limit : m_limits) {
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
@@ -890,6 +972,10 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     }
     borderAtStart(bodies);  // the limits by their Schur complement: no factorisation
   }
+  // The impulses by row, to which the positions-only pass's limit rows add
+  // none (a list that keeps its storage, where an Eigen vector would not).
+  std::vector<double>& totalRows = work().totalRows;
+  totalRows.assign(total->data(), total->data() + total->size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].linearMomentum = kickedLinear[i] + momenta.linearImpulse[i];
     bodies[i].angularMomentum = kickedAngular[i] + momenta.angularImpulse[i];
@@ -900,7 +986,8 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
   // A joint that started beyond a limit and is still beyond it comes back
   // by at most kLimitReturn (its limit row is added for this pass if the
   // momentum projection did not hold it).
-  std::vector<double> positionTargets(jointRows, 0.0);
+  std::vector<double>& positionTargets = work().positionTargets;
+  positionTargets.assign(jointRows, 0.0);
   {
     bool added = false;
     for (std::size_t l = 0; l < links.size(); ++l) {
@@ -920,7 +1007,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     }
     if (added) {
       borderAtStart(bodies);
-      total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
+      totalRows.resize(m_rows.size(), 0.0);
     }
     for (const LimitRow& limit : m_limits) {
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
@@ -940,14 +1027,17 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     // its limits past one (contacts pushing a limb out of the ground):
     // such a limit is then held at its bound and the pass done again from
     // the same poses, as the momentum projection's rounds do.
-    std::vector<Vec3> fromPosition;
-    std::vector<Quaternion> fromOrientation;
+    std::vector<Vec3>& fromPosition = work().fromPosition;
+    std::vector<Quaternion>& fromOrientation = work().fromOrientation;
+    fromPosition.clear();
+    fromOrientation.clear();
     for (const JointBody& body : bodies) {
       fromPosition.push_back(body.position);
       fromOrientation.push_back(body.orientation);
     }
     for (int round = 0; round < kLimitRounds; ++round) {
-      Drift pseudo;
+      Drift& pseudo = work().pseudo;
+      clearDrift(pseudo);
       for (std::size_t i = 0; i < bodies.size(); ++i) {
         bodies[i].position = fromPosition[i];
         bodies[i].orientation = fromOrientation[i];
@@ -959,7 +1049,8 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       pseudo.linearImpulse.assign(bodies.size(), Vec3::Zero());
       pseudo.angularImpulse.assign(bodies.size(), Vec3::Zero());
       double pseudoLeft = 0.0;
-      project(links, bodies, bases, &positionTargets, pseudo, h, settings, pseudoLeft);
+      project(links, bodies, bases, &positionTargets, pseudo, h, settings, pseudoLeft,
+              sizedVector(work().pseudoTotalBySize, m_rows.size()));
       if (round == kLimitRounds - 1) break;
       bool added = false;
       for (std::size_t l = 0; l < links.size(); ++l) {
@@ -983,7 +1074,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       }
       if (!added) break;
       borderAtStart(bodies);
-      total.conservativeResizeLike(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m_rows.size())));
+      totalRows.resize(m_rows.size(), 0.0);
     }
   }
 
@@ -995,11 +1086,11 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
     const Row& row = m_rows[static_cast<std::size_t>(r)];
     JointLinkResult& result = results[static_cast<std::size_t>(row.link)];
     if (links[static_cast<std::size_t>(row.link)].isCoupling()) {
-      result.axisImpulse += total[r];  // along the follower's axis
+      result.axisImpulse += totalRows[static_cast<std::size_t>(r)];  // along the follower's axis
       continue;
     }
-    result.linearImpulse += total[r] * row.jacobian.linearB;
-    result.angularImpulse += total[r] * row.jacobian.angularB;
+    result.linearImpulse += totalRows[static_cast<std::size_t>(r)] * row.jacobian.linearB;
+    result.angularImpulse += totalRows[static_cast<std::size_t>(r)] * row.jacobian.angularB;
   }
   for (const LimitRow& limit : m_limits) results[static_cast<std::size_t>(limit.link)].atLimit = limit.side;
   for (std::size_t l = 0; l < links.size(); ++l) {
@@ -1036,7 +1127,9 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   // does not.
   const std::size_t jointRows = m_rows.size();
   m_jointRows = jointRows;
-  const std::vector<double> inverseMass = inverseMasses(bodies);
+  m_rows.reserve(jointRows + links.size());
+  work().endLimits.reserve(links.size());
+  const std::vector<double>& inverseMass = inverseMasses(bodies, work().inverseMass);
   bool kept = m_keepAtEnd && m_system.ok() && m_system.madeFor(m_rows) &&
               !m_system.madeFrom(m_rows, inverseMass, inverseInertia);
   if (!kept) m_system.factor(m_rows, inverseMass, inverseInertia);  // none for no rows
@@ -1044,7 +1137,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   m_border.ok = true;
   // K₁ of the joints' rows alone, the limits' rows set aside meanwhile.
   const auto makeEndFactor = [&] {
-    const std::vector<Row> limitRows(m_rows.begin() + static_cast<std::ptrdiff_t>(jointRows), m_rows.end());
+    std::vector<Row>& limitRows = work().limitRows;
+    limitRows.assign(m_rows.begin() + static_cast<std::ptrdiff_t>(jointRows), m_rows.end());
     m_rows.resize(jointRows);
     m_system.factor(m_rows, inverseMass, inverseInertia);
     m_rows.insert(m_rows.end(), limitRows.begin(), limitRows.end());
@@ -1058,7 +1152,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
   // joints' reply can turn a kick into a rate into a limit (gravity's pull
   // on a hinged arm's centre becomes a turn about the hinge once the hinge
   // holds).
-  std::vector<int> endLimits;  // the links whose limit rows follow the joints' rows
+  std::vector<int>& endLimits = work().endLimits;  // the links whose limit rows follow the joints' rows
+  endLimits.clear();
   const auto addLimitsMovedInto = [&] {
     bool added = false;
     for (std::size_t l = 0; l < links.size(); ++l) {
@@ -1086,12 +1181,13 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
     // With K exact, one solve leaves rates of rounding size; the loop
     // takes what rounding leaves above 1e-13. With a kept factor, each
     // solve must leave at most keepRatio of the rates, else K₁ is made.
-    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(count);
-    Eigen::VectorXd rate(count);
+    Eigen::VectorXd& impulse = sizedVector(work().rateImpulseBySize, m_rows.size());
+    impulse.setZero();
+    Eigen::VectorXd& rate = sizedVector(work().rateBySize, m_rows.size());
     double previous = INFINITY;
     constexpr int kIterations = 8;
     for (int exactIterations = 0, keptIterations = 0;;) {
-      rowRates(m_rows, bodies, inverseInertia, rate);
+      rowRates(m_rows, bodies, inverseInertia, rate, work().linear, work().angular);
       const double largest = rate.cwiseAbs().maxCoeff();
       if (largest <= 1e-13) break;
       if (kept && (largest > m_keepRatio * previous || keptIterations == kIterations)) {
@@ -1105,7 +1201,8 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
         ++exactIterations;
       }
       previous = largest;
-      Eigen::VectorXd step = -rate;
+      Eigen::VectorXd& step = sizedVector(work().stepBySize, m_rows.size());
+      step = -rate;
       solveRows(step);
       for (Eigen::Index r = 0; r < count; ++r) pushAlongRow(m_rows[static_cast<std::size_t>(r)], step[r], bodies);
       impulse += step;
@@ -1143,10 +1240,10 @@ void JointGroupSolver::actuateAxesAtEnd(const std::vector<JointLink>& links, std
   }
 }
 
-std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::size_t bodyCount,
-                                    std::vector<int>& localIndex) {
+void JointGrouping::make(const std::vector<JointLink>& links, std::size_t bodyCount) {
   // Union–find over the bodies the links join.
-  std::vector<int> parent(bodyCount);
+  std::vector<int>& parent = m_parent;
+  parent.resize(bodyCount);
   for (std::size_t i = 0; i < bodyCount; ++i) parent[i] = static_cast<int>(i);
   const auto root = [&](int i) {
     while (parent[static_cast<std::size_t>(i)] != i) {
@@ -1168,26 +1265,27 @@ std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::si
       if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
     }
   }
-  std::vector<int> groupOfRoot(bodyCount, -1);
-  std::vector<JointGroup> groups;
-  localIndex.assign(bodyCount, -1);
+  m_groupOfRoot.assign(bodyCount, -1);
+  m_count = 0;
+  m_localIndex.assign(bodyCount, -1);
   for (std::size_t i = 0; i < bodyCount; ++i) {
-    int& group = groupOfRoot[static_cast<std::size_t>(root(static_cast<int>(i)))];
+    int& group = m_groupOfRoot[static_cast<std::size_t>(root(static_cast<int>(i)))];
     if (group < 0) {
-      group = static_cast<int>(groups.size());
-      groups.emplace_back();
+      group = static_cast<int>(m_count++);
+      if (m_groups.size() < m_count) m_groups.emplace_back();
+      m_groups[m_count - 1].bodies.clear();
+      m_groups[m_count - 1].links.clear();
     }
-    std::vector<int>& members = groups[static_cast<std::size_t>(group)].bodies;
-    localIndex[i] = static_cast<int>(members.size());
+    std::vector<int>& members = m_groups[static_cast<std::size_t>(group)].bodies;
+    m_localIndex[i] = static_cast<int>(members.size());
     members.push_back(static_cast<int>(i));
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
     const JointLink& link = links[l];
     const int any = link.bodyA >= 0 ? link.bodyA : link.bodyB >= 0 ? link.bodyB : link.bodyC >= 0 ? link.bodyC : link.bodyD;
     if (any < 0) continue;  // between fixed sides only: nothing to move
-    groups[static_cast<std::size_t>(groupOfRoot[static_cast<std::size_t>(root(any))])].links.push_back(static_cast<int>(l));
+    m_groups[static_cast<std::size_t>(m_groupOfRoot[static_cast<std::size_t>(root(any))])].links.push_back(static_cast<int>(l));
   }
-  return groups;
 }
 
 JointLink inGroup(JointLink link, const std::vector<int>& localIndex) {
@@ -1200,8 +1298,9 @@ JointLink inGroup(JointLink link, const std::vector<int>& localIndex) {
 
 bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                                  const JointSolverSettings& settings, std::vector<JointLinkResult>& results) {
-  m_groups = jointGroups(links, bodies.size(), m_localIndex);
+  m_groups.make(links, bodies.size());
   m_solvers.resize(std::max<std::size_t>(m_groups.size(), 1));
+  for (JointGroupSolver& solver : m_solvers) solver.useWorkspace(&m_workspace);
   if (m_groups.size() <= 1) {  // one group (a chain, an arm): as it is
     return m_solvers[0].solvePositions(links, bodies, h, settings, results);
   }
@@ -1213,7 +1312,7 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
     for (const int i : group.bodies) m_groupBodies.push_back(bodies[static_cast<std::size_t>(i)]);
     m_groupLinks.clear();
     for (const int l : group.links) {
-      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_localIndex));
+      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_groups.localIndex()));
     }
     closed = m_solvers[g].solvePositions(m_groupLinks, m_groupBodies, h, settings, m_groupResults) && closed;
     for (std::size_t k = 0; k < group.bodies.size(); ++k)
@@ -1226,13 +1325,15 @@ bool JointSolver::solvePositions(const std::vector<JointLink>& links, std::vecto
 
 void JointSolver::actuateBeforeContacts(const std::vector<JointLink>& links, std::vector<JointBody>& bodies, double h,
                                         std::vector<JointLinkResult>& results) {
-  std::vector<int> localIndex;
-  const std::vector<JointGroup> groups = jointGroups(links, bodies.size(), localIndex);
+  JointGrouping& groups = m_kickGroups;
+  groups.make(links, bodies.size());
+  const std::vector<int>& localIndex = groups.localIndex();
   m_kickSolvers.resize(std::max(m_kickSolvers.size(), groups.size()));
+  for (JointGroupSolver& solver : m_kickSolvers) solver.useWorkspace(&m_workspace);
   results.assign(links.size(), JointLinkResult{});
-  std::vector<JointLink> groupLinks;
-  std::vector<JointBody> groupBodies;
-  std::vector<JointLinkResult> groupResults;
+  std::vector<JointLink>& groupLinks = m_groupLinks;
+  std::vector<JointBody>& groupBodies = m_groupBodies;
+  std::vector<JointLinkResult>& groupResults = m_groupResults;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const JointGroup& group = groups[g];
     const bool acts = std::any_of(group.links.begin(), group.links.end(),
@@ -1277,6 +1378,7 @@ void JointSolver::restoreFactors(const std::vector<RowSystem::Inputs>& inputs) {
 void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
                                     const std::vector<Mat3>& inverseInertia, double h,
                                     std::vector<JointLinkResult>& results) {
+  for (JointGroupSolver& solver : m_solvers) solver.useWorkspace(&m_workspace);
   if (m_groups.size() <= 1) {
     m_solvers[0].projectVelocities(links, bodies, inverseInertia, h, results);
     return;
@@ -1292,7 +1394,7 @@ void JointSolver::projectVelocities(const std::vector<JointLink>& links, std::ve
     m_groupLinks.clear();
     m_groupResults.clear();
     for (const int l : group.links) {
-      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_localIndex));
+      m_groupLinks.push_back(inGroup(links[static_cast<std::size_t>(l)], m_groups.localIndex()));
       m_groupResults.push_back(results[static_cast<std::size_t>(l)]);
     }
     m_solvers[g].projectVelocities(m_groupLinks, m_groupBodies, m_groupInertia, h, m_groupResults);

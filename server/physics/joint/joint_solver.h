@@ -189,12 +189,14 @@ class JointGroupSolver {
     // fixed over the drift (the position corrections' pseudo-velocities).
     std::vector<Vec3> angularMomentum;
   };
+  // Empties a drift, its storage kept.
+  static void clearDrift(Drift& drift);
   // Impulses along the start's rows until the drifted poses have the
-  // errors `targets` (null: none); returns them per row.
+  // errors `targets` (null: none); into `total`, per row.
   // The largest error left is in `largest`.
-  Eigen::VectorXd project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
-                          const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets,
-                          Drift& drift, double h, const JointSolverSettings& settings, double& largest);
+  void project(const std::vector<JointLink>& links, std::vector<JointBody>& bodies,
+               const std::vector<JointConstraint::Basis>& bases, const std::vector<double>* targets, Drift& drift,
+               double h, const JointSolverSettings& settings, double& largest, Eigen::VectorXd& total);
 
   // The impulses along the joints' axes (before the drift): motors,
   // drives, damping and friction, with the joints' rows kept.
@@ -214,6 +216,8 @@ class JointGroupSolver {
   void factorAtStart(const std::vector<JointBody>& bodies);
   // The border alone, at the start poses, when the limits' rows changed.
   void borderAtStart(const std::vector<JointBody>& bodies);
+  // The bodies' start inverse inertias, in the workspace.
+  std::vector<Mat3>& startInverseInertias(const std::vector<JointBody>& bodies);
   // Whether m_system may stay a factor of an earlier step's K for the rows
   // now in m_rows (their pattern the same): keepRatio, no contact, no axis.
   bool mayKeep(const std::vector<JointLink>& links, const JointSolverSettings& settings) const;
@@ -229,10 +233,21 @@ class JointGroupSolver {
   // complement on them,
   //   S = K_LL − K_LJ K_JJ⁻¹ K_JL,
   // one solve with K_JJ per limit row, no factorisation.
-  struct Border {
+  //
+  // Its numbers are kept by the count of limit rows: each Eigen object then
+  // keeps its size from step to step (the count changes as limits engage
+  // and let go), so it neither allocates nor lays its numbers out anew.
+  // (in the workspace, shared by the groups)
+  struct BorderNumbers {
     Eigen::MatrixXd coupling;  // K_JL
     Eigen::MatrixXd response;  // K_JJ⁻¹ K_JL
+    Eigen::MatrixXd schurMatrix;  // S, before it is factorised
     Eigen::LLT<Eigen::MatrixXd> schur;
+    Eigen::VectorXd column;  // makeBorder's
+    mutable Eigen::VectorXd jointPart, limitPart;  // solveRows'
+    bool reserved = false;  // sized ahead (Workspace::reserve)
+  };
+  struct Border {
     bool ok = true;
   };
   // The border of m_rows past m_system.size() for bodies of these inverse
@@ -285,6 +300,61 @@ class JointGroupSolver {
   // makes K₁ at every end, as if it might not keep one.
   bool m_keepAtEnd = false;
   Border m_border;
+
+ public:
+  // The step's scratch, kept from step to step so that a steady step
+  // allocates nothing (issue 39): cleared or resized, never freed. Nothing
+  // in it carries over from one call to the next, so the groups of a
+  // JointSolver, solved one after another, share one (and its lists grow
+  // to the largest group's, not to each group's).
+  struct Workspace {
+    // By the rows' count and then the limit rows': the count of joint rows
+    // (a group's) and of limit rows together fix every size in it, so
+    // groups of different sizes sharing the workspace do not resize one
+    // another's.
+    std::vector<std::vector<BorderNumbers>> bordersBySize;
+    std::vector<JointConstraint::Basis> bases;  // by link, at the start poses
+    std::vector<double> targets, allTargets, positionTargets;
+    std::vector<Mat3> startInverseInertia;
+    std::vector<double> inverseMass;
+    std::vector<Vec3> kickedLinear, kickedAngular;
+    Drift momenta, pseudo;
+    std::vector<LimitRow> keptLimits;
+    std::vector<Vec3> fromPosition;
+    std::vector<Quaternion> fromOrientation;
+    std::vector<Row> limitRows;  // set aside while K of the joints' rows is made
+    std::vector<int> endLimits;
+    // Eigen vectors by their size (joint_solver.cpp's sizedVector).
+    std::vector<Eigen::VectorXd> totalBySize, pseudoTotalBySize;
+    std::vector<double> totalRows;
+    // project's
+    std::vector<Eigen::VectorXd> residualBySize, impulseBySize;
+    std::vector<Mat3> rotation, turns;
+    std::vector<JointSolverRow> currentRows;
+    // projectVelocities'
+    std::vector<Eigen::VectorXd> rateBySize, stepBySize, rateImpulseBySize;
+    std::vector<Vec3> linear, angular;  // rowRates'
+    // Sizes every number a group of `jointRows` joint rows and up to
+    // `limits` limit rows (at most kReserved) will use, so that a step
+    // holding more limits than any before allocates nothing.
+    static constexpr std::size_t kReserved = 32;
+    void reserve(std::size_t jointRows, std::size_t limits);
+    BorderNumbers& border(std::size_t rows, std::size_t limits) {
+      if (bordersBySize.size() <= rows) bordersBySize.resize(rows + 1);
+      std::vector<BorderNumbers>& byLimits = bordersBySize[rows];
+      if (byLimits.size() <= limits) byLimits.resize(limits + 1);
+      return byLimits[limits];
+    }
+  };
+  // The workspace the next calls use (null: the solver's own). JointSolver
+  // sets its shared one before each call (a copied solver's would be the
+  // original's).
+  void useWorkspace(Workspace* work) { m_shared = work; }
+
+ private:
+  Workspace& work() const { return m_shared != nullptr ? *m_shared : m_own; }
+  Workspace* m_shared = nullptr;
+  mutable Workspace m_own;
 };
 
 // Bodies joined to each other by links, directly or through others, and
@@ -293,11 +363,24 @@ struct JointGroup {
   std::vector<int> bodies;
   std::vector<int> links;
 };
-// The groups of `bodyCount` bodies and the links between them, in the
-// order of their first body (a body no link joins is a group of its own).
-// `localIndex` gets each body's index in its group.
-std::vector<JointGroup> jointGroups(const std::vector<JointLink>& links, std::size_t bodyCount,
-                                    std::vector<int>& localIndex);
+// The groups of a step's bodies and the links between them, in the order
+// of their first body (a body no link joins is a group of its own), made
+// again at every step into the same storage: a steady step allocates
+// nothing (the groups' lists are cleared, not freed).
+class JointGrouping {
+ public:
+  void make(const std::vector<JointLink>& links, std::size_t bodyCount);
+  std::size_t size() const { return m_count; }
+  const JointGroup& operator[](std::size_t g) const { return m_groups[g]; }
+  // Each body's index in its group.
+  const std::vector<int>& localIndex() const { return m_localIndex; }
+
+ private:
+  std::vector<JointGroup> m_groups;  // the first m_count are this step's; the rest keep their storage
+  std::size_t m_count = 0;
+  std::vector<int> m_localIndex;
+  std::vector<int> m_parent, m_groupOfRoot;  // union–find
+};
 // The link with its sides numbered as in their group.
 JointLink inGroup(JointLink link, const std::vector<int>& localIndex);
 
@@ -338,19 +421,23 @@ class JointSolver {
   void restoreFactors(const std::vector<RowSystem::Inputs>& inputs);
 
  private:
+  // The groups' solvers' shared workspace (they are solved one after another).
+  JointGroupSolver::Workspace m_workspace;
   std::vector<JointGroupSolver> m_kickSolvers;  // by group, for actuateBeforeContacts
-  std::vector<JointGroup> m_groups;
+  JointGrouping m_kickGroups;
+  JointGrouping m_groups;
   std::vector<JointGroupSolver> m_solvers;  // by group
   // A group's links, bodies and results in its own numbering.
   std::vector<JointLink> m_groupLinks;
   std::vector<JointBody> m_groupBodies;
   std::vector<Mat3> m_groupInertia;
   std::vector<JointLinkResult> m_groupResults;
-  std::vector<int> m_localIndex;  // step body -> group body
 };
 
-// The bodies' inverse masses, for RowSystem::factor.
+// The bodies' inverse masses, for RowSystem::factor; into `out` (its
+// storage kept), which it returns.
 std::vector<double> inverseMasses(const std::vector<JointBody>& bodies);
+std::vector<double>& inverseMasses(const std::vector<JointBody>& bodies, std::vector<double>& out);
 
 // The side poses of a link from the bodies' current poses (or start poses).
 JointSidePose sidePose(const JointLink& link, const std::vector<JointBody>& bodies, bool sideB,

@@ -15,6 +15,8 @@
 // and the position projection that follows (joint/joint_solver.h) only
 // closes the drift's O(h²).
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <cstddef>
 #include <vector>
 
@@ -23,7 +25,36 @@
 
 namespace rbsim {
 
+// project's complementarity problem's numbers, by its size (n, the limits
+// at a bound, and k, those pushing in a round), so that each Eigen object
+// keeps its size, and so its storage and its numbers' layout, from step to
+// step: no allocation, and the same bits as objects made afresh. Shared by
+// the groups (projected one after another), so that it holds the sizes of
+// the largest group, not of each.
+struct JointLimitScratch {
+  struct Lcp {
+    Eigen::MatrixXd m;  // n × n
+    Eigen::VectorXd q, s, mu, u;
+  };
+  struct PushingSet {
+    Eigen::MatrixXd mPP;  // k × k
+    Eigen::VectorXd qP, solved;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  };
+  std::vector<Lcp> lcpBySize;
+  std::vector<PushingSet> pushingBySize;
+  std::vector<char> pushing, haveM;
+  std::vector<Eigen::Index> set;
+  // Makes the numbers of every size up to n limits (at most kReserved: a
+  // group with more limits allocates for each new size it meets), so that
+  // a step with more limits at a bound than any before allocates nothing.
+  static constexpr std::size_t kReserved = 32;
+  void reserve(std::size_t n);
+};
+
 // The projection of one group of joints (joint_solver.h's JointGroup).
+// Made again at every step into the storage of the last (the world keeps
+// it: a steady step allocates nothing, issue 39).
 class JointGroupProjection {
  public:
   // `links` name their sides by index into `bodies` (start poses, inverse
@@ -31,10 +62,13 @@ class JointGroupProjection {
   // K₀ is taken from `kept` (may be null) when one of its factors was made
   // from exactly these rows and bodies (the joint step's of the last step,
   // ending where this one starts), else made here (with the elimination
-  // order of one of its factors of the same joints, when it has one).
-  JointGroupProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                       std::vector<std::size_t> solverIndex, const JointSolver* kept = nullptr);
-  void project(std::vector<SolverBody>& bodies) const;
+  // order of one of its factors of the same joints, when it has one, or
+  // of this projection's last, which it keeps).
+  void make(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
+            const std::vector<std::size_t>& solverIndex, const JointSolver* kept = nullptr);
+  void project(std::vector<SolverBody>& bodies, JointLimitScratch& scratch) const;
+  // How many limits the group has (at most this many may be at a bound).
+  std::size_t limitCapacity() const { return m_limitCapacity; }
 
  private:
   // A limit at its bound at the step's start: its row and which bound
@@ -54,14 +88,15 @@ class JointGroupProjection {
 
   std::vector<JointSolverRow> m_rows;  // the joints' equality rows
   std::vector<Limit> m_limits;
+  std::size_t m_limitCapacity = 0;
   std::vector<std::size_t> m_solverIndex;
   RowSystem m_system;                  // K₀ of the equality rows
   // Column j of A: the limit rows' rates per unit impulse along limit row
   // j, with the joints' rows holding; made when limit j first pushes (most
   // limits at a bound are never moved into), on a scratch copy of the
-  // group's bodies.
-  Eigen::VectorXd responseColumn(std::size_t j) const;
-  mutable Eigen::MatrixXd m_limitResponse;
+  // group's bodies. Its n numbers (n limits) are at m_limitResponse[n j].
+  const double* responseColumn(std::size_t j) const;
+  mutable std::vector<double> m_limitResponse;
   mutable std::vector<char> m_haveColumn;
   // With each column, the velocities a unit push along limit j leaves with
   // the joints holding (linear, angular per body of the group).
@@ -71,21 +106,32 @@ class JointGroupProjection {
   // projectJoints' scratch: the rows' impulses, and their sums per body.
   mutable Eigen::VectorXd m_impulse;
   mutable std::vector<Vec3> m_linearImpulse, m_angularImpulse;
+  // make's: the bodies' start inverse masses and inertias.
+  std::vector<double> m_inverseMass;
+  std::vector<Mat3> m_inverseInertia;
 };
 
 // Every group of joints in contact, each projected on its own (K₀ is block
 // diagonal over the groups: the same projection, but a limit's response
 // and the limits' complementarity problem are the size of one ragdoll, not
 // of all of them).
+// Kept by the world and made again at every step (make), into the storage
+// of the last.
 class JointVelocityProjection final : public VelocityProjection {
  public:
   // As JointGroupProjection's, for all the groups `links` make.
-  JointVelocityProjection(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
-                          const std::vector<std::size_t>& solverIndex, const JointSolver* kept = nullptr);
+  void make(const std::vector<JointLink>& links, const std::vector<JointBody>& bodies,
+            const std::vector<std::size_t>& solverIndex, const JointSolver* kept = nullptr);
   void project(std::vector<SolverBody>& bodies) const override;
 
  private:
-  std::vector<JointGroupProjection> m_groups;
+  std::vector<JointGroupProjection> m_groups;  // the first m_count are this step's
+  std::size_t m_count = 0;
+  JointGrouping m_grouping;
+  std::vector<JointLink> m_groupLinks;
+  std::vector<JointBody> m_groupBodies;
+  std::vector<std::size_t> m_groupIndex;
+  mutable JointLimitScratch m_limitScratch;
 };
 
 }  // namespace rbsim

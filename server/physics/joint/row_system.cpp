@@ -244,9 +244,13 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
   // The blocks, in link order, and their rows.
   int links = 0;
   for (const JointSolverRow& row : rows) links = std::max(links, row.link + 1);
-  std::vector<int> blockOfLink(static_cast<std::size_t>(links), -1);
+  // (Into kept storage, as all of a factor's numbers: a steady joint step
+  // allocates nothing.)
+  std::vector<int>& blockOfLink = m_blockOfLink;
+  blockOfLink.assign(static_cast<std::size_t>(links), -1);
   for (const JointSolverRow& row : rows) blockOfLink[static_cast<std::size_t>(row.link)] = 0;
-  std::vector<BlockKey> keys;
+  std::vector<BlockKey>& keys = m_newKeys;
+  keys.clear();
   for (int l = 0; l < links; ++l) {
     if (blockOfLink[static_cast<std::size_t>(l)] < 0) continue;
     blockOfLink[static_cast<std::size_t>(l)] = static_cast<int>(keys.size());
@@ -262,7 +266,7 @@ void RowSystem::factor(const std::vector<JointSolverRow>& rows, const std::vecto
     keys[block].bodies = {rows[r].bodyA, rows[r].bodyB, rows[r].bodyC, rows[r].bodyD};
   }
   if (keys != m_keys) {
-    m_keys = std::move(keys);
+    std::swap(m_keys, keys);
     analyse();
   }
 
@@ -447,8 +451,8 @@ Eigen::VectorXd RowSystem::solve(const Eigen::VectorXd& rhs) const {
 void RowSystem::solveInPlace(Eigen::VectorXd& x) const {
   g_solves.fetch_add(1, std::memory_order_relaxed);
   // Into elimination order.
-  m_scratch.resize(m_rowCount);
-  double* z = m_scratch.data();
+  m_scratch.z.resize(m_rowCount);
+  double* z = m_scratch.z.data();
   for (Eigen::Index slot = 0; slot < m_rowCount; ++slot) z[slot] = x[m_rowAtSlot[static_cast<std::size_t>(slot)]];
   const double* values = m_values.data();
   const BlockPlan* below = m_belowPlan.data();

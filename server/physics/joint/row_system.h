@@ -152,6 +152,11 @@ class RowSystem {
   // order), where their K block goes (as m_updateTarget).
   std::vector<int> m_assemblyTarget;
 
+  // factor's scratch: each link's block, and the block keys of the rows
+  // asked for (compared with m_keys).
+  std::vector<int> m_blockOfLink;
+  std::vector<BlockKey> m_newKeys;
+
   // --- the inputs of the last factor (madeFrom) ---
   std::vector<JointSolverRow> m_madeRows;
   std::vector<double> m_madeInverseMass;
@@ -163,7 +168,15 @@ class RowSystem {
   std::vector<int> m_sizeOf;                          // by block
   std::vector<int> m_sizeAt;                          // by position
   std::vector<int> m_rowAtSlot;  // the rows in elimination order
-  mutable Eigen::VectorXd m_scratch;
+  // The solve's scratch: not copied with the system (a copy of a kept
+  // factor, joint_velocity_projection.cpp, keeps its own storage).
+  struct Scratch {
+    Eigen::VectorXd z;
+    Scratch() = default;
+    Scratch(const Scratch&) {}
+    Scratch& operator=(const Scratch&) { return *this; }
+  };
+  mutable Scratch m_scratch;
   std::vector<ColumnPlan> m_columnPlan;  // by position
   std::vector<BlockPlan> m_belowPlan;    // by off-diagonal block
   std::vector<int> m_diagonalAt;  // by position: offset of the diagonal block in m_values

@@ -432,7 +432,7 @@ void stepImpulse(WorldData& world) {
   const std::vector<BodyContact>& detected = world.detector->contacts();
   const std::vector<int> islandOf = findIslands(world, detected);
   wakeIslands(world, islandOf);
-  const std::vector<char> jointed = findJointedBodies(world);  // empty: no joint to enforce
+  const std::vector<char>& jointed = findJointedBodies(world);  // empty: no joint to enforce
   if (detected.empty()) {
     integrateFree(world, dt, jointed);  // nothing touches: every unjointed body flies free
     stepJointedBodies(world, jointed, {}, {}, dt);
@@ -442,7 +442,7 @@ void stepImpulse(WorldData& world) {
     // A jointed island that touches something is solved with the contacts:
     // all its bodies go to the solver, and its joints' velocity rows are
     // projected between the contact sweeps.
-    std::unique_ptr<VelocityProjection> jointRows;
+    const VelocityProjection* jointRows = nullptr;
     if (!jointed.empty()) jointRows = addJointedIslandsInContact(world, step, jointed, islandOf);
     if (jointed.empty()) {
       integrateFree(world, dt, step.inContact);  // bodies touching nothing
@@ -455,7 +455,7 @@ void stepImpulse(WorldData& world) {
     if (jointRows) actuateJointedIslandsInContact(world, step, jointed, dt);
     findImpacts(world, step);
     std::vector<SolvedManifold> solved;
-    solveContacts(world, step, islandOf, *step.contacts, world.settings.contact.solver, dt, solved, jointRows.get());
+    solveContacts(world, step, islandOf, *step.contacts, world.settings.contact.solver, dt, solved, jointRows);
     integrateSolvedBodies(world, step, solved, dt, jointed);
     stepJointedBodies(world, jointed, step.solving, islandOf, dt);
     keepSleepingContacts(world, detected, solved);

@@ -113,7 +113,8 @@ void updateSleep(WorldData& world, const std::vector<int>& islandOf) {
   // asleep under the force, and falling asleep must not throw away the
   // momentum the push gave it.
   std::vector<double> islandRest(n, std::numeric_limits<double>::infinity());
-  const std::vector<char> actuated = world.joints.empty() ? std::vector<char>{} : findActuatedBodies(world);
+  static const std::vector<char> kNone;
+  const std::vector<char>& actuated = world.joints.empty() ? kNone : findActuatedBodies(world);
   for (std::size_t i = 0; i < n; ++i) {
     Body& body = world.bodies[i];
     if (body.isStatic() || body.isSleeping()) continue;

@@ -11,6 +11,7 @@
 #include "physics/body/external_load.h"
 #include "physics/body/integrator.h"
 #include "physics/collision/body_contact.h"
+#include "physics/common/step_part.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
 #include "physics/joint/joint_velocity_projection.h"
@@ -64,6 +65,8 @@ double coordinateNow(const WorldData& world, const JointConstraint& joint) {
 // leader is enforced too (linkJoint: the follower's index).
 void collectJointLinks(const WorldData& world, const std::vector<int>& local, std::vector<JointLink>& links,
                        std::vector<std::size_t>& linkJoint) {
+  links.clear();
+  linkJoint.clear();
   for (std::size_t j = 0; j < world.joints.size(); ++j) {
     const JointConstraint& joint = world.joints[j];
     if (!jointIsEnforced(world, joint)) continue;
@@ -112,12 +115,14 @@ void pushAlongAxis(const JointLink& link, std::vector<JointBody>& bodies, bool a
 
 }  // namespace
 
-std::vector<char> findActuatedBodies(const WorldData& world) {
+const std::vector<char>& findActuatedBodies(WorldData& world) {
+  const StepPartScope inJoints(StepPart::Joints);
   // A drive moves its joint until it settles; a body's own sleep thresholds
   // (cm/s) are too coarse for a servo creeping to its target, so a drive's
   // joint counts as moving down to this rate.
   constexpr double kDriveSettledRate = 1e-4;  // rad/s or m/s
-  std::vector<char> busy;
+  std::vector<char>& busy = world.jointScratch.actuated;
+  busy.clear();
   for (std::size_t j = 0; j < world.joints.size(); ++j) {
     const JointDef& def = world.joints[j].def;
     const bool motorMoves = def.motor.enabled && def.motor.targetRate != 0.0;
@@ -131,8 +136,10 @@ std::vector<char> findActuatedBodies(const WorldData& world) {
   return busy;
 }
 
-std::vector<char> findJointedBodies(const WorldData& world) {
-  std::vector<char> jointed;
+const std::vector<char>& findJointedBodies(WorldData& world) {
+  const StepPartScope inJoints(StepPart::Joints);
+  std::vector<char>& jointed = world.jointScratch.jointed;
+  jointed.clear();
   for (const JointConstraint& joint : world.joints) {
     if (!jointIsEnforced(world, joint)) continue;
     for (const BodyId id : {joint.def.bodyA, joint.def.bodyB}) {
@@ -148,11 +155,14 @@ std::vector<char> findJointedBodies(const WorldData& world) {
 }
 
 
-std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
-                                                               const std::vector<char>& jointed,
-                                                               const std::vector<int>& islandOf) {
+const VelocityProjection* addJointedIslandsInContact(WorldData& world, ContactStep& step,
+                                                     const std::vector<char>& jointed,
+                                                     const std::vector<int>& islandOf) {
+  const StepPartScope inJoints(StepPart::Joints);
+  JointStepScratch& scratch = world.jointScratch;
   const std::size_t n = world.bodies.size();
-  std::vector<char> touching(n, 0);  // per island root
+  std::vector<char>& touching = scratch.touching;  // per island root
+  touching.assign(n, 0);
   bool any = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!jointed[i] || !step.solving[i]) continue;
@@ -160,9 +170,12 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
     any = true;
   }
   if (!any) return nullptr;
-  std::vector<int> local(n, -1);
-  std::vector<std::size_t> solverIndex;
-  std::vector<JointBody> bodies;
+  std::vector<int>& local = scratch.local;
+  local.assign(n, -1);
+  std::vector<std::size_t>& solverIndex = scratch.dense;
+  solverIndex.clear();
+  std::vector<JointBody>& bodies = scratch.bodies;
+  bodies.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (!jointed[i] || !touching[static_cast<std::size_t>(islandOf[i])]) continue;
     step.solving[i] = 1;
@@ -176,25 +189,32 @@ std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& 
     jb.inverseMass = body.inverseMass();
     bodies.push_back(jb);
   }
-  std::vector<JointLink> links;
-  std::vector<std::size_t> linkJoint;
+  std::vector<JointLink>& links = scratch.links;
+  std::vector<std::size_t>& linkJoint = scratch.linkJoint;
   collectJointLinks(world, local, links, linkJoint);
   // Joints of islands that touch nothing have no side here: leave them out.
-  std::vector<JointLink> inContact;
+  std::vector<JointLink>& inContact = scratch.inContact;
+  inContact.clear();
   for (const JointLink& link : links)
     if (link.bodyA >= 0 || link.bodyB >= 0 || link.bodyC >= 0 || link.bodyD >= 0) inContact.push_back(link);
   // Their K₀ was made at the end of the last step (its velocity
   // projection), where this one starts: the joint solver keeps it.
-  return std::make_unique<JointVelocityProjection>(inContact, bodies, solverIndex, world.jointSolver.get());
+  scratch.projection.make(inContact, bodies, solverIndex, world.jointSolver.get());
+  return &scratch.projection;
 }
 
 void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, const std::vector<char>& jointed,
                                     double h) {
+  const StepPartScope inJoints(StepPart::Joints);
   world.contactActuation.clear();
+  JointStepScratch& scratch = world.jointScratch;
   const std::size_t n = world.bodies.size();
-  std::vector<int> local(n, -1);
-  std::vector<std::size_t> dense;
-  std::vector<JointBody> bodies;
+  std::vector<int>& local = scratch.local;
+  local.assign(n, -1);
+  std::vector<std::size_t>& dense = scratch.dense;
+  dense.clear();
+  std::vector<JointBody>& bodies = scratch.bodies;
+  bodies.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (jointed.empty() || !jointed[i] || !step.solving[i]) continue;
     const Body& body = world.bodies[i];
@@ -213,8 +233,8 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
     bodies.push_back(jb);
   }
   if (dense.empty()) return;
-  std::vector<JointLink> links;
-  std::vector<std::size_t> linkJoint;
+  std::vector<JointLink>& links = scratch.links;
+  std::vector<std::size_t>& linkJoint = scratch.linkJoint;
   collectJointLinks(world, local, links, linkJoint);
   if (links.empty()) return;
   for (JointLink& link : links) link.wholeKick = true;
@@ -224,7 +244,7 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
     if (effort == 0.0 || link.isCoupling() || !link.joint->hasAxis()) continue;
     pushAlongAxis(link, bodies, true, effort * h);
   }
-  std::vector<JointLinkResult> results;
+  std::vector<JointLinkResult>& results = scratch.results;
   world.jointSolver->actuateBeforeContacts(links, bodies, h, results);
   for (std::size_t k = 0; k < dense.size(); ++k) {
     SolverBody& sb = world.solverBodies[dense[k]];
@@ -237,10 +257,13 @@ void actuateJointedIslandsInContact(WorldData& world, const ContactStep& step, c
 
 void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const std::vector<char>& solving,
                        const std::vector<int>& islandOf, double h) {
+  const StepPartScope inJoints(StepPart::Joints);
   if (jointed.empty()) return;
+  JointStepScratch& scratch = world.jointScratch;
   const std::size_t n = world.bodies.size();
   // Islands with a jointed body in contact take the semi-implicit step.
-  std::vector<char> contactIsland;
+  std::vector<char>& contactIsland = scratch.contactIsland;
+  contactIsland.clear();
   if (!solving.empty()) {
     contactIsland.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
@@ -249,11 +272,20 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   // The jointed bodies: where they start, their momenta after the first
   // half kick (and the contact impulses, for those the contact solver
   // moved), the contact impulses alone, the split-impulse pseudo-velocities.
-  std::vector<int> local(n, -1);
-  std::vector<std::size_t> dense;
-  std::vector<Momenta> kicked, contactImpulse;
-  std::vector<Vec3> pseudoLinear, pseudoAngular;
-  std::vector<char> staggered;  // per jointed body: RATTLE's half kicks (else the whole kick first)
+  std::vector<int>& local = scratch.local;
+  local.assign(n, -1);
+  std::vector<std::size_t>& dense = scratch.dense;
+  std::vector<Momenta>& kicked = scratch.kicked;
+  std::vector<Momenta>& contactImpulse = scratch.contactImpulse;
+  std::vector<Vec3>& pseudoLinear = scratch.pseudoLinear;
+  std::vector<Vec3>& pseudoAngular = scratch.pseudoAngular;
+  std::vector<char>& staggered = scratch.staggered;  // per jointed body: RATTLE's half kicks (else the whole kick first)
+  dense.clear();
+  kicked.clear();
+  contactImpulse.clear();
+  pseudoLinear.clear();
+  pseudoAngular.clear();
+  staggered.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (!jointed[i]) continue;
     const Body& body = world.bodies[i];
@@ -276,8 +308,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
     pseudoLinear.push_back(linear);
     pseudoAngular.push_back(angular);
   }
-  std::vector<JointLink> links;
-  std::vector<std::size_t> linkJoint;
+  std::vector<JointLink>& links = scratch.links;
+  std::vector<std::size_t>& linkJoint = scratch.linkJoint;
   collectJointLinks(world, local, links, linkJoint);
   // An island in contact had its axes' laws and direct efforts before the
   // contact solve (actuateJointedIslandsInContact): they are in `kicked`.
@@ -293,8 +325,12 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
   // contact impulses and the pseudo-velocities' displacement go into the
   // first. Returns whether every projection converged.
   JointSolver& solver = *world.jointSolver;
-  std::vector<RigidState> ends(dense.size());
-  std::vector<Vec3> reactionLinear(links.size()), reactionAngular(links.size());
+  std::vector<RigidState>& ends = scratch.ends;
+  ends.resize(dense.size());
+  std::vector<Vec3>& reactionLinear = scratch.reactionLinear;
+  std::vector<Vec3>& reactionAngular = scratch.reactionAngular;
+  reactionLinear.resize(links.size());
+  reactionAngular.resize(links.size());
   // The direct efforts, as impulses along each joint's axis row over
   // `duration` at the current poses of `bodies` (start or end).
   const auto applyEfforts = [&](std::vector<JointBody>& bodies, bool atStart, double duration, bool staggeredPart) {
@@ -306,9 +342,12 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
       pushAlongAxis(link, bodies, atStart, effort * duration);
     }
   };
-  std::vector<double> axisImpulse(links.size(), 0.0);
-  std::vector<int> atLimit(links.size(), 0);
-  std::vector<double> couplingError(links.size(), 0.0);
+  std::vector<double>& axisImpulse = scratch.axisImpulse;
+  std::vector<int>& atLimit = scratch.atLimit;
+  std::vector<double>& couplingError = scratch.couplingError;
+  axisImpulse.assign(links.size(), 0.0);
+  atLimit.assign(links.size(), 0);
+  couplingError.assign(links.size(), 0.0);
   const auto attempt = [&](int parts) {
     const double s = h / parts;
     std::fill(axisImpulse.begin(), axisImpulse.end(), 0.0);
@@ -317,7 +356,8 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
     std::fill(reactionAngular.begin(), reactionAngular.end(), Vec3::Zero());
     for (std::size_t k = 0; k < dense.size(); ++k) ends[k] = world.bodies[dense[k]].state();
     for (int part = 0; part < parts; ++part) {
-      std::vector<JointBody> bodies(dense.size());
+      std::vector<JointBody>& bodies = scratch.bodies;
+      bodies.assign(dense.size(), JointBody{});
       for (std::size_t k = 0; k < dense.size(); ++k) {
         const Body& body = world.bodies[dense[k]];
         const RigidState& start = ends[k];
@@ -346,7 +386,7 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
         }
       }
       applyEfforts(bodies, true, 0.5 * s, true);  // RATTLE's first half kick (an island in contact had its whole kick)
-      std::vector<JointLinkResult> results;
+      std::vector<JointLinkResult>& results = scratch.results;
       converged = solver.solvePositions(links, bodies, s, JointSolverSettings{}, results) && converged;
       // The second half kick at the end poses, then the velocities tangent
       // to the joints there. A body's own damping is implicit over all that
@@ -356,12 +396,10 @@ void stepJointedBodies(WorldData& world, const std::vector<char>& jointed, const
       // velocity per impulse), and the momenta shrink after it; damping the
       // forces alone and projecting after it was first order, each step's
       // constraint impulse O(s) missing its share of c s/2.
-      std::vector<Mat3> endInverseInertia(bodies.size());
-      struct Shrink {
-        double linear = 1.0, angular = 1.0;  // 1 / (1 + c s/2) of P and of L
-        double inverseMass = 0.0;            // the body's own, given back after the projection
-      };
-      std::vector<Shrink> shrink(bodies.size());
+      std::vector<Mat3>& endInverseInertia = scratch.endInverseInertia;
+      endInverseInertia.resize(bodies.size());
+      std::vector<JointStepScratch::Shrink>& shrink = scratch.shrink;  // 1 / (1 + c s/2) of P and L, and 1/m
+      shrink.assign(bodies.size(), JointStepScratch::Shrink{});
       bool damped = false;
       for (std::size_t k = 0; k < bodies.size(); ++k) {
         const Body& body = world.bodies[dense[k]];

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/body/body.h"
+#include "physics/common/step_part.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/world/step_stages.h"
 #include "physics/world/world_data.h"
@@ -183,6 +184,7 @@ Expected<bool> resolveMimicLeader(const WorldData& world, JointConstraint& follo
 }
 
 void computeGravityFeedForward(WorldData& world) {
+  const StepPartScope inJoints(StepPart::Joints);
   // Most worlds have no compensated drive: nothing to walk.
   bool any = false;
   for (JointConstraint& joint : world.joints) {

@@ -71,17 +71,20 @@ struct ContactStep {
 // Per dense index: 1 for an awake dynamic body with an enforced joint
 // (empty when there is none): the joint step moves it instead of the free
 // integration and the contact path.
-std::vector<char> findJointedBodies(const WorldData& world);
+// (Kept in world.jointScratch, as the joint step's other lists: valid
+// until the next call.)
+const std::vector<char>& findJointedBodies(WorldData& world);
 // Per dense index: 1 for a body that an actuator still moves (a motor with
 // a target rate, a drive whose joint still moves), which must not fall
 // asleep however slowly it goes; empty when no joint acts so.
-std::vector<char> findActuatedBodies(const WorldData& world);
+const std::vector<char>& findActuatedBodies(WorldData& world);
 // Puts every jointed body of an island that touches something into
 // step.solving (the contact path's kick and solve) and returns the joints'
-// velocity rows for the contact solve (null when no such island).
-std::unique_ptr<VelocityProjection> addJointedIslandsInContact(const WorldData& world, ContactStep& step,
-                                                               const std::vector<char>& jointed,
-                                                               const std::vector<int>& islandOf);
+// velocity rows for the contact solve (null when no such island), which
+// the world keeps (world.jointScratch) until the next step makes them again.
+const VelocityProjection* addJointedIslandsInContact(WorldData& world, ContactStep& step,
+                                                     const std::vector<char>& jointed,
+                                                     const std::vector<int>& islandOf);
 // For the jointed islands that addJointedIslandsInContact put into the
 // contact solve: their axes' motors, drives, damping and friction and the
 // joints' direct efforts over the whole step h, into world.solverBodies'

@@ -19,6 +19,7 @@
 #include "physics/common/deep_copy_ptr.h"
 #include "physics/joint/joint_constraint.h"
 #include "physics/joint/joint_solver.h"
+#include "physics/world/joint_step_scratch.h"
 #include "physics/parallel/task_pool.h"
 #include "physics/query/ray_scene.h"
 #include "physics/solver/contact_solver.h"
@@ -71,6 +72,8 @@ struct WorldData {
   // contact did before the contact solve (actuateJointedIslandsInContact),
   // reported with the joint step's impulses (empty: nothing).
   std::vector<JointLinkResult> contactActuation;
+  // The joint step's lists, kept so that a steady step allocates nothing.
+  JointStepScratch jointScratch;
   std::vector<Body> bodies;              // dense, in creation order
   // Parallel to `bodies`: the external loads for the coming step, kept here
   // rather than in the bodies (most bodies are pushed by nothing, and the

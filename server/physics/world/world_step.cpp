@@ -85,7 +85,7 @@ void stepWorld(WorldData& world) {
   } else if (anyContact) {
     stepPenalty(world);
   } else {
-    const std::vector<char> jointed = findJointedBodies(world);
+    const std::vector<char>& jointed = findJointedBodies(world);
     integrateFree(world, world.settings.dt, jointed);
     stepJointedBodies(world, jointed, {}, {}, world.settings.dt);
     world.contacts.clear();
