@@ -9,6 +9,11 @@
 // share of rays that hit; mean_distance (m) the mean distance of the hits,
 // to see the two engines answer alike.
 //
+// Shape casts along the same segments: a sphere of radius 0.05 m and a box
+// of half size 0.05 m (turned by a fixed rotation), the first touch of
+// each: rbsim's World::castShape beside Bullet's
+// btCollisionWorld::convexSweepTest with a ClosestConvexResultCallback.
+//
 //   taskset -c 1 build/bench/bench_rays --benchmark_repetitions=3 --benchmark_min_time=0.5s
 //       --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -151,6 +156,31 @@ void BM_Rays_Rbsim_FirstCastAfterCopy(benchmark::State& state) {
   }
 }
 
+// The shapes the casts sweep, and their fixed orientation.
+constexpr double kCastSize = 0.05;  // m: the sphere's radius, the box's half size
+const Quaternion kCastTurn = Quaternion::fromAxisAngle(Vec3(1, 2, 3).normalized(), 0.4);
+
+void BM_ShapeCasts_Rbsim(benchmark::State& state, CastShape shape) {
+  const World world = pileWorld();
+  const std::vector<Ray> rays = randomRays();
+  (void)world.castRay(rays.front());  // the tree is built at the first query
+  int hits = 0;
+  double distance = 0.0;
+  for (auto _ : state) {
+    hits = 0;
+    distance = 0.0;
+    for (const Ray& ray : rays) {
+      const std::optional<ShapeCastHit> hit = world.castShape({shape, ray.from, ray.to, kCastTurn});
+      if (hit) {
+        ++hits;
+        distance += hit->distance;
+      }
+    }
+    benchmark::DoNotOptimize(distance);
+  }
+  setCounters(state, hits, distance, rays.size());
+}
+
 #if RBSIM_BENCH_RAYS_BULLET
 btVector3 toBullet(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
@@ -208,7 +238,40 @@ void BM_Rays_Bullet_RayTest(benchmark::State& state) {
   setCounters(state, hits, distance, rays.size());
 }
 BENCHMARK(BM_Rays_Bullet_RayTest)->Unit(benchmark::kMicrosecond);
+
+void BM_ShapeCasts_Bullet(benchmark::State& state, bool sphere) {
+  BulletPile pile;
+  const std::vector<Ray> rays = randomRays();
+  btSphereShape ball(kCastSize);
+  btBoxShape box(btVector3(kCastSize, kCastSize, kCastSize));
+  const btConvexShape* shape = sphere ? static_cast<btConvexShape*>(&ball) : &box;
+  const btQuaternion turn(kCastTurn.x, kCastTurn.y, kCastTurn.z, kCastTurn.w);
+  int hits = 0;
+  double distance = 0.0;
+  for (auto _ : state) {
+    hits = 0;
+    distance = 0.0;
+    for (const Ray& ray : rays) {
+      const btVector3 from = toBullet(ray.from);
+      const btVector3 to = toBullet(ray.to);
+      btCollisionWorld::ClosestConvexResultCallback callback(from, to);
+      pile.world.convexSweepTest(shape, btTransform(turn, from), btTransform(turn, to), callback);
+      if (callback.hasHit()) {
+        ++hits;
+        distance += callback.m_closestHitFraction * (to - from).length();
+      }
+    }
+    benchmark::DoNotOptimize(distance);
+  }
+  setCounters(state, hits, distance, rays.size());
+}
+BENCHMARK_CAPTURE(BM_ShapeCasts_Bullet, sphere, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ShapeCasts_Bullet, box, false)->Unit(benchmark::kMicrosecond);
 #endif
+
+BENCHMARK_CAPTURE(BM_ShapeCasts_Rbsim, sphere, CastShape(SphereShape{kCastSize}))->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ShapeCasts_Rbsim, box, CastShape(BoxShape{Vec3::Constant(kCastSize)}))
+    ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_Rays_Rbsim_Single)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Rays_Rbsim_Batch)->Unit(benchmark::kMicrosecond);

@@ -47,6 +47,7 @@ PUBLIC_HEADERS = {
     "body_view.h": "body",
     "contact_settings.h": "collision",
     "ray_cast.h": "collision",
+    "shape_cast.h": "collision",
     "contacts.h": "solver",
     "joint_definition.h": "joint",
     "numerical_guard.h": "world",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "physics/query/convex_sweep.h"
 #include "physics/query/ray_shapes.h"
 
 namespace rbsim {
@@ -166,6 +167,71 @@ void RayScene::all(const SceneRay& ray, std::vector<SceneHit>& hits) const {
     return 1.0;
   });
   std::sort(hits.begin(), hits.end(), isNearer);
+}
+
+}  // namespace rbsim
+
+// --- shape casts ---
+
+namespace rbsim {
+
+template <class Visit>
+void RayScene::walkSweep(const SceneSweep& sweep, double maxFraction, Visit&& visit) const {
+  // The swept shape's box, centred on a point that moves with it: the
+  // tree's boxes grown by its half extents are met by that point's segment
+  // wherever the swept box meets the boxes themselves.
+  const Aabb bounds = placedBounds(sweep.shape, sweep.start);
+  m_rayTree.sweep(RaySegment(bounds.center(), sweep.delta), bounds.halfExtents(), maxFraction,
+                  [&](int entryIndex) { return visit(m_entries[at(entryIndex)]); });
+}
+
+std::optional<SceneSweepHit> RayScene::sweepBody(const Entry& entry, const SceneSweep& sweep,
+                                                 double maxFraction) const {
+  std::optional<SceneSweepHit> best;
+  for (int p = 0; p < entry.pieceCount; ++p) {
+    const Piece& piece = m_pieces[at(entry.firstPiece + p)];
+    const std::optional<SweepContact> touch =
+        sweepAgainstConvex(sweep.shape, sweep.start, sweep.delta, {piece.geometry, piece.pose}, maxFraction);
+    if (!touch || (best && !(touch->fraction < best->hit.fraction))) continue;
+    best = SceneSweepHit{{entry.bodyIndex, entry.serial, p, piece.part, touch->fraction, touch->normal}, touch->point};
+    maxFraction = touch->fraction;
+  }
+  return best;
+}
+
+std::optional<SceneSweepHit> RayScene::sweepPlane(const Plane& plane, const SceneSweep& sweep) const {
+  const std::optional<SweepContact> touch = sweepAgainstHalfSpace(sweep.shape, sweep.start, sweep.delta, plane.halfSpace, 1.0);
+  if (!touch) return std::nullopt;
+  return SceneSweepHit{{plane.bodyIndex, plane.serial, 0, 0, touch->fraction, touch->normal}, touch->point};
+}
+
+std::optional<SceneSweepHit> RayScene::sweepClosest(const SceneSweep& sweep) const {
+  std::optional<SceneSweepHit> best;
+  const auto consider = [&](const std::optional<SceneSweepHit>& touch) {
+    if (touch && (!best || isNearer(touch->hit, best->hit))) best = touch;
+  };
+  for (const Plane& plane : m_planes)
+    if (mayHit(sweep, plane.bodyIndex, plane.filter)) consider(sweepPlane(plane, sweep));
+  walkSweep(sweep, best ? best->hit.fraction : 1.0, [&](const Entry& entry) {
+    const double maxFraction = best ? best->hit.fraction : 1.0;
+    if (mayHit(sweep, entry.bodyIndex, entry.filter)) consider(sweepBody(entry, sweep, maxFraction));
+    return best ? best->hit.fraction : 1.0;
+  });
+  return best;
+}
+
+void RayScene::sweepAll(const SceneSweep& sweep, std::vector<SceneSweepHit>& hits) const {
+  hits.clear();
+  for (const Plane& plane : m_planes)
+    if (mayHit(sweep, plane.bodyIndex, plane.filter))
+      if (const auto touch = sweepPlane(plane, sweep)) hits.push_back(*touch);
+  walkSweep(sweep, 1.0, [&](const Entry& entry) {
+    if (mayHit(sweep, entry.bodyIndex, entry.filter))
+      if (const auto touch = sweepBody(entry, sweep, 1.0)) hits.push_back(*touch);
+    return 1.0;
+  });
+  std::sort(hits.begin(), hits.end(),
+            [](const SceneSweepHit& a, const SceneSweepHit& b) { return isNearer(a.hit, b.hit); });
 }
 
 }  // namespace rbsim

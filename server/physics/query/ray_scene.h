@@ -63,6 +63,22 @@ struct SceneHit {
   Vec3 normal = Vec3::Zero();  // world, unit
 };
 
+// A shape cast as the scene takes it (World::castShape).
+struct SceneSweep {
+  ConvexGeometry shape;  // what is swept
+  Transform start;       // shape frame -> world at fraction 0
+  Vec3 delta = Vec3::Zero();  // m, world: how far the shape moves over the sweep
+  CollisionFilter filter;
+  int excludedIndex = -1;  // dense index of a body never hit; -1: none
+};
+
+// A body a shape cast touches: where along the sweep, which piece, the
+// normal (in `hit`), and the point of the body touched.
+struct SceneSweepHit {
+  SceneHit hit;
+  Vec3 point = Vec3::Zero();  // m, world
+};
+
 class RayScene {
  public:
   RayScene() = default;
@@ -85,6 +101,13 @@ class RayScene {
   bool any(const SceneRay& ray) const;
   // Every body hit, each once (its nearest piece), by (fraction, serial).
   void all(const SceneRay& ray, std::vector<SceneHit>& hits) const;
+  // Shape casts, through the same tree (its boxes grown by the swept
+  // shape's): the least (fraction, serial, piece) touch in [0, 1], if any,
+  // and every body touched, each once (its nearest piece), by (fraction,
+  // serial).
+  std::optional<SceneSweepHit> sweepClosest(const SceneSweep& sweep) const;
+  void sweepAll(const SceneSweep& sweep, std::vector<SceneSweepHit>& hits) const;
+
   // The batch call borrows the world's task pool, which runs one loop at a
   // time and is made on first use: while another thread's batch holds it,
   // a batch runs on its caller alone (with the same answers).
@@ -121,8 +144,16 @@ class RayScene {
   // The entry's nearest piece hit in [0, maxFraction], if any.
   std::optional<SceneHit> hitBody(const Entry& entry, const RaySegment& segment, double maxFraction) const;
   std::optional<SceneHit> hitPlane(const Plane& plane, const RaySegment& segment) const;
-  static bool mayHit(const SceneRay& ray, int bodyIndex, const CollisionFilter& filter) {
-    return bodyIndex != ray.excludedIndex && ray.filter.allows(filter);
+  // The entry's nearest piece a sweep touches in [0, maxFraction], if any.
+  std::optional<SceneSweepHit> sweepBody(const Entry& entry, const SceneSweep& sweep, double maxFraction) const;
+  std::optional<SceneSweepHit> sweepPlane(const Plane& plane, const SceneSweep& sweep) const;
+  // Calls visit(entry) for each entry whose box the sweep's box meets
+  // within [0, maxFraction], as RayTree::cast does.
+  template <class Visit>
+  void walkSweep(const SceneSweep& sweep, double maxFraction, Visit&& visit) const;
+  template <class Query>
+  static bool mayHit(const Query& query, int bodyIndex, const CollisionFilter& filter) {
+    return bodyIndex != query.excludedIndex && query.filter.allows(filter);
   }
 
   mutable std::mutex m_refreshLock;

@@ -38,7 +38,17 @@ class RayTree {
   // Boxes entered exactly at maxFraction are still visited, so that a
   // caller can settle ties whatever the tree's shape.
   template <class Visit>
-  void cast(const RaySegment& ray, double maxFraction, Visit&& visit) const;
+  void cast(const RaySegment& ray, double maxFraction, Visit&& visit) const {
+    walk<false>(ray, Eigen::Array3d::Zero(), maxFraction, visit);
+  }
+  // The same walk for a box of half extents `grow` centred on the ray's
+  // point, swept along it (a shape cast's bounds): each box of the tree is
+  // grown by `grow` on every side (their Minkowski sum), so a leaf is
+  // visited when the swept box meets its box.
+  template <class Visit>
+  void sweep(const RaySegment& ray, const Vec3& grow, double maxFraction, Visit&& visit) const {
+    walk<true>(ray, grow.array(), maxFraction, visit);
+  }
 
   int height() const { return m_height; }
 
@@ -55,15 +65,25 @@ class RayTree {
 
   Ref copy(const DynamicAabbTree& tree, int node, int depth);
 
+  template <bool Grown, class Visit>
+  void walk(const RaySegment& ray, const Eigen::Array3d& grow, double maxFraction, Visit& visit) const;
+
   // Where the ray enters each of the node's two boxes (0 inside), or +inf
   // for a box it does not meet in [0, maxFraction]: the slab test
-  // (ray_segment.h) of both at once.
-  static Eigen::Array2d enters(const RaySegment& ray, const Node& node, double maxFraction) {
+  // (ray_segment.h) of both at once; with Grown, of the boxes grown by
+  // `grow` (a ray's walk compiles without it).
+  template <bool Grown>
+  static Eigen::Array2d enters(const RaySegment& ray, const Node& node, const Eigen::Array3d& grow,
+                               double maxFraction) {
     Eigen::Array2d near = Eigen::Array2d::Zero();
     Eigen::Array2d far = Eigen::Array2d::Constant(maxFraction);
     for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Array2d low = Eigen::Map<const Eigen::Array2f>(node.lower[axis]).cast<double>();
-      const Eigen::Array2d high = Eigen::Map<const Eigen::Array2f>(node.upper[axis]).cast<double>();
+      Eigen::Array2d low = Eigen::Map<const Eigen::Array2f>(node.lower[axis]).cast<double>();
+      Eigen::Array2d high = Eigen::Map<const Eigen::Array2f>(node.upper[axis]).cast<double>();
+      if constexpr (Grown) {
+        low -= grow[axis];
+        high += grow[axis];
+      }
       const Eigen::Array2d t0 = (low - ray.origin[axis]) * ray.inverseDelta[axis];
       const Eigen::Array2d t1 = (high - ray.origin[axis]) * ray.inverseDelta[axis];
       near = near.max(t0.min(t1));
@@ -78,8 +98,8 @@ class RayTree {
   int m_height = 0;  // edges on the longest path from the root to a leaf
 };
 
-template <class Visit>
-void RayTree::cast(const RaySegment& ray, double maxFraction, Visit&& visit) const {
+template <bool Grown, class Visit>
+void RayTree::walk(const RaySegment& ray, const Eigen::Array3d& grow, double maxFraction, Visit& visit) const {
   if (m_root == kEmpty) return;
   struct Pending {
     Ref ref;
@@ -96,7 +116,8 @@ void RayTree::cast(const RaySegment& ray, double maxFraction, Visit&& visit) con
     stack = tallStack.data();
   }
   std::size_t size = 0;
-  if (segmentEntersBox(ray, m_rootBox, maxFraction) > maxFraction) return;
+  if (segmentEntersBox(ray, m_rootBox.min.array() - grow, m_rootBox.max.array() + grow, maxFraction) > maxFraction)
+    return;
   // Down the nearer child of each node at once, its sibling kept on the
   // stack for later (when the ray meets both): a walk to the first leaf
   // costs no stack traffic.
@@ -104,7 +125,7 @@ void RayTree::cast(const RaySegment& ray, double maxFraction, Visit&& visit) con
   while (true) {
     if (current >= 0) {
       const Node& node = m_nodes[static_cast<std::size_t>(current)];
-      const Eigen::Array2d enter = enters(ray, node, maxFraction);
+      const Eigen::Array2d enter = enters<Grown>(ray, node, grow, maxFraction);
       const int nearer = enter[1] < enter[0] ? 1 : 0;
       if (enter[nearer] <= maxFraction) {
         if (enter[1 - nearer] <= maxFraction) stack[size++] = {node.child[1 - nearer], enter[1 - nearer]};

@@ -26,6 +26,7 @@
 #include "rbsim/physics/ids.h"
 #include "rbsim/physics/joint_definition.h"
 #include "rbsim/physics/ray_cast.h"
+#include "rbsim/physics/shape_cast.h"
 #include "rbsim/physics/types.h"
 #include "rbsim/physics/world_settings.h"
 
@@ -205,6 +206,21 @@ class World {
   bool castRayAny(const Ray& ray, const RayFilter& filter = {}) const;
   void castRays(std::span<const Ray> rays, std::span<std::optional<RayHit>> hits,
                 const RayFilter& filter = {}) const;
+
+  // Shape casts against the bodies as they are now (rbsim/physics/
+  // shape_cast.h; docs/queries.md): a sphere, box, capsule or cylinder
+  // swept along a segment without turning, filtered as rays are, under the
+  // same rules (between steps, any number of threads at once).
+  //  - castShape: the first body the shape touches, ties as for castRay.
+  //  - castShapeAll: every body it touches, once each (where it first
+  //    touches it), nearest first.
+  // A sweep with from == to reports what the shape touches where it
+  // stands (an overlap test); one with a non-finite end or orientation
+  // touches nothing. A shape of a bad size (not finite, or not positive:
+  // a radius, a half extent or a half length of 0 or less; a capsule's
+  // half length may be 0) throws std::invalid_argument, naming it.
+  std::optional<ShapeCastHit> castShape(const ShapeCast& cast, const RayFilter& filter = {}) const;
+  std::vector<ShapeCastHit> castShapeAll(const ShapeCast& cast, const RayFilter& filter = {}) const;
 
   // The contacts of the last step (solved impulses included), sorted by
   // (serial A, serial B, piece A, piece B).
