@@ -77,7 +77,8 @@ debug_goldens() {
     RBSIM_PARALLEL_THREAD_COUNTS=1,2 "$debug_build"/tests/test_parallel --gtest_filter='ParallelDeterminism.*'
 }
 # ThreadSanitizer (clang): the task pool and the parallel step's scenes on
-# 1, 2, 3 and 8 threads, shortened; any data race it reports fails the run.
+# 1, 2, 3 and 8 threads, shortened, and queries (rays, batches, shape
+# casts) from many threads at once; any data race it reports fails the run.
 # RBSIM_POOL_ALWAYS_SHARE=1: every loop is offered to the workers. Left to
 # itself the pool runs loops on the caller alone while its workers do too
 # little of them (task_pool.h), which TSan's slow-down makes likely, and a
@@ -85,11 +86,13 @@ debug_goldens() {
 # the variable is unset too; it is set here so the run says what it checks.)
 tsan_build() {
   CC=clang CXX=clang++ configure "$tsan_build" -DRBSIM_TSAN=ON -DRBSIM_BUILD_BENCH=OFF &&
-    cmake --build "$tsan_build" -j"$jobs" --target test_parallel
+    cmake --build "$tsan_build" -j"$jobs" --target test_parallel test_ray_casts
 }
 tsan_run() {
   TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" RBSIM_PARALLEL_STEPS=400 RBSIM_POOL_ALWAYS_SHARE=1 \
-    "$tsan_build"/tests/test_parallel
+    "$tsan_build"/tests/test_parallel &&
+    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" RBSIM_POOL_ALWAYS_SHARE=1 \
+      "$tsan_build"/tests/test_ray_casts --gtest_filter='*Concurrent*:*BatchEqualsSingle*'
 }
 # Python: the lcm-gen types, the client package, the CLIs, the READMEs'
 # commands. Run with Debian's interpreter, which has numpy and pytest.

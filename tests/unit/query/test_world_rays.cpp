@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "physics/query/ray_shapes.h"
@@ -313,6 +314,52 @@ TEST(WorldRays, BatchEqualsSingleCastsBitForBitOnAnyThreads) {
   }
   std::vector<std::optional<RayHit>> wrongSize(3);
   EXPECT_THROW(world->castRays(rays, wrongSize), std::invalid_argument);
+}
+
+// Queries from many threads at once, right after a step (so that the
+// first of them brings the ray tree up to date while the others wait for
+// it): single rays, batches (one borrows the world's pool, the others run
+// on their callers) and shape casts, each answering as a copy of the world
+// answers on one thread. Run under ThreadSanitizer by the README's test
+// command (scripts/run_tests.sh), with the parallel step's tests.
+TEST(WorldRays, ConcurrentQueriesFromManyThreads) {
+  auto world = World::fromDef(scenes::makePileScene(300, scenes::PileVariant::Dropped));
+  ASSERT_TRUE(world);
+  ASSERT_TRUE(world->setThreads(2));
+  const std::vector<Ray> rays = pileRays(600, 0x7EAD);
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < 20; ++i) world->step();
+    const World reference = *world;  // a copy: its own tree, built by one thread
+    std::vector<std::optional<RayHit>> expected;
+    std::vector<std::optional<ShapeCastHit>> expectedCasts;
+    for (const Ray& ray : rays) {
+      expected.push_back(reference.castRay(ray));
+      expectedCasts.push_back(reference.castShape({SphereShape{0.03}, ray.from, ray.to, Quaternion::identity()}));
+    }
+    constexpr int kThreads = 4;
+    std::vector<int> mismatches(kThreads, 0);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back([&, t] {
+        if (t % 2 == 0) {
+          std::vector<std::optional<RayHit>> batch(rays.size());
+          world->castRays(rays, batch);
+          for (std::size_t i = 0; i < rays.size(); ++i) mismatches[t] += sameBits(batch[i], expected[i]) ? 0 : 1;
+        } else {
+          for (std::size_t i = 0; i < rays.size(); ++i) {
+            mismatches[t] += sameBits(world->castRay(rays[i]), expected[i]) ? 0 : 1;
+            const auto cast = world->castShape({SphereShape{0.03}, rays[i].from, rays[i].to, Quaternion::identity()});
+            const bool same = cast.has_value() == expectedCasts[i].has_value() &&
+                              (!cast || (cast->body == expectedCasts[i]->body &&
+                                         cast->fraction == expectedCasts[i]->fraction));
+            mismatches[t] += same ? 0 : 1;
+          }
+        }
+      });
+    }
+    for (std::thread& thread : threads) thread.join();
+    for (int t = 0; t < kThreads; ++t) EXPECT_EQ(mismatches[t], 0) << "thread " << t << ", round " << round;
+  }
 }
 
 // The answers are a function of the poses, not of the ray tree's history:
