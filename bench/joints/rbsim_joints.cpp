@@ -1,18 +1,14 @@
 // rbsim on the joint scenes of joint_scenes.h, beside Bullet and ODE:
 //   build/bench/joints/bench_joints_rbsim --scene chain --reps 3
-// Joints solved at the position level (docs/joints_design.md): ball joints
-// are JointType::Spherical, hinges JointType::Revolute with the scene's
-// limits. The scene's iteration count is the contact solver's velocity
-// iterations; the joints are solved exactly whatever it is. No sleeping (as
-// the peers here: every engine simulates every body for the whole run).
-//
-// Ball joints with a swing limit take it as their cone (JointDef::
-// coneAngle); twist ranges are not supported yet (the ragdoll's shoulders,
-// hips, waist and neck twist freely; the notes say so).
+// The world is built as rbsim_scene_world.h says (joints at the position
+// level, no sleeping). Twist ranges of ball joints are not supported yet
+// (the ragdoll's shoulders, hips, waist and neck twist freely; the notes
+// say so).
 #include <cstdio>
 #include <optional>
 
 #include "joint_scenes.h"
+#include "rbsim_scene_world.h"
 #include "physics/joint/row_system.h"
 #include "rbsim/physics/world.h"
 #include "support/allocation_counter.h"
@@ -21,44 +17,20 @@ namespace {
 
 namespace jb = rbsim::bench::joints;
 
-rbsim::Vec3 vec(const jb::Vec3& v) { return {v[0], v[1], v[2]}; }
-
 class RbsimEngine final : public jb::Engine {
  public:
   void configure(const jb::Scene& s) override {
-    rbsim::WorldSettings settings;
-    settings.dt = s.dt;
-    settings.gravity = vec(s.gravity);
-    settings.contact.enabled = s.contacts;
-    settings.contact.sleeping = false;
-    settings.contact.solver.velocityIterations = s.velocityIterations;
-    settings.contact.defaultMaterial.friction = jb::kFriction;
-    settings.contact.defaultMaterial.staticFriction = jb::kFriction;
-    settings.contact.defaultMaterial.restitution = 0.0;
-    m_world.emplace(settings);
+    m_world.emplace(jb::sceneWorldSettings(s));
     m_start = rbsim::RowSystem::counts();
     m_steps = 0;
     m_sceneSteps = s.steps;
     m_allocations = m_steadyAllocations = {};
     m_steadySteps = 0;
-    if (s.ground) {
-      rbsim::BodyDef ground;
-      ground.name = "ground";
-      ground.shape = rbsim::PlaneShape{};
-      ground.isStatic = true;
-      m_world->createBody(ground).value();
-    }
+    if (s.ground) m_world->createBody(jb::sceneGround()).value();
   }
 
   void addBody(const jb::BodySpec& b) override {
-    rbsim::BodyDef def;
-    def.name = "body" + std::to_string(m_bodies.size());
-    if (b.shape == jb::ShapeKind::kSphere) def.shape = rbsim::SphereShape{b.radius};
-    else def.shape = rbsim::BoxShape{vec(b.halfExtents)};
-    def.mass = b.mass;
-    def.position = vec(b.pose.position);
-    def.orientation = {b.pose.orientation[0], b.pose.orientation[1], b.pose.orientation[2], b.pose.orientation[3]};
-    const rbsim::Expected<rbsim::BodyId> id = m_world->createBody(def);
+    const rbsim::Expected<rbsim::BodyId> id = m_world->createBody(jb::sceneBody(b, m_bodies.size()));
     if (!id.ok()) {
       std::fprintf(stderr, "rbsim: %s\n", id.error().message.c_str());
       std::exit(1);
@@ -67,19 +39,8 @@ class RbsimEngine final : public jb::Engine {
   }
 
   void addJoint(const jb::JointSpec& j) override {
-    rbsim::JointDef def;
-    def.name = "joint" + std::to_string(m_joints++);
-    def.type = j.kind == jb::JointKind::kHinge ? rbsim::JointType::Revolute : rbsim::JointType::Spherical;
-    def.bodyA = m_bodies[static_cast<size_t>(j.bodyA)];
-    def.bodyB = j.bodyB == jb::kWorld ? rbsim::BodyId{} : m_bodies[static_cast<size_t>(j.bodyB)];
-    def.anchor = vec(j.anchor);
-    def.axis = vec(j.axis);
-    // The scene's hinge limits are B's rotation relative to A about the
-    // axis, zero at the build pose: rbsim's joint coordinate exactly.
-    if (j.kind == jb::JointKind::kHinge && j.limited) def.limit = {true, j.lower, j.upper};
-    if (j.kind == jb::JointKind::kBall && j.limited && j.swing > 0) def.coneAngle = j.swing;
     if (j.kind == jb::JointKind::kBall && j.limited && j.twist > 0) ++m_untwistedBalls;
-    const rbsim::Expected<rbsim::JointId> id = m_world->createJoint(def);
+    const rbsim::Expected<rbsim::JointId> id = m_world->createJoint(jb::sceneJoint(j, m_bodies, m_joints++));
     if (!id.ok()) {
       std::fprintf(stderr, "rbsim: %s\n", id.error().message.c_str());
       std::exit(1);

@@ -7,7 +7,7 @@
 // Counted by tests/support/allocation_counter.h, which replaces malloc in
 // this executable and tells the joint code's allocations (its scopes,
 // physics/common/step_part.h) from the rest's. The scenes are
-// bench/joints's, built as its rbsim adapter builds them.
+// bench/joints's, built by its rbsim_scene_world.h as its benchmark builds them.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "joint_scenes.h"
+#include "rbsim_scene_world.h"
 #include "physics/common/step_part.h"
 #include "rbsim/physics/world.h"
 #include "support/allocation_counter.h"
@@ -26,56 +27,23 @@ namespace jb = bench::joints;
 using testing::AllocationCounts;
 using testing::AllocationScope;
 
-Vec3 vec(const jb::Vec3& v) { return {v[0], v[1], v[2]}; }
-
-// bench/joints/rbsim_joints.cpp's world for the scene.
+// The benchmark's world for the scene (bench/joints/rbsim_scene_world.h),
+// stepped on one thread: every allocation of the step on this thread.
 World makeSceneWorld(const std::string& name, int n) {
   jb::Scene s;
   EXPECT_TRUE(jb::makeScene(name, n, s));
-  WorldSettings settings;
-  settings.dt = s.dt;
-  settings.gravity = vec(s.gravity);
-  settings.contact.enabled = s.contacts;
-  settings.contact.sleeping = false;
-  settings.contact.solver.velocityIterations = s.velocityIterations;
-  settings.contact.defaultMaterial.friction = jb::kFriction;
-  settings.contact.defaultMaterial.staticFriction = jb::kFriction;
-  settings.contact.defaultMaterial.restitution = 0.0;
-  settings.threads = 1;  // every allocation of the step on this thread
+  WorldSettings settings = jb::sceneWorldSettings(s);
+  settings.threads = 1;
   World world(settings);
-  if (s.ground) {
-    BodyDef ground;
-    ground.name = "ground";
-    ground.shape = PlaneShape{};
-    ground.isStatic = true;
-    EXPECT_TRUE(world.createBody(ground).ok());
-  }
+  if (s.ground) EXPECT_TRUE(world.createBody(jb::sceneGround()).ok());
   std::vector<BodyId> bodies;
   for (const jb::BodySpec& b : s.bodies) {
-    BodyDef def;
-    def.name = "body" + std::to_string(bodies.size());
-    if (b.shape == jb::ShapeKind::kSphere) def.shape = SphereShape{b.radius};
-    else def.shape = BoxShape{vec(b.halfExtents)};
-    def.mass = b.mass;
-    def.position = vec(b.pose.position);
-    def.orientation = {b.pose.orientation[0], b.pose.orientation[1], b.pose.orientation[2], b.pose.orientation[3]};
-    const Expected<BodyId> id = world.createBody(def);
+    const Expected<BodyId> id = world.createBody(jb::sceneBody(b, bodies.size()));
     EXPECT_TRUE(id.ok());
     bodies.push_back(id.ok() ? id.value() : BodyId{});
   }
   int count = 0;
-  for (const jb::JointSpec& j : s.joints) {
-    JointDef def;
-    def.name = "joint" + std::to_string(count++);
-    def.type = j.kind == jb::JointKind::kHinge ? JointType::Revolute : JointType::Spherical;
-    def.bodyA = bodies[static_cast<std::size_t>(j.bodyA)];
-    def.bodyB = j.bodyB == jb::kWorld ? BodyId{} : bodies[static_cast<std::size_t>(j.bodyB)];
-    def.anchor = vec(j.anchor);
-    def.axis = vec(j.axis);
-    if (j.kind == jb::JointKind::kHinge && j.limited) def.limit = {true, j.lower, j.upper};
-    if (j.kind == jb::JointKind::kBall && j.limited && j.swing > 0) def.coneAngle = j.swing;
-    EXPECT_TRUE(world.createJoint(def).ok());
-  }
+  for (const jb::JointSpec& j : s.joints) EXPECT_TRUE(world.createJoint(jb::sceneJoint(j, bodies, count++)).ok());
   return world;
 }
 
