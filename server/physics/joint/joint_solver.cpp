@@ -153,7 +153,7 @@ void appendLinkRows(const JointLink& link, int index, const LinkPoses& poses, co
   if (!link.isCoupling()) {
     JointRow rows[kMaxJointRows];
     link.joint->rows(poses[0], poses[1], basis, rows);
-    for (int r = 0; r < link.joint->rowCount(); ++r) out.push_back({link.bodyA, link.bodyB, index, rows[r]});
+    for (int r = 0; r < link.joint->rowCount(); ++r) out.push_back(JointSolverRow::of(link.bodyA, link.bodyB, index, rows[r]));
     return;
   }
   // The follower's axis row less `multiplier` times the leader's, with a
@@ -347,7 +347,7 @@ void JointGroupSolver::project(const std::vector<JointLink>& links, std::vector<
         appendLinkRows(links[l], static_cast<int>(l), linkPoses(links[l], bodies, false), bases[l], currentRows);
       for (const LimitRow& limit : m_limits) {
         const JointLink& link = links[static_cast<std::size_t>(limit.link)];
-        JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+        JointSolverRow row = JointSolverRow::of(link.bodyA, link.bodyB, limit.link);
         link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
         currentRows.push_back(row);
       }
@@ -658,7 +658,7 @@ void JointGroupSolver::actuateAxes(const std::vector<JointLink>& links, std::vec
     const bool explicitDamping = !atEnd && !beforeContacts && !link.inContact;
     law.damping = explicitDamping ? 0.0 : def.damping;
     law.frictionCap = def.friction * span;
-    Axis axis{l, {link.bodyA, link.bodyB, static_cast<int>(l), {}}, law, {}, explicitDamping ? def.damping : 0.0, 0.0};
+    Axis axis{l, JointSolverRow::of(link.bodyA, link.bodyB, static_cast<int>(l)), law, {}, explicitDamping ? def.damping : 0.0, 0.0};
     const JointSidePose a = sidePose(link, bodies, false, !atEnd);
     const JointSidePose b = sidePose(link, bodies, true, !atEnd);
     joint.limitRow(a, b, axis.row.jacobian);  // the coordinate's row: the axis, or a spring's line
@@ -968,7 +968,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
       const JointLink& link = links[static_cast<std::size_t>(limit.link)];
       JointRow row;
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row);
-      m_rows.push_back({link.bodyA, link.bodyB, limit.link, row});
+      m_rows.push_back(JointSolverRow::of(link.bodyA, link.bodyB, limit.link, row));
     }
     borderAtStart(bodies);  // the limits by their Schur complement: no factorisation
   }
@@ -1000,7 +1000,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
                      m_startBeyond[l] < 0.0 ? -1 : +1};
       if ((q - limit.bound) * limit.side <= 0.0) continue;  // back within by itself
       m_limits.push_back(limit);
-      JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+      JointSolverRow row = JointSolverRow::of(link.bodyA, link.bodyB, limit.link);
       link.joint->limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row.jacobian);
       m_rows.push_back(row);
       added = true;
@@ -1066,7 +1066,7 @@ bool JointGroupSolver::solvePositions(const std::vector<JointLink>& links, std::
         if (!below && !above) continue;
         const LimitRow& limit = below ? lower : upper;
         m_limits.push_back(limit);
-        JointSolverRow row{link.bodyA, link.bodyB, limit.link, {}};
+        JointSolverRow row = JointSolverRow::of(link.bodyA, link.bodyB, limit.link);
         joint.limitRow(sidePose(link, bodies, false, true), sidePose(link, bodies, true, true), row.jacobian);
         m_rows.push_back(row);
         positionTargets.push_back(0.0);
@@ -1160,7 +1160,7 @@ void JointGroupSolver::projectVelocities(const std::vector<JointLink>& links, st
       const int side = results[l].atLimit;
       if (side == 0 || std::find(endLimits.begin(), endLimits.end(), static_cast<int>(l)) != endLimits.end()) continue;
       const JointLink& link = links[l];
-      Row row{link.bodyA, link.bodyB, static_cast<int>(l), {}};
+      Row row = JointSolverRow::of(link.bodyA, link.bodyB, static_cast<int>(l));
       link.joint->limitRow(sidePose(link, bodies, false, false), sidePose(link, bodies, true, false), row.jacobian);
       if (rateOf(row) * side > 0.0) {  // moving into it
         m_rows.push_back(row);

@@ -42,7 +42,7 @@ void JointGroupProjection::make(const std::vector<JointLink>& links, const std::
     const double q = link.joint->coordinate(a, b);
     const int side = q <= link.joint->limitLower() + kAtBound ? -1 : q >= link.joint->limitUpper() - kAtBound ? +1 : 0;
     if (side == 0) continue;
-    Limit limit{{link.bodyA, link.bodyB, static_cast<int>(l), {}}, side};
+    Limit limit{JointSolverRow::of(link.bodyA, link.bodyB, static_cast<int>(l)), side};
     link.joint->limitRow(a, b, limit.row.jacobian);
     m_limits.push_back(limit);
   }

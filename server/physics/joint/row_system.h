@@ -49,6 +49,15 @@ struct JointSolverRow {
   JointRow second;
 
   static constexpr int kMaxSides = 4;
+  // A joint's row: two sides, no coupling's further sides.
+  static JointSolverRow of(int bodyA, int bodyB, int link, const JointRow& jacobian = {}) {
+    JointSolverRow row;
+    row.bodyA = bodyA;
+    row.bodyB = bodyB;
+    row.link = link;
+    row.jacobian = jacobian;
+    return row;
+  }
   // The sides this row may have: 2 for a joint's row, 4 for a coupling's.
   int sideCount() const { return bodyC < 0 && bodyD < 0 ? 2 : 4; }
   int body(int side) const { return side == 0 ? bodyA : side == 1 ? bodyB : side == 2 ? bodyC : bodyD; }
