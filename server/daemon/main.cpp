@@ -135,7 +135,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (const std::string warning = reachWarning(settings.lcmUrl); !warning.empty()) logWarning(warning);
-  Server server(settings, std::move(world).value(), spawnMeshDirectory, config->visuals, config->robotPublishing);
+  Server server(settings, std::move(world).value(), spawnMeshDirectory, config->visuals, config->robotPublishing,
+                config->sensors);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());
