@@ -116,7 +116,7 @@ Expected<SensorDef> SensorParser::parse(const YamlNode& node) const {
   if (sensor.type == SensorType::ForceTorque) allow(kForceTorqueKeys);
   if (sensor.type == SensorType::Range) allow(kRangeKeys);
   if (sensor.type == SensorType::Lidar) allow(kLidarKeys);
-  const std::string owner = "a " + *type + " sensor";
+  const std::string owner = (sensor.type == SensorType::Imu ? "an " : "a ") + *type + " sensor";
   if (auto bad = m_reader.checkKeys(*map, allowed, owner)) return named(*bad, *name);
 
   if (auto bad = parseMount(*map, *name, sensor)) return *bad;
