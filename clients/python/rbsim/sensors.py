@@ -25,7 +25,7 @@ from collections import deque
 from typing import Callable, List, Optional
 
 from . import contact_sensor_t, force_torque_t, imu_t, range_scan_t
-from .printing import number
+from .printing import number, orientation_values
 
 SENSOR_TYPES = (imu_t, contact_sensor_t, force_torque_t, range_scan_t)
 
@@ -157,7 +157,7 @@ def format_sensor(message) -> str:
         line += " body " + message.body
         line += _vector("linear_acceleration", message.linear_acceleration)
         line += _vector("angular_velocity", message.angular_velocity)
-        line += _vector("orientation", message.orientation)
+        line += _vector("orientation", orientation_values(message.orientation))
     elif isinstance(message, contact_sensor_t):
         line += " body " + message.body + _vector("force", message.force) + _vector("torque", message.torque)
         line += " contacts %d" % message.num_contacts
@@ -169,7 +169,7 @@ def format_sensor(message) -> str:
         nearest = min(finite) if finite else math.inf
         farthest = max(finite) if finite else math.inf
         line += " body " + message.body
-        line += _vector("position", message.position) + _vector("orientation", message.orientation)
+        line += _vector("position", message.position) + _vector("orientation", orientation_values(message.orientation))
         line += " beams %d samples %d returns %d nearest %s farthest %s" % (
             message.beams, message.horizontal_samples, len(finite), number(nearest), number(farthest))
         if message.num_ranges <= _LISTED_RANGES:

@@ -369,7 +369,7 @@ void printScan(std::FILE* out, const rbsim::range_scan_t& m) {
   if (returns == 0) nearest = farthest = INFINITY;
   std::fprintf(out, " body %s", m.body.c_str());
   printVector(out, "position", m.position, 3);
-  printVector(out, "orientation", m.orientation, 4);
+  printVector(out, "orientation", cleanOrientation(m.orientation).data(), 4);
   std::fprintf(out, " beams %d samples %d returns %d nearest %.10g farthest %.10g", m.beams, m.horizontal_samples,
                returns, nearest, farthest);
   if (m.num_ranges <= kListedRanges) {
@@ -390,7 +390,7 @@ void printSensor(std::FILE* out, const client::SensorMessage& message) {
     std::fprintf(out, " body %s", m->body.c_str());
     printVector(out, "linear_acceleration", m->linear_acceleration, 3);
     printVector(out, "angular_velocity", m->angular_velocity, 3);
-    printVector(out, "orientation", m->orientation, 4);
+    printVector(out, "orientation", cleanOrientation(m->orientation).data(), 4);
   } else if (const auto* c = std::get_if<rbsim::contact_sensor_t>(&message)) {
     printSensorHeader(out, *c, "contact");
     std::fprintf(out, " body %s", c->body.c_str());
