@@ -317,6 +317,7 @@ requestAnimationFrame(animate);
 window.rbview = {
   state,
   viewer,
+  scans,
   bodyIndex: (name) => (state.world ? state.world.bodies.findIndex((b) => b.name === name) : -1),
   screenOf(name) {
     const i = this.bodyIndex(name);
