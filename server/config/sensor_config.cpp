@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -41,6 +42,13 @@ constexpr std::array<std::string_view, 3> kWrenchNoiseKeys = {"force", "torque",
 constexpr std::array<std::string_view, 2> kRangeNoiseKeys = {"range", "seed"};
 constexpr std::array<std::string_view, 3> kHorizontalKeys = {"samples", "min", "max"};
 constexpr std::array<std::string_view, 3> kVerticalKeys = {"beams", "min", "max"};
+
+// A number as a message shows it: "2000", "0.1", "1e-05".
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
 
 bool channelSafe(const std::string& name) {
   if (name.empty() || name.size() > kMaxSensorNameLength) return false;
@@ -138,8 +146,7 @@ Expected<SensorDef> SensorParser::parse(const YamlNode& node) const {
   const double stepRate = 1.0 / m_world.settings.dt;
   if (*rate > stepRate * (1.0 + 1e-9))
     return error(*rateNode, *name,
-                 "rate " + std::to_string(*rate) +
-                     " Hz is above the world's step rate (" + std::to_string(stepRate) +
+                 "rate " + shortNumber(*rate) + " Hz is above the world's step rate (" + shortNumber(stepRate) +
                      " Hz, 1/dt): a sensor reads at most once a step");
   sensor.rate = *rate;
 
@@ -251,7 +258,7 @@ Expected<std::array<double, 2>> SensorParser::angleLimits(const YamlMap& map, do
   }
   if (limits[0] > limits[1])
     return error(map.find("max") != nullptr ? map.find("max")->value : map.self(), name,
-                 "max (" + std::to_string(limits[1]) + " rad) is below min (" + std::to_string(limits[0]) + " rad)");
+                 "max (" + shortNumber(limits[1]) + " rad) is below min (" + shortNumber(limits[0]) + " rad)");
   return limits;
 }
 
@@ -264,7 +271,7 @@ std::optional<Error> SensorParser::parsePattern(const YamlMap& map, const std::s
   Expected<double> maxRange = m_reader.number(maxEntry->value, NumberRule::positive(kMaxRange));
   if (!maxRange) return named(maxRange.error(), name);
   if (*maxRange <= *minRange)
-    return error(maxEntry->value, name, "max_range must be above min_range (" + std::to_string(*minRange) + " m)");
+    return error(maxEntry->value, name, "max_range must be above min_range (" + shortNumber(*minRange) + " m)");
   pattern.minRange = *minRange;
   pattern.maxRange = *maxRange;
   Expected<bool> report = m_reader.boolean(map, "report_bodies", false);

@@ -36,7 +36,7 @@ class SensorSuite {
   // Call right before World::step: the IMUs keep their bodies' velocities.
   void beforeStep(const World& world);
   // After World::step: the readings due after it, in declaration order,
-  // into `readings` (cleared first; its buffers are reused).
+  // into `readings` (cleared first).
   void readAfterStep(const World& world, std::vector<SensorReading>& readings);
 
  private:
