@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   }
   if (options->replayPath)
     return runReplay(*options, settings, std::move(world).value(), spawnMeshDirectory,
-                     std::move(resumed), config->visuals);
+                     std::move(resumed), config->visuals, config->sensors);
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.

@@ -20,6 +20,10 @@ def test_noisy_readings_are_the_same_in_two_runs(scenario):
     assert scenario("sensors.py", "noise_replays").returncode == 0
 
 
+def test_a_replay_gives_the_recorded_readings_bit_for_bit_and_finds_a_changed_one(scenario):
+    assert scenario("sensors.py", "replay_verifies_readings").returncode == 0
+
+
 # --- offline ---
 
 

@@ -1,15 +1,20 @@
 """Sensors over LCM (config/worlds/sensors.yaml): the server publishes each
 sensor on <prefix>SENSOR_<name> at its rate on the simulated clock (the IMU at
 1 kHz after every step, the lidar at 10 Hz after every 100th), the Python
-client reads them, and two runs of the same world give the same noisy
-readings bit for bit."""
+client reads them, two runs of the same world give the same noisy readings
+bit for bit, and so does a replay of a recorded session (rbserver --replay
+--verify), which finds a reading changed in the log."""
 
 import math
 import os
 
 import numpy
 
-from harness import REPO, Client, CLIENT_TIMEOUT, Server, run, wait_until
+import subprocess
+
+from harness import REPO, RBSERVER, Client, CLIENT_TIMEOUT, Server, run, wait_until
+from rbsim import imu_t
+from rbsim.lcm_ctypes import EventLog
 from rbsim.sensors import SensorReader, ranges_array
 
 WORLD = os.path.join(REPO, "config", "worlds", "sensors.yaml")
@@ -75,5 +80,38 @@ def noise_replays(workdir):
         assert tuple(a.angular_velocity) == tuple(b.angular_velocity)
 
 
+def _replay(log, *extra):
+    return subprocess.run([RBSERVER, "--config", WORLD, "--replay", log, "--verify", "--log-level", "warning"]
+                          + list(extra), capture_output=True, text=True, timeout=120)
+
+
+def replay_verifies_readings(workdir):
+    log = os.path.join(workdir, "session.lcmlog")
+    subprocess.run([RBSERVER, "--config", WORLD, "--real-time-factor", "0", "--duration", "0.5", "--record", log,
+                    "--log-level", "warning"], check=True, timeout=120)
+    # 500 IMU readings, 5 scans, 25 ranges, 50 contact and 50 force-torque readings.
+    replay = _replay(log)
+    assert replay.returncode == 0, replay.stdout + replay.stderr
+    assert "630 sensor readings, up to step 500" in replay.stdout, replay.stdout
+
+    # The same log with one IMU reading changed by one ulp: the replay says where.
+    changed = os.path.join(workdir, "changed.lcmlog")
+    with EventLog(log) as source, EventLog(changed, "w") as target:
+        for event in source:
+            data = event.data
+            if event.channel == "RBSIM_SENSOR_cart_imu":
+                reading = imu_t.decode(data)
+                if reading.step == 250:
+                    z = reading.linear_acceleration[2]
+                    reading.linear_acceleration = (reading.linear_acceleration[0], reading.linear_acceleration[1],
+                                                   math.nextafter(z, math.inf))
+                    data = reading.encode()
+            target.write(event.channel, data, event.timestamp)
+    replay = _replay(changed)
+    assert replay.returncode == 1, replay.stdout + replay.stderr
+    assert "step 250: the reading on RBSIM_SENSOR_cart_imu differs from the log's" in replay.stdout, replay.stdout
+
+
 if __name__ == "__main__":
-    run({"rates_and_values": rates_and_values, "noise_replays": noise_replays})
+    run({"rates_and_values": rates_and_values, "noise_replays": noise_replays,
+         "replay_verifies_readings": replay_verifies_readings})
