@@ -20,6 +20,7 @@
 #include "config/robot_config.h"
 #include "meshio/contained_path.h"
 #include "config/mass_data_config.h"
+#include "config/sensor_config.h"
 #include "config/server_sections.h"
 #include "config/yaml_document_count.h"
 #include "config/yaml_reader.h"
@@ -43,8 +44,10 @@ constexpr double kMaxDamping = 1e6;              // 1/s
 constexpr double kMinNorm = 1e-9;            // below this a quaternion or normal has no direction
 constexpr std::size_t kMaxNameLength = 128;  // characters, body names
 
-constexpr std::array<std::string_view, 8> kTopLevelKeys = {
+constexpr std::array<std::string_view, 9> kTopLevelKeys = {
     "world", "bodies", "robots", "joints", "contact",
+    // Read with the server's settings (parseConfig, sensor_config.cpp).
+    "sensors",
     // The server's settings (server_sections.cpp).
     "lcm", "server", "limits"};
 constexpr std::array<std::string_view, 3> kSpawnKeys = {"bodies", "robots", "joints"};
@@ -268,11 +271,14 @@ Expected<Config> ConfigParser::parseConfig(const YamlNode& root) const {
   Expected<WorldDef> world = parseWorld(root, &robotReport, &visuals, &publishing);
   if (!world) return world.error();
   Config config{std::move(*world), ServerSettings{}, std::move(robotReport), std::move(visuals),
-                std::move(publishing)};
+                std::move(publishing), {}};
   // parseWorld has checked that the root is a mapping.
   const Expected<YamlMap> top = m_reader.map(root);
   if (!top) return top.error();
   if (auto error = readServerSections(m_reader, *top, config.server)) return *error;
+  if (const YamlMap::Entry* sensors = top->find("sensors")) {
+    if (auto error = parseSensors(m_reader, sensors->value, config.world, config.sensors)) return *error;
+  }
   return config;
 }
 

@@ -17,6 +17,7 @@
 #include "rbsim/physics/world_settings.h"
 #include "robot/robot_publishing.h"
 #include "robot/visual.h"
+#include "sensors/sensor_definition.h"
 
 namespace rbsim {
 
@@ -35,6 +36,8 @@ struct Config {
   BodyVisuals visuals;
   // How each robot's state is published (state_rate, state_dynamics).
   RobotPublishingMap robotPublishing;
+  // The `sensors:` (config/sensor_config.h), in the file's order.
+  std::vector<SensorDef> sensors;
 };
 
 // Reads and parses the file at `path`, the world and the server's sections

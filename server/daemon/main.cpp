@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   }
   if (options->replayPath)
     return runReplay(*options, settings, std::move(world).value(), spawnMeshDirectory,
-                     std::move(resumed), config->visuals);
+                     std::move(resumed), config->visuals, config->sensors);
 
   // Wake-ups for the step deadlines as close to the deadline as the kernel
   // can: the default 50 µs timer slack would be most of our jitter budget.
@@ -135,7 +135,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (const std::string warning = reachWarning(settings.lcmUrl); !warning.empty()) logWarning(warning);
-  Server server(settings, std::move(world).value(), spawnMeshDirectory, config->visuals, config->robotPublishing);
+  Server server(settings, std::move(world).value(), spawnMeshDirectory, config->visuals, config->robotPublishing,
+                config->sensors);
   const auto opened = server.open();
   if (!opened) {
     std::fprintf(stderr, "rbserver: %s\n", opened.error().message.c_str());

@@ -16,7 +16,7 @@ namespace rbsim {
 
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
               const std::string& spawnMeshDirectory, std::optional<SessionState> resumed,
-              BodyVisuals visuals) {
+              BodyVisuals visuals, std::vector<SensorDef> sensors) {
   // The log says which messages were accepted: admission rules that depend
   // on the moment (read-only mode, rate limits) must not second-guess it.
   ServerSettings replaySettings = settings;
@@ -51,7 +51,7 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
     };
   }
 
-  Replay replay(session, handler, settings.channelPrefix, options.verify, output);
+  Replay replay(session, handler, settings.channelPrefix, options.verify, output, std::move(sensors));
   const auto start = std::chrono::steady_clock::now();
   const auto report = replay.run(*options.replayPath);
   const double seconds =
@@ -76,9 +76,10 @@ int runReplay(const Options& options, const ServerSettings& settings, World init
     return 1;
   }
   if (options.verify)
-    std::printf("replay identical to the log: %lld state pages and %lld joint pages compared, up to step %lld\n",
+    std::printf("replay identical to the log: %lld state pages and %lld joint pages compared, %lld sensor "
+                "readings, up to step %lld\n",
                 static_cast<long long>(report->pagesCompared), static_cast<long long>(report->jointPagesCompared),
-                static_cast<long long>(report->lastStep));
+                static_cast<long long>(report->sensorReadingsCompared), static_cast<long long>(report->lastStep));
   return 0;
 }
 

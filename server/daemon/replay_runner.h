@@ -13,11 +13,15 @@
 #include "rbsim/physics/world.h"
 #include "robot/visual.h"
 
+#include <vector>
+
+#include "sensors/sensor_definition.h"
+
 namespace rbsim {
 
 // `resumed`: the checkpoint the recorded server started from (--resume).
 int runReplay(const Options& options, const ServerSettings& settings, World initialWorld,
               const std::string& spawnMeshDirectory, std::optional<SessionState> resumed,
-              BodyVisuals visuals = {});
+              BodyVisuals visuals = {}, std::vector<SensorDef> sensors = {});
 
 }  // namespace rbsim

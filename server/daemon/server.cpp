@@ -16,6 +16,7 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "bridge/robot_messages.h"
+#include "bridge/sensor_messages.h"
 #include "bridge/wire_convert.h"
 #include "daemon/log.h"
 #include "persist/checkpoint_file.h"
@@ -39,7 +40,7 @@ Nanoseconds periodOf(double hertz) {
 }  // namespace
 
 Server::Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals,
-               RobotPublishingMap robotPublishing)
+               RobotPublishingMap robotPublishing, std::vector<SensorDef> sensors)
     : m_settings(std::move(settings)),
       m_session(std::move(initialWorld), m_settings.startPaused),
       m_commands(m_session, m_settings, std::move(spawnMeshDirectory)),
@@ -48,6 +49,9 @@ Server::Server(ServerSettings settings, World initialWorld, std::string spawnMes
   m_session.setVisuals(std::move(visuals));
   m_session.addRobotPublishing(robotPublishing);
   const double dt = world().settings().dt;
+  m_sensors = SensorSuite(std::move(sensors), dt);
+  for (std::size_t i = 0; i < m_sensors.size(); ++i)
+    m_sensorChannels.push_back(sensorChannel(m_settings.channelPrefix, m_sensors.definition(i).name));
   m_stateEverySteps =
       m_settings.stateRate <= 0.0
           ? 1
@@ -245,6 +249,7 @@ void Server::stepOnce() {
   const bool requested = m_session.takeRequestedStep();
   if (!requested) m_lateness.add(m_clock.beginStep(monotonicNow()));
   if (!requested) m_runningRate.stepped();
+  m_sensors.beforeStep(world());
   const Nanoseconds start = monotonicNow();
   m_session.step();
   const double seconds = static_cast<double>(monotonicNow() - start) * 1e-9;
@@ -263,6 +268,7 @@ void Server::stepOnce() {
   publishRobotStatesAfterStep(worldState, lastRequested);
   if (m_contactsEverySteps > 0 && (world().stepCount() % m_contactsEverySteps == 0 || lastRequested))
     publishContacts();
+  publishSensors();
   if (!requested) m_clock.endStep(monotonicNow());
 }
 
@@ -357,6 +363,17 @@ void Server::publishRobotState(const std::string& robot, bool dynamics) {
 
 void Server::publishContacts() {
   for (const auto& page : contactPages(world(), wallMicroseconds())) publish(channel("CONTACTS"), page);
+}
+
+void Server::publishSensors() {
+  if (m_sensors.empty()) return;
+  m_sensors.readAfterStep(world(), m_sensorReadings);
+  const int64_t utime = wallMicroseconds();
+  for (const SensorReading& reading : m_sensorReadings) {
+    const std::string& channelName = m_sensorChannels[reading.sensorIndex];
+    std::visit([&](const auto& value) { publish(channelName, sensorMessage(reading, value, utime)); },
+               reading.value);
+  }
 }
 
 void Server::publishWorld() {

@@ -23,6 +23,7 @@
 #include "rbsim/physics/world.h"
 #include "replay/event_recorder.h"
 #include "session/session.h"
+#include "sensors/sensor_suite.h"
 
 namespace rbsim {
 
@@ -30,9 +31,10 @@ class Server {
  public:
   // `initialWorld` is what RESET returns to; mesh files of spawned bodies
   // must lie under `spawnMeshDirectory`; `visuals` is how the world
-  // file's robots look (published in world_t, session/session.h).
+  // file's robots look (published in world_t, session/session.h);
+  // `sensors` publish on <prefix>SENSOR_<name> at their rates.
   Server(ServerSettings settings, World initialWorld, std::string spawnMeshDirectory, BodyVisuals visuals = {},
-         RobotPublishingMap robotPublishing = {});
+         RobotPublishingMap robotPublishing = {}, std::vector<SensorDef> sensors = {});
 
   // Connects to LCM, subscribes, opens the record file. A bad URL or an
   // unwritable record file is an error, before any stepping.
@@ -81,6 +83,8 @@ class Server {
   void publishStatus(Nanoseconds now);
   void publishWorld();
   void publishContacts();
+  // The sensors due after the step just taken.
+  void publishSensors();
   template <class Message>
   void publish(const std::string& channelName, const Message& message);
   void record(const std::string& channelName, const void* data, std::size_t size, int64_t utime);
@@ -98,6 +102,9 @@ class Server {
 
   int64_t m_stateEverySteps = 1;
   int64_t m_contactsEverySteps = 0;  // 0: not published
+  SensorSuite m_sensors;
+  std::vector<SensorReading> m_sensorReadings;  // reused every step
+  std::vector<std::string> m_sensorChannels;    // by sensor, in the suite's order
   Counters m_counters;
   StepTimes m_stepTimes;
   Nanoseconds m_lastStatus = 0;

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <variant>
 
 #include <rbsim/ack_t.hpp>
 #include <rbsim/command_t.hpp>
@@ -17,6 +18,7 @@
 #include <rbsim/wrench_t.hpp>
 
 #include "bridge/message_decode.h"
+#include "bridge/sensor_messages.h"
 #include "bridge/wire_convert.h"
 #include "replay/state_comparison.h"
 
@@ -80,13 +82,14 @@ struct Replay::Pending {
 };
 
 Replay::Replay(Session& session, CommandHandler& handler, std::string channelPrefix, bool verify,
-               Output output)
+               Output output, std::vector<SensorDef> sensors)
     : m_session(session),
       m_handler(handler),
       m_prefix(std::move(channelPrefix)),
       m_verify(verify),
       m_output(std::move(output)),
-      m_pending(std::make_unique<Pending>()) {
+      m_pending(std::make_unique<Pending>()),
+      m_sensors(std::move(sensors), session.world().settings().dt) {
   // The replay takes the steps the log shows, never on a clock: to the
   // command handler it is a paused server, so that a robot_command_t whose
   // `steps` the recorded (paused) server accepted is accepted here too.
@@ -104,7 +107,7 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
   const std::string wrench = m_prefix + "WRENCH", command = m_prefix + "COMMAND",
                     jointCommand = m_prefix + "JOINT_COMMAND", robotCommand = m_prefix + "ROBOT_COMMAND",
                     handled = m_prefix + "HANDLED", ack = m_prefix + "ACK", state = m_prefix + "STATE",
-                    joints = m_prefix + "JOINTS";
+                    joints = m_prefix + "JOINTS", sensor = m_prefix + "SENSOR_";
   while (!m_report.difference) {
     auto event = reader.next();
     if (!event) return event.error();
@@ -127,6 +130,8 @@ Expected<ReplayReport> Replay::run(const std::string& logPath) {
       done = onState(e);
     } else if (e.channel == joints) {
       done = onJoints(e);
+    } else if (e.channel.starts_with(sensor)) {
+      done = onSensor(e);
     }
     if (!done) return Error{"log '" + logPath + "', event " + std::to_string(e.eventNumber) + " (" +
                             e.channel + "): " + done.error().message};
@@ -285,9 +290,56 @@ Expected<bool> Replay::advanceTo(int64_t step, const std::string& why) {
                  std::to_string(static_cast<int64_t>(reachable)) +
                  "): a corrupt log, not replayed"};
   for (int64_t s = current; s < step; ++s) {
+    m_sensors.beforeStep(m_session.world());
     m_session.step();
     ++m_report.stepsSimulated;
+    keepSensorReadings();
   }
+  return true;
+}
+
+void Replay::keepSensorReadings() {
+  if (m_sensors.empty()) return;
+  m_sensors.readAfterStep(m_session.world(), m_sensorReadings);
+  for (const SensorReading& reading : m_sensorReadings) {
+    ReplayedReading& kept = m_replayedReadings[sensorChannel(m_prefix, reading.sensor->name)];
+    kept.step = reading.step;
+    kept.bytes = std::visit([&](const auto& value) { return encode(sensorMessage(reading, value, 0)); },
+                            reading.value);
+  }
+}
+
+Expected<bool> Replay::onSensor(const LogEvent& event) {
+  // Every sensor message starts with its fingerprint, then utime and step
+  // (int64, big-endian), the fields every sensor type has first.
+  constexpr std::size_t kHeader = 24;
+  if (event.data.size() < kHeader) return Error{"a sensor message shorter than its header"};
+  uint64_t stepBits = 0;
+  for (std::size_t i = 16; i < kHeader; ++i) stepBits = (stepBits << 8) | event.data[i];
+  const auto step = static_cast<int64_t>(stepBits);
+  if (auto advanced = advanceTo(step, "the sensor reading"); !advanced) return advanced;
+  const auto kept = m_replayedReadings.find(event.channel);
+  const bool replayed = kept != m_replayedReadings.end() && kept->second.step == step;
+  std::vector<uint8_t> bytes;
+  if (replayed) {
+    bytes = kept->second.bytes;
+    // The recorded utime (wall clock) in place of the replay's 0.
+    std::copy(event.data.begin() + 8, event.data.begin() + 16, bytes.begin() + 8);
+  }
+  if (m_verify) {
+    ++m_report.sensorReadingsCompared;
+    if (!replayed) {
+      m_report.difference = "step " + std::to_string(step) + ": the log has a reading on " + event.channel +
+                            ", the replay none (is the sensor in the config the replay was given?)";
+      return true;
+    }
+    if (bytes != event.data) {
+      m_report.difference = "step " + std::to_string(step) + ": the reading on " + event.channel +
+                            " differs from the log's";
+      return blameLostAck(step);
+    }
+  }
+  if (m_output && replayed) m_output(event.channel, bytes, event.timestamp);
   return true;
 }
 

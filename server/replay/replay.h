@@ -21,14 +21,17 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "bridge/command_handler.h"
 #include "rbsim/physics/types.h"
 #include "replay/lcm_log_reader.h"
+#include "sensors/sensor_suite.h"
 #include "session/session.h"
 
 namespace rbsim {
@@ -39,6 +42,7 @@ struct ReplayReport {
   int64_t stepsSimulated = 0;
   int64_t pagesCompared = 0;       // world_state_t pages
   int64_t jointPagesCompared = 0;  // joints_t pages
+  int64_t sensorReadingsCompared = 0;  // messages on <prefix>SENSOR_<name>
   int64_t lastStep = 0;         // of the last recorded state
   // The first difference (verify), or the first decision the replay took
   // differently from the recorded server; nullopt: identical.
@@ -57,8 +61,11 @@ class Replay {
   // `handler` must act on `session` and be configured like the recorded
   // server (channel prefix, limits), without read-only mode or rate limits:
   // the log says which messages were accepted.
+  // `sensors` are the config's (the recorded server's): they read after
+  // every replayed step, and each reading the log holds is compared (with
+  // `verify`) and re-emitted with the recorded one's utime.
   Replay(Session& session, CommandHandler& handler, std::string channelPrefix, bool verify,
-         Output output);
+         Output output, std::vector<SensorDef> sensors = {});
   ~Replay();
 
   // Errors: an unreadable or corrupt log, or a log the replay cannot follow
@@ -73,6 +80,7 @@ class Replay {
   Expected<bool> onAck(const LogEvent& event);
   Expected<bool> onState(const LogEvent& event);
   Expected<bool> onJoints(const LogEvent& event);
+  Expected<bool> onSensor(const LogEvent& event);
   // After a difference: an error (the log lost an ack) if a message still
   // waits for its ack, else true with the difference reported.
   Expected<bool> blameLostAck(int64_t step);
@@ -81,6 +89,8 @@ class Replay {
   std::optional<std::pair<std::string, int64_t>> seqGap() const;  // compared and re-emitted as the states are
   Expected<bool> advanceTo(int64_t step, const std::string& why);
   void emitWorld(int64_t timestamp);
+  // The sensors' readings after the step just replayed, encoded, by channel.
+  void keepSensorReadings();
 
   Session& m_session;
   CommandHandler& m_handler;
@@ -95,6 +105,13 @@ class Replay {
   std::optional<int64_t> m_firstTimestamp;
   int64_t m_firstStep = 0;
   int64_t m_eventTimestamp = 0;
+  SensorSuite m_sensors;
+  std::vector<SensorReading> m_sensorReadings;
+  struct ReplayedReading {
+    int64_t step = -1;
+    std::vector<uint8_t> bytes;  // encoded with utime 0
+  };
+  std::map<std::string, ReplayedReading> m_replayedReadings;  // by channel
 };
 
 }  // namespace rbsim

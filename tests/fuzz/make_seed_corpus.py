@@ -214,7 +214,8 @@ def yaml_seeds():
         write("body_yaml", name, yaml)
     # The target resolves mesh paths against config/, as for config/default.yaml.
     for path in ("config/default.yaml", "config/worlds/free_fall.yaml",
-                 "config/worlds/tumbling.yaml", "tests/data/config/full_world.yaml"):
+                 "config/worlds/tumbling.yaml", "config/worlds/sensors.yaml",
+                 "tests/data/config/full_world.yaml"):
         with open(os.path.join(REPO, path)) as f:
             text = f.read()
         text = text.replace("../meshes/l_block.obj", "meshes/l_block.obj")

@@ -23,7 +23,9 @@ forbid physics '#include <(lcm/|rbsim/|yaml-cpp/)' "has no LCM and no config fil
 forbid meshio '#include "(robot|config|session|persist|bridge|replay|daemon)/' "depends on physics only"
 forbid robot '#include "(config|session|persist|bridge|replay|daemon)/' "depends on physics and meshio only"
 forbid robot '#include <(lcm/|rbsim/|yaml-cpp/)' "knows no LCM and no config files"
-forbid config "$above_config" "depends on physics, meshio and robot only"
+forbid sensors '#include "(meshio|robot|config|session|persist|bridge|replay|daemon)/' "depends on physics only"
+forbid sensors '#include <(lcm/|rbsim/|yaml-cpp/)' "has no LCM and no config files"
+forbid config "$above_config" "depends on physics, meshio, robot and sensors only"
 forbid config '#include <(lcm/|rbsim/)' "knows no LCM"
 forbid session '#include "(config|persist|bridge|replay|daemon)/' "depends on physics only"
 forbid session '#include <(lcm/|rbsim/|yaml-cpp/)' "has no LCM and no config files"
@@ -34,7 +36,7 @@ forbid bridge '#include <(lcm/lcm|yaml-cpp/)' "has no LCM handle and does not re
 forbid replay '#include "daemon/' "is below daemon"
 forbid replay '#include <yaml-cpp/' "does not read YAML"
 # Outside the physics library, physics is used through its public headers.
-for library in meshio robot config session persist bridge replay daemon; do
+for library in meshio robot sensors config session persist bridge replay daemon; do
   forbid $library '#include "physics/' "uses physics through its public headers (rbsim/physics/) only"
 done
 # The config file is read once, by config/: nothing else parses YAML.

@@ -17,6 +17,7 @@ Hand-written modules:
   ``rbsim.lcm_ctypes``  ctypes wrapper over liblcm.so.1 (transport, event logs)
   ``rbsim.client``      :class:`Client`: state, status, world, joints, wrenches, commands, acks
   ``rbsim.robot``       :class:`Robot`: one robot's commands and state at control rate (lock-step too)
+  ``rbsim.sensors``     :class:`SensorReader`: a world's sensors (IMU, contact, force-torque, range, lidar)
   ``rbsim.log``         :func:`load_log`: LCM logs as numpy arrays
   ``rbsim.cli``         the ``python3 -m rbsim`` command line
 """
@@ -33,12 +34,16 @@ _GENERATED_TYPES = (
     "body_state_t",
     "command_t",
     "compound_part_t",
+    "contact_sensor_t",
     "contact_t",
     "contacts_t",
+    "force_torque_t",
+    "imu_t",
     "joint_command_t",
     "joint_description_t",
     "joint_state_t",
     "joints_t",
+    "range_scan_t",
     "robot_command_t",
     "robot_state_t",
     "status_t",

@@ -226,6 +226,16 @@ def cmd_joints(args):
     print(printing.joints_json(world, joints) if args.json else "\n".join(printing.joint_lines(world, joints)))
 
 
+def cmd_sensor(args):
+    from .sensors import SensorReader, format_sensor
+
+    if args.count < 1:
+        raise CliError("sensor: --count must be at least 1", EXIT_USAGE)
+    with _client(args) as sim, SensorReader(sim, args.name) as reader:
+        for reading in reader.wait(count=args.count, timeout=args.timeout):
+            print(format_sensor(reading))
+
+
 def cmd_joint(args):
     off = args.mode == "off"
     if off and args.target is not None:
@@ -580,6 +590,14 @@ def build_parser():
     sub = verb("joints", cmd_joints, "print the joints (type, bodies, axis, limits) and their state "
                                      "(asks the server to publish the world description)")
     sub.add_argument("--json", action="store_true", help="print JSON")
+
+    sub = verb("sensor", cmd_sensor, "print a sensor's readings (on <prefix>SENSOR_NAME), one line each: "
+                                     "imu (specific force m/s^2 and angular velocity rad/s in the sensor "
+                                     "frame, orientation w x y z), contact and force_torque (N, N*m in the "
+                                     "sensor frame), range_scan (returns, nearest and farthest, and the "
+                                     "ranges with at most 16 beams: inf no return, -inf below min range)")
+    sub.add_argument("name", metavar="NAME", help="the sensor's name (the world file's sensors:)")
+    sub.add_argument("--count", type=int, default=1, metavar="N", help="print N readings (default 1)")
 
     sub = verb("joint", cmd_joint, "command a joint's motor, position drive or effort (the modes are "
                                    "exclusive: each turns the joint's other actuators off)")

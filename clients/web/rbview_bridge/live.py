@@ -21,10 +21,10 @@ import time
 
 import numpy as np
 
-from rbsim import ack_t, command_t, status_t, world_t, wrench_t
+from rbsim import ack_t, command_t, range_scan_t, status_t, world_t, wrench_t
 from rbsim.lcm_ctypes import Lcm
 
-from . import frames, wire
+from . import frames, scans, wire
 from .joint_anchors import JointAnchors
 from .server import ACK_TIMEOUT, Lazy, dumps
 
@@ -102,10 +102,14 @@ class LiveSource:
         self.decode_errors = 0
         self.have_world = threading.Event()
         self.lcm = Lcm(url)
+        self.latest_scans = {}  # sensor name -> its newest scan, as the page gets it
         for suffix, handler in (("STATE", self._on_state), ("CONTACTS", self._on_contacts),
                                 ("WORLD", self._on_world), ("STATUS", self._on_status),
                                 ("ACK", self._on_ack), ("JOINTS", self._on_joints)):
             self.lcm.subscribe(prefix + suffix, handler, queue_capacity=64)
+        # Every sensor's channel (the prefix holds no regex characters); only
+        # range and lidar scans are drawn.
+        self.lcm.subscribe(prefix + "SENSOR_.*", self._on_sensor, queue_capacity=64)
         self.lcm.start()
         self._asker = threading.Thread(target=self._ask_for_world, daemon=True)
         self._asker.start()
@@ -179,6 +183,19 @@ class LiveSource:
         if pages is not None:
             header, records = wire.merge_contacts(pages)
             self.builder.set_contacts(header, records)
+
+    def _on_sensor(self, channel, data, _recv_utime):
+        if bytes(data[:8]) != range_scan_t._get_packed_fingerprint():
+            return  # an IMU, contact or force-torque reading: nothing to draw
+        try:
+            scan = wire.decode_with(range_scan_t, data)
+        except wire.WireError as error:
+            return self._bad(channel, error)
+        if not scans.scan_is_whole(scan):
+            return self._bad(channel, "a scan whose beams x samples is not its number of ranges")
+        self.latest_scans[scan.name] = scans.scan_to_dict(scan)
+        ordered = [self.latest_scans[name] for name in sorted(self.latest_scans)]
+        self.hub.post("scans", dumps({"type": "scans", "scans": ordered}))
 
     def _on_world(self, channel, data, _recv_utime):
         try:

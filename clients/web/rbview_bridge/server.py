@@ -77,7 +77,7 @@ class Session:
         self.number = number
         self.wake = asyncio.Event()
         self.credit = True  # may we send a state frame now?
-        self.seen = {"world": 0, "status": 0, "state": 0, "replay": 0}
+        self.seen = {"world": 0, "status": 0, "state": 0, "replay": 0, "scans": 0}
         self.replies = deque()
         self.open_requests = 0
         self.frames_sent = 0
@@ -97,7 +97,7 @@ class Session:
         while True:
             await self.wake.wait()
             self.wake.clear()
-            for kind in ("world", "status", "replay"):
+            for kind in ("world", "status", "replay", "scans"):
                 slot = hub.slots[kind]
                 if slot.seq != self.seen[kind] and slot.value is not None:
                     self.seen[kind] = slot.seq
@@ -125,7 +125,7 @@ class Hub:
         self.loop = loop
         self.read_only = read_only
         self.mode = mode
-        self.slots = {k: Slot() for k in ("world", "status", "state", "replay")}
+        self.slots = {k: Slot() for k in ("world", "status", "state", "replay", "scans")}
         self.sessions = set()
         self.source = None  # has handle_request(session, message) -> None
         self._numbers = itertools.count(1)

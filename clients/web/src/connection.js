@@ -8,7 +8,7 @@ import { parseFrame } from "./frame.js";
 export class Connection {
   constructor(url, handlers) {
     this.url = url;
-    this.handlers = handlers; // {hello, world, status, joints, state, replay, closed}
+    this.handlers = handlers; // {hello, world, status, joints, state, replay, scans, closed}
     this.nextId = 1;
     this.pending = new Map(); // request id -> resolve
     this.open();

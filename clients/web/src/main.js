@@ -6,6 +6,7 @@ import { Connection } from "./connection.js";
 import { Viewer } from "./scene.js";
 import { Hud, jointLines } from "./hud.js";
 import { Plots } from "./plots.js";
+import { ScansView } from "./scans.js";
 
 // The HUD's per-state text (sim time, step, at rest) is written at most this
 // often: faster than 10 Hz it cannot be read, and every change costs the page a
@@ -19,6 +20,7 @@ const $ = (id) => document.getElementById(id);
 const viewer = new Viewer($("view"));
 const hud = new Hud();
 const plots = new Plots($("plots"));
+const scans = new ScansView(viewer.scene);
 const message = $("message");
 
 const state = {
@@ -73,6 +75,18 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
     if (state.world && frame.revision === state.world.revision) {
       plots.add(frame, state.world.bodies[plots.body], state.world.gravity);
     }
+  },
+  scans(message) {
+    scans.set(message);
+    const menu = $("scan-sensor");
+    const names = scans.names();
+    if (menu.options.length !== names.length + 1) {
+      for (const name of names) {
+        if (![...menu.options].some((o) => o.value === name)) menu.add(new Option(name, name));
+      }
+    }
+    const scan = scans.selected ? scans.latest.get(scans.selected) : null;
+    $("scan-info").textContent = scan ? `step ${scan.step}: ${scan.returns} of ${scan.beams} beams returned` : "";
   },
   replay(replay) {
     state.replay = replay;
@@ -131,6 +145,7 @@ $("toggle-follow").onchange = (e) => {
   viewer.follow = e.target.checked;
   if (viewer.follow && viewer.selected >= 0) viewer.focusOn(viewer.selected);
 };
+$("scan-sensor").onchange = (e) => { scans.select(e.target.value); $("scan-info").textContent = ""; };
 $("toggle-plots").onchange = (e) => $("plots").classList.toggle("hidden", !e.target.checked);
 
 // Framing only moves the camera, so it works read-only and in replay too. Its
@@ -302,6 +317,7 @@ requestAnimationFrame(animate);
 window.rbview = {
   state,
   viewer,
+  scans,
   bodyIndex: (name) => (state.world ? state.world.bodies.findIndex((b) => b.name === name) : -1),
   screenOf(name) {
     const i = this.bodyIndex(name);

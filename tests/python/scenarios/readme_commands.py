@@ -91,6 +91,9 @@ NOT_RUN = {
     # docs/developing.md, docs/queries.md
     "taskset -c 1 build/bench/bench_rays --benchmark_repetitions=3 --benchmark_report_aggregates_only=true":
         "a benchmark: seconds of CPU per repetition, meant for a quiet core",
+    # docs/world_file.md
+    "taskset -c 1 build/bench/bench_sensors --steps 2000 --warmup 1000":
+        "a benchmark: the pile of 1000 boxes stepped 5000 times, meant for a quiet core",
     "taskset -c 1 build/bench/bench_anchors_ours --scene free --n 1000 --reps 3":
         "needs the anchors harness, outside this repository",
     "bench/run_realtime_bench.sh build 60": "a benchmark: a minute, with a server of its own",

@@ -437,7 +437,7 @@ world:
 
 TEST(ConfigLoaderErrors, UnknownKeys) {
   EXPECT_EQ(errorOf("world: {dt: 0.01}\ncolour: red\n"),
-            "test.yaml:2:1: colour: unknown key; the top level has: world, bodies, robots, joints, contact, lcm, "
+            "test.yaml:2:1: colour: unknown key; the top level has: world, bodies, robots, joints, contact, sensors, lcm, "
             "server, limits");
   EXPECT_EQ(errorOf("world: {dt: 0.01, gravty: [0, 0, -1]}\n"),
             "test.yaml:1:19: world.gravty: unknown key; the world has: dt, gravity, integrator, "

@@ -346,4 +346,67 @@ void printWorldJson(std::FILE* out, const rbsim::world_t& world) {
   std::fprintf(out, "%s\n", document.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
 }
 
+namespace {
+
+template <class Message>
+void printSensorHeader(std::FILE* out, const Message& m, const char* type) {
+  std::fprintf(out, "sensor %s type %s step %lld sim_time %.10g", m.name.c_str(), type,
+               static_cast<long long>(m.step), m.sim_time);
+}
+
+// A scan: its pattern, how many beams returned, the nearest and farthest
+// return, and every range (and hit body) when there are at most 16.
+void printScan(std::FILE* out, const rbsim::range_scan_t& m) {
+  constexpr int kListedRanges = 16;
+  int returns = 0;
+  double nearest = INFINITY, farthest = -INFINITY;
+  for (const float range : m.ranges) {
+    if (!std::isfinite(range)) continue;
+    ++returns;
+    nearest = std::min(nearest, static_cast<double>(range));
+    farthest = std::max(farthest, static_cast<double>(range));
+  }
+  if (returns == 0) nearest = farthest = INFINITY;
+  std::fprintf(out, " body %s", m.body.c_str());
+  printVector(out, "position", m.position, 3);
+  printVector(out, "orientation", cleanOrientation(m.orientation).data(), 4);
+  std::fprintf(out, " beams %d samples %d returns %d nearest %.10g farthest %.10g", m.beams, m.horizontal_samples,
+               returns, nearest, farthest);
+  if (m.num_ranges <= kListedRanges) {
+    std::fprintf(out, " ranges");
+    for (const float range : m.ranges) std::fprintf(out, " %.10g", static_cast<double>(range));
+    if (m.num_hit_bodies > 0) {
+      std::fprintf(out, " hit_bodies");
+      for (const std::string& body : m.hit_bodies) std::fprintf(out, " %s", body.empty() ? "-" : body.c_str());
+    }
+  }
+}
+
+}  // namespace
+
+void printSensor(std::FILE* out, const client::SensorMessage& message) {
+  if (const auto* m = std::get_if<rbsim::imu_t>(&message)) {
+    printSensorHeader(out, *m, "imu");
+    std::fprintf(out, " body %s", m->body.c_str());
+    printVector(out, "linear_acceleration", m->linear_acceleration, 3);
+    printVector(out, "angular_velocity", m->angular_velocity, 3);
+    printVector(out, "orientation", cleanOrientation(m->orientation).data(), 4);
+  } else if (const auto* c = std::get_if<rbsim::contact_sensor_t>(&message)) {
+    printSensorHeader(out, *c, "contact");
+    std::fprintf(out, " body %s", c->body.c_str());
+    printVector(out, "force", c->force, 3);
+    printVector(out, "torque", c->torque, 3);
+    std::fprintf(out, " contacts %d", c->num_contacts);
+  } else if (const auto* f = std::get_if<rbsim::force_torque_t>(&message)) {
+    printSensorHeader(out, *f, "force_torque");
+    std::fprintf(out, " joint %s body %s", f->joint.c_str(), f->body.c_str());
+    printVector(out, "force", f->force, 3);
+    printVector(out, "torque", f->torque, 3);
+  } else if (const auto* r = std::get_if<rbsim::range_scan_t>(&message)) {
+    printSensorHeader(out, *r, "range_scan");
+    printScan(out, *r);
+  }
+  std::fprintf(out, "\n");
+}
+
 }  // namespace rbsim::rbctl

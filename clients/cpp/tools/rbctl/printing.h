@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <rbsim/joints_t.hpp>
+#include "rbsim/client/sensor_reader.h"
 #include <rbsim/robot_state_t.hpp>
 #include <rbsim/status_t.hpp>
 #include <rbsim/world_state_t.hpp>
@@ -35,5 +36,9 @@ void printRobotState(std::FILE* out, const rbsim::robot_state_t& state, bool dyn
 // The state with the wire field names (all but utime), the dynamics' fields
 // only with `dynamics`.
 void printRobotStateJson(std::FILE* out, const rbsim::robot_state_t& state, bool dynamics);
+
+// One line per reading: "sensor NAME type T step S sim_time T body B" and the
+// reading's fields (docs/cli.md, "sensor"); the same line as python3 -m rbsim.
+void printSensor(std::FILE* out, const client::SensorMessage& message);
 
 }  // namespace rbsim::rbctl

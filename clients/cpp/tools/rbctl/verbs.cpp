@@ -193,6 +193,36 @@ int runBodies(Context& context, Arguments& arguments) {
   return kExitOk;
 }
 
+int runSensor(Context& context, Arguments& arguments) {
+  std::string name;
+  int64_t count = 1;
+  while (!arguments.empty()) {
+    const std::string argument = arguments.next("sensor", "a sensor name");
+    if (argument == "--count") {
+      count = arguments.nextInteger(argument);
+      if (count < 1) throw UsageError("sensor: --count must be at least 1");
+    } else if (!argument.empty() && argument[0] == '-') {
+      throw UsageError("sensor: unknown option '" + argument + "'");
+    } else if (name.empty()) {
+      name = argument;
+    } else {
+      throw UsageError("sensor: one sensor name, got '" + name + "' and '" + argument + "'");
+    }
+  }
+  if (name.empty()) throw UsageError("sensor: expected a sensor name");
+  client::SensorReader reader(context.client, name);
+  int64_t printed = 0;
+  reader.onReading([&](const client::SensorMessage& message) {
+    if (printed >= count) return;
+    printSensor(stdout, message);
+    ++printed;
+  });
+  if (!context.client.spinUntil([&] { return printed >= count; }, context.timeout))
+    return noAnswer(context, std::to_string(count - printed) + " more reading(s) on " + reader.channel());
+  std::fflush(stdout);
+  return kExitOk;
+}
+
 int runJoints(Context& context, Arguments& arguments) {
   const bool json = jsonOption(arguments, "joints");
   const auto print = [&](const rbsim::joints_t* joints) {
@@ -791,6 +821,19 @@ const std::vector<Verb>& verbs() {
        "  --json   one JSON object: step, world_revision, joints (each with its\n"
        "           description and state fields)\n",
        runJoints},
+      {"sensor", "print a sensor's readings",
+       "usage: rbctl sensor NAME [--count N]\n\n"
+       "Waits for readings of the sensor NAME (the world file's sensors:) on\n"
+       "<prefix>SENSOR_NAME and prints each as one line \"sensor NAME type T step S\n"
+       "sim_time T\" and its fields: imu: body, linear_acceleration (m/s^2, specific\n"
+       "force), angular_velocity (rad/s), both in the sensor frame, orientation (w x y\n"
+       "z, sensor to world); contact: body, force (N), torque (N m), contacts;\n"
+       "force_torque: joint, body, force, torque; range_scan: body, position,\n"
+       "orientation, beams, samples, returns, nearest and farthest return (m; inf:\n"
+       "none), and with at most 16 beams the ranges (inf: no return, -inf: below the\n"
+       "minimum range) and hit_bodies (- for none) when the sensor reports them.\n"
+       "  --count N   print N readings (default 1)\n",
+       runSensor},
       {"joint", "command a joint's motor, position drive or effort",
        "usage: rbctl joint NAME off|velocity|position|effort [TARGET] [--max-effort E]\n"
        "                   [--stiffness K] [--damping D] [--at-step K]\n\n"
