@@ -342,4 +342,28 @@ Expected<HeightGrid> loadHeightNpy(const std::string& path) {
   return grid;
 }
 
+TriangleMesh heightGridMesh(const HeightGrid& grid, double cellX, double cellY, double heightScale,
+                            double heightOffset) {
+  TriangleMesh mesh;
+  mesh.vertices.reserve(grid.values.size());
+  const double middleColumn = 0.5 * (grid.columns - 1);
+  const double middleRow = 0.5 * (grid.rows - 1);
+  for (int r = 0; r < grid.rows; ++r)
+    for (int c = 0; c < grid.columns; ++c)
+      mesh.vertices.emplace_back((c - middleColumn) * cellX, (r - middleRow) * cellY,
+                                 heightScale * grid.at(r, c) + heightOffset);
+  mesh.triangles.reserve(2 * static_cast<std::size_t>(grid.rows - 1) * static_cast<std::size_t>(grid.columns - 1));
+  for (int r = 0; r + 1 < grid.rows; ++r) {
+    for (int c = 0; c + 1 < grid.columns; ++c) {
+      const int corner = r * grid.columns + c;  // (r, c)
+      const int right = corner + 1;             // (r, c + 1)
+      const int above = corner + grid.columns;  // (r + 1, c)
+      const int diagonal = above + 1;           // (r + 1, c + 1)
+      mesh.triangles.push_back({corner, right, diagonal});
+      mesh.triangles.push_back({corner, diagonal, above});
+    }
+  }
+  return mesh;
+}
+
 }  // namespace rbsim

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "rbsim/physics/triangle_mesh.h"
 #include "rbsim/physics/types.h"
 
 namespace rbsim {
@@ -29,8 +30,10 @@ struct HeightGrid {
 };
 
 // Limits on what a file may hold, checked before the values are stored:
-// at least 2 × 2 samples (one cell), at most this many in all.
-inline constexpr long kMaxHeightSamples = 16L * 1024 * 1024;
+// at least 2 × 2 samples (one cell), at most this many in all (1024 × 1024:
+// a terrain's two triangles per cell stay within a mesh's limit,
+// kMaxMeshTriangles).
+inline constexpr long kMaxHeightSamples = 1024L * 1024;
 
 // Chooses the reader by extension (.png, .npy; case-insensitive).
 Expected<HeightGrid> loadHeightGrid(const std::string& path);
@@ -42,5 +45,14 @@ Expected<HeightGrid> loadHeightPng(const std::string& path);
 // uint16, int32, uint32, in either byte order; C or Fortran order; two
 // dimensions. Values must be finite.
 Expected<HeightGrid> loadHeightNpy(const std::string& path);
+
+// The terrain surface of a grid, as a triangle mesh: sample (r, c) at
+// x = (c − (columns − 1)/2) cellX, y = (r − (rows − 1)/2) cellY (the grid
+// centred on the shape's origin), z = heightScale · value + heightOffset;
+// each cell split along its diagonal from (r, c) to (r + 1, c + 1) into
+// two triangles wound counter-clockwise seen from +z (the front, up; the
+// ground below). Sizes must be finite and positive, the scale finite.
+TriangleMesh heightGridMesh(const HeightGrid& grid, double cellX, double cellY, double heightScale,
+                            double heightOffset);
 
 }  // namespace rbsim

@@ -42,7 +42,7 @@ Vec3 randomVec(std::mt19937& random) {
 // `size` rows of one link between two bodies (-1: a fixed side).
 void addLink(std::vector<JointSolverRow>& rows, int link, int bodyA, int bodyB, int size, std::mt19937& random) {
   for (int k = 0; k < size; ++k) {
-    JointSolverRow row{bodyA, bodyB, link, {}};
+    JointSolverRow row = JointSolverRow::of(bodyA, bodyB, link);
     row.jacobian = {randomVec(random), randomVec(random), randomVec(random), randomVec(random)};
     rows.push_back(row);
   }
@@ -219,7 +219,9 @@ TEST(RowSystem, AFactorAskedForWithTheSameBitsIsKeptAndAnyOtherBitRefactors) {
     EXPECT_EQ(RowSystem::counts().factorisations, made + 1) << what;
     RowSystem fresh;
     fresh.factor(otherRows, otherBodies.inverseMass, otherBodies.inverseInertia);
-    if (copy.ok() && fresh.ok()) EXPECT_TRUE(sameBits(copy.solve(b), fresh.solve(b))) << what;
+    if (copy.ok() && fresh.ok()) {
+      EXPECT_TRUE(sameBits(copy.solve(b), fresh.solve(b))) << what;
+    }
   };
   {
     std::vector<JointSolverRow> other = rows;

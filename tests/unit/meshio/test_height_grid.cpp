@@ -209,5 +209,28 @@ TEST_F(HeightGridFiles, BadNpyFilesAreRefusedWithTheirReason) {
   expectError(loadHeightGrid(writeBytes("terrain.tif", {1, 2, 3})), "terrain.tif", ".png or .npy");
 }
 
+TEST(HeightGridMesh, SamplesCentredOnTheOriginAndCellsFacingUp) {
+  HeightGrid grid;
+  grid.rows = 2;
+  grid.columns = 3;
+  grid.values = {0.0, 0.5, 1.0,   // row 0, at y = −0.2
+                 2.0, 3.0, 4.0};  // row 1, at y = +0.2
+  const TriangleMesh mesh = heightGridMesh(grid, 0.5, 0.4, 2.0, -1.0);
+  ASSERT_EQ(mesh.vertices.size(), 6u);
+  ASSERT_EQ(mesh.triangles.size(), 4u);
+  EXPECT_EQ(mesh.vertices[0], Vec3(-0.5, -0.2, -1.0));
+  EXPECT_EQ(mesh.vertices[2], Vec3(0.5, -0.2, 1.0));
+  EXPECT_EQ(mesh.vertices[4], Vec3(0.0, 0.2, 5.0));
+  // Every triangle faces up (+z), and the two of a cell cover it exactly once.
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Vec3 n = (mesh.vertices[static_cast<std::size_t>(t[1])] - mesh.vertices[static_cast<std::size_t>(t[0])])
+                       .cross(mesh.vertices[static_cast<std::size_t>(t[2])] - mesh.vertices[static_cast<std::size_t>(t[0])]);
+    EXPECT_GT(n.z(), 0.0);
+    area += 0.5 * n.z();  // the triangle's area seen from above
+  }
+  EXPECT_NEAR(area, 1.0 * 0.4, 1e-15);
+}
+
 }  // namespace
 }  // namespace rbsim
