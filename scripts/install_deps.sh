@@ -16,6 +16,8 @@ packages=(
   liburdfdom-dev libtinyxml2-dev
   # COLLADA meshes (server/meshio/collada_mesh.h)
   libassimp-dev
+  # terrains' height maps from PNG (server/meshio/height_grid.h)
+  libpng-dev
   # rbctl --json
   nlohmann-json3-dev
   # tests and benchmarks

@@ -15,6 +15,7 @@ normal build: build/tests/fuzz/fuzz_make_checkpoint_seeds tests/fuzz/corpus/chec
 import os
 import shutil
 import struct
+import zlib
 import sys
 
 FUZZ = os.path.dirname(os.path.abspath(__file__))
@@ -283,6 +284,40 @@ def mesh_seeds():
 """)
 
 
+def png_chunk(kind, payload):
+    return struct.pack(">I", len(payload)) + kind + payload + struct.pack(">I", zlib.crc32(kind + payload))
+
+
+def grey_png(rows, bit_depth, interlace=0):
+    """A greyscale PNG of the given rows (lists of samples), filter type 0."""
+    height, width = len(rows), len(rows[0])
+    raw = b""
+    for row in rows:
+        raw += b"\x00" + b"".join(struct.pack(">H" if bit_depth == 16 else "B", v) for v in row)
+    return (b"\x89PNG\r\n\x1a\n" +
+            png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, bit_depth, 0, 0, 0, interlace)) +
+            png_chunk(b"IDAT", zlib.compress(raw)) + png_chunk(b"IEND", b""))
+
+
+def npy(descr, shape, values, fortran=False, version=1):
+    header = "{'descr': '%s', 'fortran_order': %s, 'shape': %s, }" % (descr, fortran, shape)
+    prefix = 10 if version == 1 else 12
+    header += " " * ((64 - (prefix + len(header) + 1) % 64) % 64) + "\n"
+    size = struct.pack("<H" if version == 1 else "<I", len(header))
+    fmt = {"<f8": "<d", "<f4": "<f", ">f4": ">f", "<u2": "<H", "|u1": "B", "<i2": "<h", ">i4": ">i"}[descr]
+    return b"\x93NUMPY" + bytes([version, 0]) + size + header.encode() + b"".join(
+        struct.pack(fmt, v) for v in values)
+
+
+def height_seeds():
+    write("height_png", "ramp16.png", grey_png([[0, 1000, 2000], [3000, 4000, 65535]], 16))
+    write("height_png", "bumps8.png", grey_png([[0, 255], [128, 7], [9, 200]], 8))
+    write("height_npy", "f8.npy", npy("<f8", "(2, 3)", [0.0, 0.5, 1.0, -1.0, 2.5, 3.0]))
+    write("height_npy", "f4_big.npy", npy(">f4", "(2, 2)", [0.0, 0.25, 0.5, 0.75]))
+    write("height_npy", "u2_fortran.npy", npy("<u2", "(2, 3)", [1, 2, 3, 4, 5, 6], fortran=True))
+    write("height_npy", "i4_v2.npy", npy(">i4", "(3, 2)", [-5, 4, 3, 2, 1, 0], version=2))
+
+
 def hull_seeds():
     cube = [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
     square = [(x, y, 0) for x in (-1, 1) for y in (-1, 1)]
@@ -299,4 +334,5 @@ if __name__ == "__main__":
     messages(os.path.abspath(sys.argv[1]))
     yaml_seeds()
     mesh_seeds()
+    height_seeds()
     hull_seeds()
