@@ -265,6 +265,11 @@ bool collideTriangleConvex(const ContactTriangle& triangle, const PlacedConvex& 
   // A normal from the triangle's face, or corrected to it.
   const bool fromFront = axis.kind == AxisKind::TriangleFront ||
                          axis.normal.dot(triangle.normal) >= kFlatCosine;
+  // A piece that meets the triangle from behind (a box under a floor
+  // pushing up through it) is not corrected onto the front: that would
+  // pull it through. Normals along the triangle's plane (the ghost
+  // contacts of a flat floor's edges) may be.
+  if (!fromFront && axis.normal.dot(triangle.normal) < -kFlatSine) return false;
   const bool internal =
       !fromFront && correctInternalEdges && !facesActiveFeature(triangle, axis.normal);
   if (fromFront || internal) {

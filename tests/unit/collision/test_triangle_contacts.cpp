@@ -81,6 +81,16 @@ TEST(TriangleContacts, NothingTouchesATriangleFromBehind) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(out.points[static_cast<std::size_t>(k)].depth, 0.01, 1e-15);
 }
 
+TEST(TriangleContacts, ABoxPushingUpThroughAFloorFromBelowIsNotPulledThrough) {
+  // The box's top 1 cm above an interior floor triangle, its bottom 1 m
+  // below: from behind, no contact (correcting its normal onto the
+  // front would lift it by a metre).
+  const ConvexGeometry box = BoxShape{Vec3(0.1, 0.1, 0.5)};
+  ContactManifold out;
+  EXPECT_FALSE(collideTriangleConvex(unitTriangle(0x0), {&box, Transform{Mat3::Identity(), Vec3(0.25, 0.25, -0.49)}},
+                                     margin(0.0), out));
+}
+
 TEST(TriangleContacts, ABoxOverlappingAnInteriorEdgeBySliverIsPushedUpNotSideways) {
   // A 1 m box sunk 1 cm into a flat floor, reaching 2 mm past the
   // triangle's edge x = 0 (its +x face at x = 0.002). Along x the overlap

@@ -928,7 +928,7 @@ bodies:
       shapes:
         - shape: {type: trimesh, file: meshes/ramp.obj}
 )"),
-               "test.yaml:6:24: bodies[0].shape.shapes[0].shape.type: a trimesh cannot be part of a compound");
+               "test.yaml:6:25: bodies[0].shape.shapes[0].shape.type: a trimesh cannot be part of a compound");
 }
 
 TEST(ConfigLoaderErrors, WholeDocument) {
