@@ -131,6 +131,10 @@ rbsim::body_description_t bodyDescription(BodyView body) {
     // shape_orientation place in body space, as for any shape.
     for (const CompoundPart& part : compound->parts) out.parts.push_back(compoundPart(part));
     out.num_parts = static_cast<int32_t>(out.parts.size());
+  } else if (const auto* trimesh = std::get_if<TriangleMeshShape>(&d.shape)) {
+    // Sent as a mesh is (vertices and triangles in the shape frame); only
+    // shape_type says "trimesh".
+    copyDimensions(out, CompoundPartShape{MeshShape{trimesh->file, trimesh->mesh}});
   } else if (auto solid = toPartShape(d.shape)) {
     copyDimensions(out, *solid);
   }

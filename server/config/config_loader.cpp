@@ -66,7 +66,8 @@ constexpr std::array<std::string_view, 3> kPlaneKeys = {"type", "normal", "offse
 constexpr std::array<std::string_view, 2> kCompoundKeys = {"type", "shapes"};
 constexpr std::array<std::string_view, 5> kCompoundPartKeys = {"shape", "position", "orientation",
                                                                "rpy", "density"};
-constexpr std::string_view kShapeTypes = "sphere, box, cylinder, capsule, mesh, plane, compound";
+constexpr std::string_view kShapeTypes =
+    "sphere, box, cylinder, capsule, mesh, plane, compound, trimesh";
 
 constexpr std::array<IntegratorKind, 3> kIntegrators = {
     IntegratorKind::ExplicitEuler, IntegratorKind::SemiImplicitEuler, IntegratorKind::Rk4};
@@ -111,7 +112,9 @@ class ConfigParser {
                                     std::optional<double>& angular) const;
   Expected<std::string> parseName(const YamlNode& node) const;
   Expected<Shape> parseShape(const YamlNode& node, bool isStatic) const;
-  Expected<Shape> parseMesh(const YamlMap& shape) const;
+  // A mesh shape (closed: it bounds a solid) or a trimesh (any surface).
+  enum class MeshUse { Solid, Surface };
+  Expected<Shape> parseMesh(const YamlMap& shape, MeshUse use) const;
   Expected<Shape> parsePlane(const YamlMap& shape, const YamlNode& type, bool isStatic) const;
   Expected<Shape> parseCompound(const YamlMap& shape, bool isStatic) const;
   Expected<CompoundPart> parseCompoundPart(const YamlNode& node, bool isStatic) const;
@@ -508,7 +511,17 @@ Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) co
   }
   if (*type == "mesh") {
     if (auto error = m_reader.checkKeys(*map, kMeshKeys, "a mesh shape")) return *error;
-    return parseMesh(*map);
+    return parseMesh(*map, MeshUse::Solid);
+  }
+  if (*type == "trimesh") {
+    if (auto error = m_reader.checkKeys(*map, kMeshKeys, "a trimesh shape")) return *error;
+    // Its triangles collide one by one, on a body that never moves: a
+    // surface has no mass and cannot be integrated.
+    if (!isStatic) {
+      return m_reader.error(*typeNode,
+                            "a trimesh is only allowed on a static body (add static: true)");
+    }
+    return parseMesh(*map, MeshUse::Surface);
   }
   if (*type == "plane") {
     if (auto error = m_reader.checkKeys(*map, kPlaneKeys, "a plane shape")) return *error;
@@ -522,7 +535,7 @@ Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) co
                                        describeNode(typeNode->node));
 }
 
-Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
+Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape, MeshUse use) const {
   Expected<YamlNode> fileNode = m_reader.required(shape, "file");
   if (!fileNode) return fileNode.error();
   Expected<std::string> file = m_reader.string(*fileNode);
@@ -542,8 +555,9 @@ Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
     if (contained) replaceAll(message, *path, *file);
     return m_reader.error(*fileNode, message);
   }
-  Expected<bool> closed = validateClosedMesh(*mesh, resolved);
-  if (!closed) return m_reader.error(*fileNode, closed.error().message);
+  Expected<bool> valid = use == MeshUse::Solid ? validateClosedMesh(*mesh, resolved)
+                                               : validateSurfaceMesh(*mesh, resolved);
+  if (!valid) return m_reader.error(*fileNode, valid.error().message);
   for (const Vec3& vertex : mesh->vertices) {
     if (!vertex.allFinite() || vertex.cwiseAbs().maxCoeff() > kMaxLength) {
       return m_reader.error(*fileNode, resolved + ": a vertex is not finite or lies beyond " +
@@ -551,7 +565,9 @@ Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape) const {
                                            " m");
     }
   }
-  return Shape{MeshShape{resolved, std::make_shared<const TriangleMesh>(std::move(*mesh))}};
+  auto shared = std::make_shared<const TriangleMesh>(std::move(*mesh));
+  if (use == MeshUse::Surface) return Shape{TriangleMeshShape{resolved, std::move(shared)}};
+  return Shape{MeshShape{resolved, std::move(shared)}};
 }
 
 Expected<std::string> ConfigParser::meshPath(const std::string& file) const {
@@ -617,6 +633,11 @@ Expected<CompoundPart> ConfigParser::parseCompoundPart(const YamlNode& node, boo
     if (*name == "compound") {
       return m_reader.error(type->value,
                             "a compound cannot contain a compound; list its parts here instead");
+    }
+    if (*name == "trimesh") {
+      return m_reader.error(type->value,
+                            "a trimesh cannot be part of a compound (it is static only); make "
+                            "it a static body of its own");
     }
     if (*name == "plane") {
       return m_reader.error(type->value,

@@ -3,7 +3,8 @@
 // it, goes through the config loader (loadMesh, validateClosedMesh, the
 // vertex bounds) and, if accepted, becomes a body of the small world (mass
 // properties by Mirtich's integrals, collision hulls by qhull) that is then
-// stepped against the other bodies.
+// stepped against the other bodies; then the same file as a static trimesh
+// body, stepped under them.
 
 #include <string>
 

@@ -335,3 +335,25 @@ def test_sent_joint_commands(sim):
     ack.client, ack.seq, ack.kind, ack.accepted, ack.reason = "offline", s1, ack_t.KIND_JOINT_COMMAND, False, "no"
     _publish(sim, "ACK", [ack])
     assert sim.wait_ack(s1, "joint_command", timeout=2.0).reason == "no"
+
+
+def test_a_trimesh_body_is_described_as_a_mesh_is():
+    """A static trimesh comes with its vertices and triangles, as a mesh does
+    (server/bridge/wire_convert.cpp), and both CLIs print it alike."""
+    from rbsim import body_description_t, world_t
+    from rbsim.client import WorldDescription
+    from rbsim.printing import world_lines
+
+    body = body_description_t()
+    body.name, body.id, body.shape_type, body.is_static = "floor", 1, "trimesh", True
+    body.mesh_file = "meshes/ramp.obj"
+    body.num_vertices, body.vertices = 4, [[0, 0, 0], [2, 0, 1], [2, 1, 1], [0, 1, 0]]
+    body.num_triangles, body.triangles = 2, [[0, 1, 2], [0, 2, 3]]
+    page = world_t()
+    page.page, page.num_pages, page.total_bodies, page.first_body_index = 0, 1, 1, 0
+    page.num_bodies, page.bodies = 1, [body]
+    world = WorldDescription(PageAssembler().add(world_t.decode(page.encode())))
+    assert world.bodies[0].shape_type == "trimesh" and len(world.bodies[0].triangles) == 2
+    line = world_lines(world)[1]
+    assert line.startswith("body floor id 1 shape trimesh static true")
+    assert " file meshes/ramp.obj vertices 4 triangles 2" in line

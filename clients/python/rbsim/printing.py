@@ -82,7 +82,7 @@ def world_lines(world) -> List[str]:
             line += " radius %s half_length %s" % (number(b.radius), number(b.half_length))
         if b.shape_type == "plane":
             line += _vector("normal", b.plane_normal) + " offset %s" % number(b.plane_offset)
-        if b.shape_type == "mesh":
+        if b.shape_type in ("mesh", "trimesh"):
             line += " file %s vertices %d triangles %d" % (b.mesh_file, b.num_vertices, b.num_triangles)
         if b.shape_type == "compound":
             line += " parts %d" % b.num_parts + "".join(" " + p.shape_type for p in b.parts)

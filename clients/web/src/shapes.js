@@ -75,7 +75,8 @@ function solidPieces(solid, meshKey, segments) {
         new THREE.CapsuleGeometry(solid.radius, 2 * solid.half_length, along / 2, around).applyMatrix4(Z_FROM_Y));
       return [{ key, geometry, local: scale.identity() }];
     }
-    case "mesh": {
+    case "mesh":
+    case "trimesh": { // a static surface of triangles: drawn as a mesh is
       if (solid.vertices.length < 9 || solid.triangles.length < 3) return [];
       const geometry = () => unitGeometry(meshKey, () => meshGeometry(solid.vertices, solid.triangles));
       return [{ key: meshKey, geometry, local: scale.identity() }];

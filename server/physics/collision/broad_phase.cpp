@@ -31,7 +31,7 @@ BroadPhaseShape BroadPhaseShape::of(const Body& body) {
   shape.isStatic = body.isStatic();
   shape.filter = body.description().collisionFilter;
   if (const Collider* collider = body.description().collider.get()) {
-    if (!collider->pieces.empty()) shape.bounds = collider->bounds;
+    if (!collider->pieces.empty() || collider->triangles) shape.bounds = collider->bounds;
     shape.plane = collider->plane;
   }
   return shape;

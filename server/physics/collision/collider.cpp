@@ -144,6 +144,14 @@ Expected<Collider> buildCollider(const Shape& shape, const Transform& shapeToBod
             collider.bounds = collider.bounds.merged(partCollider->bounds);
           }
           return collider;
+        } else if constexpr (std::is_same_v<T, TriangleMeshShape>) {
+          const std::string where = sourceName + " (trimesh '" + s.file + "')";
+          if (!s.mesh) return Error{where + ": the mesh was not loaded"};
+          auto triangles = buildTriangleMeshCollider(*s.mesh, shapeToBody, where);
+          if (!triangles) return triangles.error();
+          collider.triangles = std::move(triangles).value();
+          collider.bounds = collider.triangles->bvh.bounds();
+          return collider;
         } else {
           static_assert(std::is_same_v<T, PlaneShape>);
           const double length = s.normal.norm();

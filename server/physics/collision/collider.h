@@ -1,6 +1,7 @@
 #pragma once
 // The collision geometry of one body, in body space: convex pieces (one for
-// a primitive, several for a compound or a multi-part mesh), or a half-space.
+// a primitive, several for a compound or a multi-part mesh), a half-space,
+// or the triangles of a trimesh.
 
 #include <memory>
 #include <optional>
@@ -9,6 +10,7 @@
 
 #include "physics/collision/aabb.h"
 #include "physics/collision/convex_geometry.h"
+#include "physics/collision/triangle_mesh_collider.h"
 #include "rbsim/physics/expected.h"
 #include "rbsim/physics/shapes.h"
 #include "rbsim/physics/transform.h"
@@ -22,8 +24,11 @@ struct ConvexPiece {
 };
 
 struct Collider {
-  std::vector<ConvexPiece> pieces;  // empty for a plane
+  std::vector<ConvexPiece> pieces;  // empty for a plane or a trimesh
   std::optional<PlaneShape> plane;  // a half-space, in the body frame
+  // A trimesh's triangles (static bodies only). Contacts name a triangle
+  // where they would name a piece (BodyContact::pieceA or pieceB).
+  std::shared_ptr<const TriangleMeshCollider> triangles;
   Aabb bounds = Aabb::empty();      // body frame; everything for a plane
   // Per piece, the compound part it came from (a mesh part may give several
   // pieces, one per connected component); empty for any other shape, whose

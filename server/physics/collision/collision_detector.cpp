@@ -209,6 +209,8 @@ void CollisionDetector::collidePair(PairRun& run, uint64_t key, int indexA, int 
   // The broad phase only pairs bodies that have colliders.
   const Collider& colliderA = *a.collider;
   const Collider& colliderB = *b.collider;
+  if (colliderA.triangles || colliderB.triangles)
+    return collideTriangleMeshPair(run, indexA, indexB, settings);
   const Transform& poseA = a.pose;
   const Transform& poseB = b.pose;
   const double halfMargin = 0.5 * settings.margin;
@@ -277,6 +279,48 @@ void CollisionDetector::collidePair(PairRun& run, uint64_t key, int indexA, int 
       if (contact.manifold.pointCount > 0) run.contacts.push_back(contact);
     }
   }
+}
+
+void CollisionDetector::collideTriangleMeshPair(PairRun& run, int indexA, int indexB,
+                                                const ContactSettings& settings) const {
+  const BodyGeometry& a = m_geometry[at(indexA)];
+  const BodyGeometry& b = m_geometry[at(indexB)];
+  const bool meshIsA = a.collider->triangles != nullptr;
+  const BodyGeometry& mesh = meshIsA ? a : b;
+  const BodyGeometry& other = meshIsA ? b : a;
+  // Two trimeshes (both static) or a trimesh and a plane have no contacts.
+  if (other.collider->triangles || other.collider->plane) return;
+  BodyContact contact;
+  contact.bodyA = indexA;
+  contact.bodyB = indexB;
+  std::vector<TriangleManifold>& manifolds = run.triangleManifolds;
+  const std::size_t firstContact = run.contacts.size();
+  for (std::size_t j = 0; j < other.collider->pieces.size(); ++j) {
+    const ConvexPiece& piece = other.collider->pieces[j];
+    manifolds.clear();
+    collideTriangleMeshPiece(*mesh.collider->triangles, mesh.pose,
+                             PlacedConvex{&piece.geometry, other.pose * piece.placement}, settings,
+                             manifolds);
+    for (TriangleManifold& found : manifolds) {
+      if (meshIsA) {
+        contact.pieceA = found.triangle;
+        contact.pieceB = static_cast<int>(j);
+      } else {
+        flipManifold(found.manifold);  // the narrow phase puts the mesh first
+        contact.pieceA = static_cast<int>(j);
+        contact.pieceB = found.triangle;
+      }
+      contact.manifold = found.manifold;
+      run.contacts.push_back(contact);
+    }
+  }
+  // Contacts go in (piece A, piece B) order; with the mesh as A, the loop
+  // above went piece by piece of B.
+  if (meshIsA)
+    std::stable_sort(run.contacts.begin() + static_cast<std::ptrdiff_t>(firstContact),
+                     run.contacts.end(), [](const BodyContact& x, const BodyContact& y) {
+                       return x.pieceA != y.pieceA ? x.pieceA < y.pieceA : x.pieceB < y.pieceB;
+                     });
 }
 
 int CollisionDetector::contactPointCount() const {

@@ -13,6 +13,7 @@
 #include "physics/collision/body_contact.h"
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/contact_generation.h"
+#include "physics/collision/triangle_mesh_contacts.h"
 #include "physics/parallel/task_pool.h"
 
 namespace rbsim {
@@ -103,6 +104,7 @@ class CollisionDetector {
     std::vector<uint64_t> contactKeys;  // (serial A, serial B) of each contact
     std::vector<KeptSeparation> separations;  // in (key, piece A, piece B) order
     std::vector<PlacedPiece> placedB;   // scratch
+    std::vector<TriangleManifold> triangleManifolds;  // scratch
     // Merge walks over the previous detect()'s lists: pairs come in key order.
     std::size_t previousContactCursor = 0;
     std::size_t previousPairCursor = 0;
@@ -113,6 +115,10 @@ class CollisionDetector {
   void collidePair(PairRun& run, uint64_t key, int indexA, int indexB) const;
   void collidePair(PairRun& run, uint64_t key, int indexA, int indexB,
                    const ContactSettings& settings) const;
+  // A pair with a trimesh: each convex piece of the other body against the
+  // triangles near it, one manifold per (triangle, piece).
+  void collideTriangleMeshPair(PairRun& run, int indexA, int indexB,
+                               const ContactSettings& settings) const;
   // The previous detect()'s cache of the pieces' pair (zero if none); moves
   // the run's cursor, so pieces must be asked for in (key, A, B) order.
   SeparationCache previousSeparation(PairRun& run, uint64_t key, int pieceA, int pieceB) const;

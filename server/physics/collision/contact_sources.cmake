@@ -12,4 +12,6 @@ target_sources(rbsim_physics PRIVATE
   collision/polygon_clipping.cpp
   collision/closest_points.cpp
   collision/box_features.cpp
+  collision/triangle_contacts.cpp
+  collision/triangle_mesh_contacts.cpp
 )

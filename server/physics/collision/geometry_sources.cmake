@@ -6,4 +6,7 @@ target_sources(rbsim_physics PRIVATE
   collision/gjk.cpp
   collision/ccd_support.cpp
   collision/signed_distance.cpp
+  collision/triangle_mesh_bvh.cpp
+  collision/active_edges.cpp
+  collision/triangle_mesh_collider.cpp
 )

@@ -4,6 +4,7 @@
 
 #include "physics/collision/broad_phase.h"
 #include "physics/collision/contact_routines.h"
+#include "physics/collision/triangle_mesh_contacts.h"
 
 namespace rbsim {
 
@@ -21,6 +22,20 @@ bool collidePiecePair(const Collider& a, int pieceA, const Transform& poseA, con
                       ContactManifold& out) {
   out = {};
   if (a.plane && b.plane) return false;  // two half-spaces have no manifold
+  // A trimesh's piece is a triangle; a trimesh meets only convex pieces.
+  if (a.triangles) {
+    if (b.triangles || b.plane) return false;
+    return collideTriangleOfMesh(*a.triangles, pieceA, poseA, placed(b, pieceB, poseB), settings,
+                                 out);
+  }
+  if (b.triangles) {
+    if (a.plane) return false;
+    if (!collideTriangleOfMesh(*b.triangles, pieceB, poseB, placed(a, pieceA, poseA), settings,
+                               out))
+      return false;
+    flipManifold(out);
+    return true;
+  }
   if (a.plane) {
     const HalfSpace plane = worldHalfSpace(*a.plane, poseA);
     return collidePlaneConvex(plane.normal, plane.offset, placed(b, pieceB, poseB), settings, out);

@@ -11,7 +11,8 @@
 
 namespace rbsim {
 
-// `pieceA` and `pieceB` index the colliders' pieces (0 for a plane), as in
+// `pieceA` and `pieceB` index the colliders' pieces (0 for a plane, the
+// triangle for a trimesh), as in
 // BodyContact. Same conventions as the detector: the normal points from A to
 // B, and false (with out.pointCount = 0) when the pieces are farther apart
 // than the margin.

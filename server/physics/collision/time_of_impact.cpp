@@ -8,6 +8,7 @@
 
 #include "physics/body/integrator.h"
 #include "physics/collision/broad_phase.h"
+#include "physics/collision/triangle_mesh_contacts.h"
 
 namespace rbsim {
 
@@ -58,7 +59,8 @@ double geometryRadius(const ConvexGeometry& geometry) {
 
 // How many distance pairs a collider takes part in (a plane counts once).
 int partCount(const Collider& collider) {
-  return static_cast<int>(collider.pieces.size()) + (collider.plane ? 1 : 0);
+  return static_cast<int>(collider.pieces.size()) + (collider.plane ? 1 : 0) +
+         (collider.triangles ? collider.triangles->triangleCount() : 0);
 }
 
 }  // namespace
@@ -79,6 +81,16 @@ SignedDistance colliderDistance(const Collider& a, const Transform& poseA, const
     const HalfSpace plane = worldHalfSpace(*b.plane, poseB);
     for (const ConvexPiece& piece : a.pieces)
       consider(swapped(planeToPiece(plane, {&piece.geometry, poseA * piece.placement})));
+  }
+  if (a.triangles) {
+    for (const ConvexPiece& piece : b.pieces)
+      consider(triangleMeshDistance(*a.triangles, poseA, {&piece.geometry, poseB * piece.placement},
+                                    settings));
+  }
+  if (b.triangles) {
+    for (const ConvexPiece& piece : a.pieces)
+      consider(swapped(triangleMeshDistance(*b.triangles, poseB,
+                                            {&piece.geometry, poseA * piece.placement}, settings)));
   }
   for (const ConvexPiece& pieceA : a.pieces) {
     const PlacedConvex placedA{&pieceA.geometry, poseA * pieceA.placement};
@@ -205,6 +217,7 @@ Transform SweptMotion::poseAt(double fraction) const {
 
 double boundingRadius(const Collider& collider) {
   if (collider.plane) return kInfinity;
+  if (collider.triangles) return colliderRadius(collider);
   double radius = 0.0;
   for (const ConvexPiece& piece : collider.pieces)
     radius = std::max(radius, piece.placement.translation.norm() + geometryRadius(piece.geometry));

@@ -169,6 +169,44 @@ Expected<bool> validateClosedMesh(const TriangleMesh& mesh, const std::string& s
   return true;
 }
 
+Expected<bool> validateSurfaceMesh(const TriangleMesh& mesh, const std::string& sourceName) {
+  const int vertexCount = static_cast<int>(mesh.vertices.size());
+  const int triangleCount = static_cast<int>(mesh.triangles.size());
+  if (triangleCount == 0) return Error{prefix(sourceName) + "mesh has no triangles"};
+  for (int t = 0; t < triangleCount; ++t) {
+    for (int index : mesh.triangles[static_cast<size_t>(t)]) {
+      if (index < 0 || index >= vertexCount) {
+        std::ostringstream message;
+        message << prefix(sourceName) << "triangle " << t << " has vertex index " << index
+                << " out of range (" << vertexCount << " vertices)";
+        return Error{message.str()};
+      }
+      if (!mesh.vertices[static_cast<size_t>(index)].allFinite()) {
+        std::ostringstream message;
+        message << prefix(sourceName) << "triangle " << t << ": vertex " << index
+                << " has a non-finite coordinate";
+        return Error{message.str()};
+      }
+    }
+  }
+  Vec3 lower, upper;
+  usedVertexBounds(mesh, lower, upper);
+  const double minimumDoubledArea = kDegenerateAreaFraction * (upper - lower).squaredNorm();
+  for (int t = 0; t < triangleCount; ++t) {
+    const auto& tri = mesh.triangles[static_cast<size_t>(t)];
+    const Vec3& a = mesh.vertices[static_cast<size_t>(tri[0])];
+    const Vec3& b = mesh.vertices[static_cast<size_t>(tri[1])];
+    const Vec3& c = mesh.vertices[static_cast<size_t>(tri[2])];
+    if (!((b - a).cross(c - a).norm() > minimumDoubledArea)) {
+      std::ostringstream message;
+      message << prefix(sourceName) << "triangle " << t << " (vertices " << tri[0] << ", "
+              << tri[1] << ", " << tri[2] << ") is degenerate: it has zero area";
+      return Error{message.str()};
+    }
+  }
+  return true;
+}
+
 TriangleMesh transformed(const TriangleMesh& mesh, const Mat3& rotation, const Vec3& translation) {
   TriangleMesh result;
   result.triangles = mesh.triangles;

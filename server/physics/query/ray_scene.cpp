@@ -5,6 +5,7 @@
 
 #include "physics/query/convex_sweep.h"
 #include "physics/query/ray_shapes.h"
+#include "physics/query/ray_triangle_mesh.h"
 
 namespace rbsim {
 
@@ -44,7 +45,7 @@ bool RayScene::sameBodies(std::span<const Body> bodies) const {
   std::size_t next = 0;
   for (const Body& body : bodies) {
     const Collider* collider = castableCollider(body);
-    if (!collider || collider->pieces.empty()) continue;
+    if (!collider || (collider->pieces.empty() && !collider->triangles)) continue;
     if (next == m_entries.size() || m_entries[next].serial != body.serial()) return false;
     ++next;
   }
@@ -69,7 +70,7 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
     if (collider->plane)
       m_planes.push_back({worldHalfSpace(*collider->plane, pose), body.serial(), static_cast<int>(i),
                           body.description().collisionFilter});
-    if (collider->pieces.empty()) continue;
+    if (collider->pieces.empty() && !collider->triangles) continue;
     if (!sameEntries) m_entries.emplace_back();
     Entry& entry = m_entries[next++];
     entry.serial = body.serial();
@@ -77,6 +78,8 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
     entry.filter = body.description().collisionFilter;
     entry.firstPiece = static_cast<int>(m_pieces.size());
     entry.pieceCount = static_cast<int>(collider->pieces.size());
+    entry.triangles = collider->triangles.get();
+    entry.pose = pose;
     for (std::size_t p = 0; p < collider->pieces.size(); ++p) {
       const ConvexPiece& piece = collider->pieces[p];
       m_pieces.push_back({pose * piece.placement, &piece.geometry, partOfPiece(*collider, p)});
@@ -104,6 +107,15 @@ void RayScene::rebuild(std::span<const Body> bodies) const {
 
 std::optional<SceneHit> RayScene::hitBody(const Entry& entry, const RaySegment& segment,
                                           double maxFraction) const {
+  if (entry.triangles != nullptr) {
+    // The ray in the body frame, where the mesh and its BVH are.
+    const RaySegment local(entry.pose.applyInverse(segment.origin),
+                           entry.pose.inverseRotate(segment.delta));
+    const auto hit = castTriangleMesh(*entry.triangles, local, maxFraction);
+    if (!hit) return std::nullopt;
+    return SceneHit{entry.bodyIndex, entry.serial, hit->triangle, 0, hit->fraction,
+                    entry.pose.rotate(hit->normal)};
+  }
   std::optional<SceneHit> best;
   for (int p = 0; p < entry.pieceCount; ++p) {
     const Piece& piece = m_pieces[at(entry.firstPiece + p)];

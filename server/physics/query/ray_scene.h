@@ -1,5 +1,6 @@
 #pragma once
 // The bodies as ray casts see them: one proxy per body with convex pieces
+// (or a trimesh's triangles, walked through the mesh's own BVH)
 // in a dynamic AABB tree (the broad phase's kind, collision/
 // dynamic_aabb_tree.h), each piece placed in the world, and the planes
 // aside (infinite, they are tested on every ray). The tree is kept as the
@@ -125,6 +126,10 @@ class RayScene {
     int proxy = DynamicAabbTree::kNull;
     int firstPiece = 0;  // its pieces: m_pieces[firstPiece, firstPiece + pieceCount)
     int pieceCount = 0;
+    // A trimesh's triangles instead of pieces (hits name the triangle as
+    // their piece), and the body's pose.
+    const TriangleMeshCollider* triangles = nullptr;
+    Transform pose;
     CollisionFilter filter;
   };
   struct Piece {

@@ -57,7 +57,8 @@ namespace {
 constexpr uint32_t kMaxNameLength = 4096;
 constexpr uint32_t kMaxFileNameLength = 65536;
 
-enum class ShapeTag : uint8_t { Sphere = 1, Box = 2, Cylinder = 3, Capsule = 4, Mesh = 5, Plane = 6, Compound = 7 };
+enum class ShapeTag : uint8_t { Sphere = 1, Box = 2, Cylinder = 3, Capsule = 4, Mesh = 5, Plane = 6, Compound = 7,
+                                 TriangleMesh = 8 };
 constexpr uint32_t kMaxCompoundParts = 1u << 16;
 
 Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWriter& out) {
@@ -75,8 +76,13 @@ Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWrite
     out.u8(static_cast<uint8_t>(ShapeTag::Capsule));
     out.f64(p->radius);
     out.f64(p->halfLength);
-  } else if (const auto* m = std::get_if<MeshShape>(&shape)) {
-    out.u8(static_cast<uint8_t>(ShapeTag::Mesh));
+  } else if (std::holds_alternative<MeshShape>(shape) ||
+             std::holds_alternative<TriangleMeshShape>(shape)) {
+    const auto* mesh = std::get_if<MeshShape>(&shape);
+    const auto* trimesh = std::get_if<TriangleMeshShape>(&shape);
+    const MeshShape copy = mesh ? *mesh : MeshShape{trimesh->file, trimesh->mesh};
+    const MeshShape* m = &copy;
+    out.u8(static_cast<uint8_t>(mesh ? ShapeTag::Mesh : ShapeTag::TriangleMesh));
     out.string(m->file);
     // The vertices themselves: a checkpoint must not depend on files that
     // may have changed since.
@@ -110,7 +116,8 @@ Expected<bool> writeShape(const Shape& shape, const std::string& body, ByteWrite
 
 Shape readShape(ByteReader& in, const std::string& body) {
   const std::size_t at = in.offset();
-  switch (static_cast<ShapeTag>(in.u8("shape type"))) {
+  const auto tag = static_cast<ShapeTag>(in.u8("shape type"));
+  switch (tag) {
     case ShapeTag::Sphere:
       return SphereShape{in.f64("sphere radius")};
     case ShapeTag::Box:
@@ -127,7 +134,9 @@ Shape readShape(ByteReader& in, const std::string& body) {
       c.halfLength = in.f64("capsule half length");
       return c;
     }
-    case ShapeTag::Mesh: {
+    case ShapeTag::Mesh:
+    case ShapeTag::TriangleMesh: {
+      const bool isTriangleMesh = tag == ShapeTag::TriangleMesh;
       MeshShape m;
       m.file = in.string("mesh file name", kMaxFileNameLength);
       auto mesh = std::make_shared<TriangleMesh>();
@@ -147,6 +156,7 @@ Shape readShape(ByteReader& in, const std::string& body) {
         mesh->triangles.push_back(t);
       }
       m.mesh = std::move(mesh);
+      if (isTriangleMesh) return TriangleMeshShape{std::move(m.file), std::move(m.mesh)};
       return m;
     }
     case ShapeTag::Plane: {
@@ -807,9 +817,9 @@ Expected<bool> readSnapshotContents(WorldData& world, ByteReader& in) {
         !dynamics.inertiaBody.allFinite() || !dynamics.inverseInertiaBody.allFinite() ||
         !description->shapeRotation.allFinite() || !description->shapeTranslation.allFinite())
       return Error{"world snapshot: " + where + " has a non-finite or non-unit state"};
-    const bool isPlane = std::holds_alternative<PlaneShape>(description->shape);
-    if (isPlane && !description->isStatic)
-      return Error{"world snapshot: " + where + ": a plane can only be static"};
+    if (isStaticOnlyShape(description->shape) && !description->isStatic)
+      return Error{"world snapshot: " + where + ": a " + shapeTypeName(description->shape) +
+                   " can only be static"};
     if (const auto* compound = std::get_if<CompoundShape>(&description->shape)) {
       for (const CompoundPart& part : compound->parts) {
         const auto* mesh = std::get_if<MeshShape>(&part.shape);

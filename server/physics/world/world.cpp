@@ -79,6 +79,12 @@ Expected<MassProperties> unitDensityMassProperties(const BodyDef& def) {
         return Error{where + "plane normal must be a finite non-zero vector"};
       return MassProperties{};  // a half-space has no finite mass
     }
+    Expected<MassProperties> operator()(const TriangleMeshShape& s) const {
+      if (!s.mesh) return Error{where + "trimesh '" + s.file + "' was not loaded"};
+      const auto valid = validateSurfaceMesh(*s.mesh, s.file);
+      if (!valid) return valid.error();
+      return MassProperties{};  // static only: a surface has no mass
+    }
     Expected<MassProperties> operator()(const CompoundShape& s) const {
       if (s.parts.empty()) return Error{where + "a compound needs at least one part"};
       std::vector<PlacedMassProperties> parts;
@@ -190,8 +196,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
     return Error{where + "position, orientation and velocities must be finite"};
   if (!isRotationQuaternion(def.orientation))
     return Error{where + "the orientation quaternion must be non-zero and of finite norm"};
-  const bool isPlane = std::holds_alternative<PlaneShape>(def.shape);
-  if (isPlane && !def.isStatic) return Error{where + "a plane can only be a static body"};
+  if (isStaticOnlyShape(def.shape) && !def.isStatic)
+    return Error{where + "a " + shapeTypeName(def.shape) + " can only be a static body"};
   if (def.mass && def.density) return Error{where + "give mass or density, not both"};
   if (def.mass && !isPositiveFinite(*def.mass)) return Error{where + "mass must be positive"};
   if (def.density && !isPositiveFinite(*def.density))
@@ -235,8 +241,8 @@ Expected<BodyId> World::createBody(const BodyDef& def) {
   dynamics.angularDamping = angularDamping;
   Vec3 centerOfMass = Vec3::Zero();
   Mat3 principal = Mat3::Identity();  // columns: principal axes in the shape frame
-  if (isPlane) {
-    dynamics.mass = 0.0;  // a half-space has no finite mass
+  if (isStaticOnlyShape(def.shape)) {
+    dynamics.mass = 0.0;  // a half-space or a surface has no finite mass
     dynamics.inertiaBody = Vec3::Zero();
   } else {
     // unit->mass is the volume, except for a compound whose parts have

@@ -714,7 +714,7 @@ bodies:
     shape: {type: cone, radius: 1}
 )"),
             "test.yaml:3:19: bodies[0].shape.type: expected one of sphere, box, cylinder, "
-            "capsule, mesh, plane, compound, got \"cone\"");
+            "capsule, mesh, plane, compound, trimesh, got \"cone\"");
 }
 
 TEST(ConfigLoaderErrors, Plane) {
@@ -869,6 +869,66 @@ bodies:
 )");
   EXPECT_PRED2(startsWith, open, "test.yaml:3:31: bodies[0].shape.file: ");
   EXPECT_PRED2(contains, open, "open_tetra.obj");
+}
+
+TEST(ConfigLoader, TrimeshLoadsAnOpenSurfaceFromObjOrStl) {
+  for (const char* file : {"meshes/ramp.obj", "meshes/ramp.stl"}) {
+    const Expected<WorldDef> world = parse(std::string(R"(
+bodies:
+  - name: ramp
+    static: true
+    shape: {type: trimesh, file: )") + file + "}\n");
+    ASSERT_TRUE(world.ok()) << file << ": " << world.error().message;
+    const auto* trimesh = std::get_if<TriangleMeshShape>(&world->bodies[0].shape);
+    ASSERT_NE(trimesh, nullptr) << file;
+    EXPECT_EQ(trimesh->file, (kDataDir / file).lexically_normal().string());
+    ASSERT_NE(trimesh->mesh, nullptr);
+    ASSERT_EQ(trimesh->mesh->triangles.size(), 2u) << file;
+    // Both files wind the ramp to face up the same way.
+    const auto& t = trimesh->mesh->triangles[0];
+    const auto& v = trimesh->mesh->vertices;
+    const Vec3 normal = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+    EXPECT_GT(normal.z(), 0.0) << file;
+  }
+}
+
+TEST(ConfigLoaderErrors, Trimesh) {
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: ramp
+    shape: {type: trimesh, file: meshes/ramp.obj}
+)"),
+            "test.yaml:3:19: bodies[0].shape.type: a trimesh is only allowed on a static body "
+            "(add static: true)");
+
+  const std::string degenerate = errorOf(R"(
+bodies:
+  - name: ramp
+    static: true
+    shape: {type: trimesh, file: meshes/flat_ramp.obj}
+)");
+  EXPECT_PRED2(startsWith, degenerate, "test.yaml:4:34: bodies[0].shape.file: ");
+  EXPECT_PRED2(contains, degenerate, "flat_ramp.obj");
+  EXPECT_PRED2(contains, degenerate, "triangle 2 (vertices 0, 4, 1) is degenerate");
+
+  const std::string missing = errorOf(R"(
+bodies:
+  - name: ramp
+    static: true
+    shape: {type: trimesh, file: meshes/no_such_ramp.obj}
+)");
+  EXPECT_PRED2(startsWith, missing, "test.yaml:4:34: bodies[0].shape.file: ");
+  EXPECT_PRED2(contains, missing, "no_such_ramp.obj");
+
+  EXPECT_PRED2(startsWith, errorOf(R"(
+bodies:
+  - name: c
+    shape:
+      type: compound
+      shapes:
+        - shape: {type: trimesh, file: meshes/ramp.obj}
+)"),
+               "test.yaml:6:25: bodies[0].shape.shapes[0].shape.type: a trimesh cannot be part of a compound");
 }
 
 TEST(ConfigLoaderErrors, WholeDocument) {

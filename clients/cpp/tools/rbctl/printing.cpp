@@ -109,7 +109,7 @@ void printWorld(std::FILE* out, const rbsim::world_t& world) {
       printVector(out, "normal", b.plane_normal, 3);
       std::fprintf(out, " offset %.10g", b.plane_offset);
     }
-    if (b.shape_type == "mesh")
+    if (b.shape_type == "mesh" || b.shape_type == "trimesh")
       std::fprintf(out, " file %s vertices %d triangles %d", b.mesh_file.c_str(), b.num_vertices,
                    b.num_triangles);
     if (b.shape_type == "compound") {

@@ -10,7 +10,9 @@
 // Solids are closed and solid: a ray that starts inside one, or on its
 // surface, hits it at fraction 0, at its start, with the normal opposite
 // to the ray (as Jolt does for convex shapes treated as solid): a sensor
-// buried in a body reads 0.
+// buried in a body reads 0. A trimesh is a surface, not a solid: a ray
+// meets its triangles from either side, where it crosses them, with the
+// face normal turned against the ray.
 
 #include <cstdint>
 
@@ -47,7 +49,8 @@ struct RayHit {
   // The body's compound part that was hit (0 for other shapes), and its
   // convex piece: a compound's parts in order, a mesh's connected
   // components in order of their first vertex (for a compound of
-  // primitives, the piece is the part).
+  // primitives, the piece is the part); for a trimesh, the piece is the
+  // triangle hit (its index in the mesh file's order).
   int part = 0;
   int piece = 0;
   double fraction = 0.0;       // along from → to, in [0, 1]

@@ -44,8 +44,19 @@ struct PlaneShape {
   double offset = 0.0;          // m
 };
 
+// A static, non-convex surface made of the triangles themselves (a room,
+// a ramp, stairs, a terrain), open or closed; only for static bodies, and
+// without mass properties. Each triangle is one-sided: its front is the
+// side its vertices run counter-clockwise around, and what lies behind it
+// is solid (see docs/physics.md, "Triangle meshes").
+struct TriangleMeshShape {
+  std::string file;                          // where it was loaded from, for messages
+  std::shared_ptr<const TriangleMesh> mesh;  // in the shape's frame
+};
+
 // What a compound may be made of: the solids. A plane (infinite) or another
 // compound (nesting adds nothing a flat list cannot say) cannot be a part,
+// nor can a triangle mesh (static only),
 // and this type makes them impossible to write.
 using CompoundPartShape =
     std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape>;
@@ -69,14 +80,17 @@ struct CompoundShape {
 };
 
 using Shape = std::variant<SphereShape, BoxShape, CylinderShape, CapsuleShape, MeshShape,
-                           PlaneShape, CompoundShape>;
+                           PlaneShape, CompoundShape, TriangleMeshShape>;
+
+// The shapes only a static body may have: a plane and a triangle mesh.
+bool isStaticOnlyShape(const Shape& shape);
 
 // "sphere", "box", ... as written in config files and on the wire.
 std::string shapeTypeName(const Shape& shape);
 std::string shapeTypeName(const CompoundPartShape& shape);
 
 // A compound part's shape as a shape of its own, and back (nothing for a
-// plane or a compound).
+// plane, a compound or a triangle mesh).
 Shape toShape(const CompoundPartShape& shape);
 std::optional<CompoundPartShape> toPartShape(Shape shape);
 

@@ -23,6 +23,14 @@ struct TriangleMesh {
 // and vertex numbers in messages count from 0.
 Expected<bool> validateClosedMesh(const TriangleMesh& mesh, const std::string& sourceName);
 
+// Checks a mesh that need not bound a solid (a trimesh shape's surface: a
+// floor, a ramp, a room, open or closed): at least one triangle, every
+// index in range, every vertex a triangle uses finite, and no triangle of
+// zero area (three collinear or repeated vertices, relative to the size
+// of the mesh as validateClosedMesh judges it). The error names
+// `sourceName` and the first bad triangle (counting from 0).
+Expected<bool> validateSurfaceMesh(const TriangleMesh& mesh, const std::string& sourceName);
+
 // Corners of the axis-aligned box around the vertices the triangles use.
 void usedVertexBounds(const TriangleMesh& mesh, Vec3& lower, Vec3& upper);
 
