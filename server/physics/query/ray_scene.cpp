@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 
 #include "physics/query/convex_sweep.h"
 #include "physics/query/ray_shapes.h"
@@ -197,8 +198,58 @@ void RayScene::walkSweep(const SceneSweep& sweep, double maxFraction, Visit&& vi
                   [&](int entryIndex) { return visit(m_entries[at(entryIndex)]); });
 }
 
+namespace {
+
+// A triangle as a convex solid for GJK (its support is its farthest
+// corner): a flat hull of three vertices, seen from both sides as rays see
+// a trimesh's triangles.
+ConvexGeometry triangleSolid(const ContactTriangle& triangle) {
+  auto hull = std::make_shared<ConvexHull>();
+  hull->vertices.assign(triangle.vertices.begin(), triangle.vertices.end());
+  hull->lowerCorner = triangle.vertices[0].cwiseMin(triangle.vertices[1]).cwiseMin(triangle.vertices[2]);
+  hull->upperCorner = triangle.vertices[0].cwiseMax(triangle.vertices[1]).cwiseMax(triangle.vertices[2]);
+  hull->centroid = (triangle.vertices[0] + triangle.vertices[1] + triangle.vertices[2]) / 3.0;
+  for (const Vec3& v : triangle.vertices) hull->radius = std::max(hull->radius, (v - hull->centroid).norm());
+  return std::shared_ptr<const ConvexHull>(std::move(hull));
+}
+
+}  // namespace
+
+// A trimesh's first triangle touched: the sweep moved into the mesh's
+// frame, its box swept through the triangles' BVH (boxes grown by the
+// shape's half extents, as in the scene's tree), narrowed at each touch.
+std::optional<SceneSweepHit> RayScene::sweepTriangles(const Entry& entry, const SceneSweep& sweep,
+                                                      double maxFraction) const {
+  const Transform start = entry.pose.inverse() * sweep.start;
+  const Vec3 delta = entry.pose.inverseRotate(sweep.delta);
+  const Aabb bounds = placedBounds(sweep.shape, start);
+  const RaySegment path(bounds.center(), delta);
+  const Eigen::Array3d grow = bounds.halfExtents().array();
+  std::optional<SweepContact> best;
+  int bestTriangle = 0;
+  entry.triangles->bvh.traverse(
+      [&](const Aabb& box) {
+        return segmentEntersBox(path, box.min.array() - grow, box.max.array() + grow, maxFraction) <= maxFraction;
+      },
+      [&](int t) {
+        const ConvexGeometry triangle = triangleSolid(entry.triangles->triangle(t, Transform::identity()));
+        const std::optional<SweepContact> touch =
+            sweepAgainstConvex(sweep.shape, start, delta, {&triangle, Transform::identity()}, maxFraction);
+        if (!touch) return;
+        if (best && (touch->fraction > best->fraction || (touch->fraction == best->fraction && t > bestTriangle)))
+          return;
+        best = touch;
+        bestTriangle = t;
+        maxFraction = touch->fraction;
+      });
+  if (!best) return std::nullopt;
+  return SceneSweepHit{{entry.bodyIndex, entry.serial, bestTriangle, 0, best->fraction, entry.pose.rotate(best->normal)},
+                       entry.pose.apply(best->point)};
+}
+
 std::optional<SceneSweepHit> RayScene::sweepBody(const Entry& entry, const SceneSweep& sweep,
                                                  double maxFraction) const {
+  if (entry.triangles != nullptr) return sweepTriangles(entry, sweep, maxFraction);
   std::optional<SceneSweepHit> best;
   for (int p = 0; p < entry.pieceCount; ++p) {
     const Piece& piece = m_pieces[at(entry.firstPiece + p)];

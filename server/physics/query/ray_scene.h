@@ -152,6 +152,7 @@ class RayScene {
   // The entry's nearest piece a sweep touches in [0, maxFraction], if any.
   std::optional<SceneSweepHit> sweepBody(const Entry& entry, const SceneSweep& sweep, double maxFraction) const;
   std::optional<SceneSweepHit> sweepPlane(const Plane& plane, const SceneSweep& sweep) const;
+  std::optional<SceneSweepHit> sweepTriangles(const Entry& entry, const SceneSweep& sweep, double maxFraction) const;
   // Calls visit(entry) for each entry whose box the sweep's box meets
   // within [0, maxFraction], as RayTree::cast does.
   template <class Visit>

@@ -192,6 +192,40 @@ TEST(ShapeCasts, MeshAndCompoundReportTheirPieceAndPart) {
   expectPoint(hit, {-0.5, 1, 0});
 }
 
+// A trimesh: a floor of two triangles at z = 0 and a wall leaning over it,
+// each triangle seen from both sides as rays see them; the piece is the triangle.
+TEST(ShapeCasts, TrimeshTriangles) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0},  // the floor
+                    {3, -2, 0}, {3, 2, 0}, {4, 2, 2}};               // a slope rising along +x
+  mesh->triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
+  World world;
+  const BodyId ground = add(world, "ground", TriangleMeshShape{"floor", mesh}, {0, 0, 1},
+                            Quaternion::identity(), true);
+  // Straight down onto the floor (at z = 1 in the world): the second triangle.
+  ShapeCast cast = sweep(SphereShape{0.25}, {-1, 1, 5}, {-1, 1, -5});
+  auto hit = world.castShape(cast);
+  expectTouch(hit, ground, cast, (4 - 0.25) / 10, Vec3::UnitZ());
+  EXPECT_EQ(hit->piece, 1);
+  expectPoint(hit, {-1, 1, 1});
+  // From below: the floor is seen from behind too.
+  cast = sweep(BoxShape{Vec3::Constant(0.1)}, {0.5, -0.5, -3}, {0.5, -0.5, 3});
+  hit = world.castShape(cast);
+  expectTouch(hit, ground, cast, (4 - 0.1) / 6, -Vec3::UnitZ());
+  EXPECT_EQ(hit->piece, 0);
+  // Along x just above the floor, onto the slope 2 (x − 3) − z = 0 (in the
+  // mesh's frame): a sphere of radius 0.25 with its centre at z = 0.5 there
+  // touches it when its centre is 0.25 from the plane, 6.5 − 2x = 0.25 √5,
+  // whose unit normal towards the sphere is (−2, 0, 1)/√5.
+  cast = sweep(SphereShape{0.25}, {0, 0, 1.5}, {5, 0, 1.5});
+  hit = world.castShape(cast);
+  const Vec3 normal = Vec3(-2, 0, 1) / std::sqrt(5.0);
+  const double centreX = 3.25 - 0.125 * std::sqrt(5.0);
+  expectTouch(hit, ground, cast, centreX / 5, normal);
+  EXPECT_EQ(hit->piece, 2);
+  expectPoint(hit, Vec3(centreX, 0, 1.5) - 0.25 * normal);
+}
+
 TEST(ShapeCasts, StartsInContactMissesAndStandingStill) {
   World world;
   const BodyId block = add(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
