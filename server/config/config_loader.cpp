@@ -19,6 +19,7 @@
 #include "config/orientation_config.h"
 #include "config/robot_config.h"
 #include "meshio/contained_path.h"
+#include "meshio/height_grid.h"
 #include "config/mass_data_config.h"
 #include "config/sensor_config.h"
 #include "config/server_sections.h"
@@ -62,12 +63,14 @@ constexpr std::array<std::string_view, 2> kSphereKeys = {"type", "radius"};
 constexpr std::array<std::string_view, 2> kBoxKeys = {"type", "half_extents"};
 constexpr std::array<std::string_view, 3> kCylinderKeys = {"type", "radius", "half_length"};
 constexpr std::array<std::string_view, 2> kMeshKeys = {"type", "file"};
+constexpr std::array<std::string_view, 6> kHeightfieldKeys = {"type", "file", "heights", "cell_size",
+                                                              "height_scale", "height_offset"};
 constexpr std::array<std::string_view, 3> kPlaneKeys = {"type", "normal", "offset"};
 constexpr std::array<std::string_view, 2> kCompoundKeys = {"type", "shapes"};
 constexpr std::array<std::string_view, 5> kCompoundPartKeys = {"shape", "position", "orientation",
                                                                "rpy", "density"};
 constexpr std::string_view kShapeTypes =
-    "sphere, box, cylinder, capsule, mesh, plane, compound, trimesh";
+    "sphere, box, cylinder, capsule, mesh, plane, compound, trimesh, heightfield";
 
 constexpr std::array<IntegratorKind, 3> kIntegrators = {
     IntegratorKind::ExplicitEuler, IntegratorKind::SemiImplicitEuler, IntegratorKind::Rk4};
@@ -115,6 +118,8 @@ class ConfigParser {
   // A mesh shape (closed: it bounds a solid) or a trimesh (any surface).
   enum class MeshUse { Solid, Surface };
   Expected<Shape> parseMesh(const YamlMap& shape, MeshUse use) const;
+  // A terrain: a grid of heights (a file or inline rows) as a trimesh.
+  Expected<Shape> parseHeightfield(const YamlMap& shape, const YamlNode& type) const;
   Expected<Shape> parsePlane(const YamlMap& shape, const YamlNode& type, bool isStatic) const;
   Expected<Shape> parseCompound(const YamlMap& shape, bool isStatic) const;
   Expected<CompoundPart> parseCompoundPart(const YamlNode& node, bool isStatic) const;
@@ -523,6 +528,14 @@ Expected<Shape> ConfigParser::parseShape(const YamlNode& node, bool isStatic) co
     }
     return parseMesh(*map, MeshUse::Surface);
   }
+  if (*type == "heightfield") {
+    if (auto error = m_reader.checkKeys(*map, kHeightfieldKeys, "a heightfield shape")) return *error;
+    if (!isStatic) {
+      return m_reader.error(*typeNode,
+                            "a heightfield is only allowed on a static body (add static: true)");
+    }
+    return parseHeightfield(*map, *typeNode);
+  }
   if (*type == "plane") {
     if (auto error = m_reader.checkKeys(*map, kPlaneKeys, "a plane shape")) return *error;
     return parsePlane(*map, *typeNode, isStatic);
@@ -568,6 +581,91 @@ Expected<Shape> ConfigParser::parseMesh(const YamlMap& shape, MeshUse use) const
   auto shared = std::make_shared<const TriangleMesh>(std::move(*mesh));
   if (use == MeshUse::Surface) return Shape{TriangleMeshShape{resolved, std::move(shared)}};
   return Shape{MeshShape{resolved, std::move(shared)}};
+}
+
+Expected<Shape> ConfigParser::parseHeightfield(const YamlMap& shape, const YamlNode& type) const {
+  const YamlMap::Entry* fileEntry = shape.find("file");
+  const YamlMap::Entry* heightsEntry = shape.find("heights");
+  if ((fileEntry != nullptr) == (heightsEntry != nullptr)) {
+    return m_reader.error(type, "a heightfield takes exactly one of file (a .png or .npy height map) and "
+                                "heights (rows of numbers)");
+  }
+  HeightGrid grid;
+  std::string source = "inline heights";
+  if (fileEntry != nullptr) {
+    const YamlNode& fileNode = fileEntry->value;
+    Expected<std::string> file = m_reader.string(fileNode);
+    if (!file) return file.error();
+    if (file->empty()) return m_reader.error(fileNode, "expected a height map file path (.png or .npy)");
+    const Expected<std::string> path = meshPath(*file);
+    if (!path) return m_reader.error(fileNode, path.error().message);
+    const bool contained = m_meshPaths == MeshPaths::InsideBaseDirectory;
+    source = contained ? *file : *path;
+    Expected<HeightGrid> loaded = loadHeightGrid(*path);
+    if (!loaded) {
+      std::string message = loaded.error().message;
+      if (contained) replaceAll(message, *path, *file);
+      return m_reader.error(fileNode, message);
+    }
+    grid = std::move(*loaded);
+  } else {
+    // Rows of samples, row 0 at the terrain's −y edge (as a .npy file's).
+    const YamlNode& heightsNode = heightsEntry->value;
+    Expected<std::vector<YamlNode>> rows = m_reader.list(heightsNode);
+    if (!rows) return rows.error();
+    if (rows->size() < 2)
+      return m_reader.error(heightsNode, "expected at least 2 rows of heights (one cell)");
+    for (const YamlNode& rowNode : *rows) {
+      Expected<std::vector<YamlNode>> samples = m_reader.list(rowNode);
+      if (!samples) return samples.error();
+      if (grid.rows == 0) grid.columns = static_cast<int>(samples->size());
+      if (samples->size() < 2)
+        return m_reader.error(rowNode, "expected at least 2 heights in a row (one cell)");
+      if (static_cast<int>(samples->size()) != grid.columns) {
+        return m_reader.error(rowNode, "expected " + std::to_string(grid.columns) +
+                                           " heights, as in the first row; got " + std::to_string(samples->size()));
+      }
+      if (static_cast<long>(rows->size()) * grid.columns > kMaxHeightSamples)
+        return m_reader.error(heightsNode, "more than " + std::to_string(kMaxHeightSamples) + " heights");
+      for (const YamlNode& sample : *samples) {
+        Expected<double> height = m_reader.number(sample, NumberRule::any(kMaxLength));
+        if (!height) return height.error();
+        grid.values.push_back(*height);
+      }
+      ++grid.rows;
+    }
+  }
+
+  // The spacing of the samples: one number for square cells, or [x, y].
+  Expected<YamlNode> cellNode = m_reader.required(shape, "cell_size");
+  if (!cellNode) return cellNode.error();
+  double cellX = 0.0, cellY = 0.0;
+  if (cellNode->node.IsSequence()) {
+    Expected<std::array<double, 2>> cell = m_reader.numbers<2>(*cellNode, NumberRule::positive(kMaxLength));
+    if (!cell) return cell.error();
+    cellX = (*cell)[0];
+    cellY = (*cell)[1];
+  } else {
+    Expected<double> cell = m_reader.number(*cellNode, NumberRule::positive(kMaxLength));
+    if (!cell) return cell.error();
+    cellX = cellY = *cell;
+  }
+  Expected<double> scale = m_reader.number(shape, "height_scale", NumberRule::any(kMaxLength), 1.0);
+  if (!scale) return scale.error();
+  Expected<double> offset = m_reader.number(shape, "height_offset", NumberRule::any(kMaxLength), 0.0);
+  if (!offset) return offset.error();
+  if (cellX * (grid.columns - 1) > 2 * kMaxLength || cellY * (grid.rows - 1) > 2 * kMaxLength)
+    return m_reader.error(*cellNode, "the terrain reaches beyond " + std::to_string(static_cast<long long>(kMaxLength)) + " m");
+  TriangleMesh mesh = heightGridMesh(grid, cellX, cellY, *scale, *offset);
+  for (const Vec3& vertex : mesh.vertices) {
+    if (!vertex.allFinite() || std::abs(vertex.z()) > kMaxLength) {
+      return m_reader.error(type, source + ": a height (scale × value + offset) is not finite or lies beyond " +
+                                      std::to_string(static_cast<long long>(kMaxLength)) + " m");
+    }
+  }
+  Expected<bool> valid = validateSurfaceMesh(mesh, source);
+  if (!valid) return m_reader.error(type, valid.error().message);
+  return Shape{TriangleMeshShape{source, std::make_shared<const TriangleMesh>(std::move(mesh))}};
 }
 
 Expected<std::string> ConfigParser::meshPath(const std::string& file) const {

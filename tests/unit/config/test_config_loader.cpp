@@ -714,7 +714,7 @@ bodies:
     shape: {type: cone, radius: 1}
 )"),
             "test.yaml:3:19: bodies[0].shape.type: expected one of sphere, box, cylinder, "
-            "capsule, mesh, plane, compound, trimesh, got \"cone\"");
+            "capsule, mesh, plane, compound, trimesh, heightfield, got \"cone\"");
 }
 
 TEST(ConfigLoaderErrors, Plane) {
@@ -929,6 +929,132 @@ bodies:
         - shape: {type: trimesh, file: meshes/ramp.obj}
 )"),
                "test.yaml:6:25: bodies[0].shape.shapes[0].shape.type: a trimesh cannot be part of a compound");
+}
+
+// A heightfield is loaded as the trimesh of its grid (meshio/height_grid.h):
+// samples centred on the body's origin, rows along +y, two up-facing
+// triangles per cell.
+TEST(ConfigLoader, HeightfieldFromInlineRowsNpyAndPng) {
+  Expected<WorldDef> world = parse(R"(
+bodies:
+  - name: ground
+    static: true
+    shape: {type: heightfield, heights: [[0, 1, 2], [3, 4, 5]], cell_size: [0.5, 0.25], height_scale: 2, height_offset: -1}
+)");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  auto* terrain = std::get_if<TriangleMeshShape>(&world->bodies[0].shape);
+  ASSERT_NE(terrain, nullptr);
+  EXPECT_EQ(terrain->file, "inline heights");
+  ASSERT_EQ(terrain->mesh->vertices.size(), 6u);
+  ASSERT_EQ(terrain->mesh->triangles.size(), 4u);
+  EXPECT_EQ(terrain->mesh->vertices[0], Vec3(-0.5, -0.125, -1.0));
+  EXPECT_EQ(terrain->mesh->vertices[5], Vec3(0.5, 0.125, 9.0));
+
+  // [[0, .5, 1, 1.5], [2, 2.5, 3, 3.5], [4, 4.5, 5, 5.5]], square cells of 1 m.
+  world = parse(R"(
+bodies:
+  - name: ground
+    static: true
+    shape: {type: heightfield, file: terrain/bumps.npy, cell_size: 1}
+)");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  terrain = std::get_if<TriangleMeshShape>(&world->bodies[0].shape);
+  ASSERT_NE(terrain, nullptr);
+  EXPECT_EQ(terrain->file, (kDataDir / "terrain/bumps.npy").lexically_normal().string());
+  ASSERT_EQ(terrain->mesh->vertices.size(), 12u);
+  EXPECT_EQ(terrain->mesh->triangles.size(), 12u);
+  EXPECT_EQ(terrain->mesh->vertices[0], Vec3(-1.5, -1.0, 0.0));
+  EXPECT_EQ(terrain->mesh->vertices[11], Vec3(1.5, 1.0, 5.5));
+
+  // A 16-bit PNG, 3 wide and 2 high, top row 0 65535 0: full scale is the
+  // height scale, and the top row is the +y edge.
+  world = parse(R"(
+bodies:
+  - name: ground
+    static: true
+    shape: {type: heightfield, file: terrain/checker16.png, cell_size: 2, height_scale: 0.3}
+)");
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  terrain = std::get_if<TriangleMeshShape>(&world->bodies[0].shape);
+  ASSERT_NE(terrain, nullptr);
+  ASSERT_EQ(terrain->mesh->vertices.size(), 6u);
+  EXPECT_EQ(terrain->mesh->vertices[0], Vec3(-2, -1, 0.3));  // bottom row: 65535 0 65535
+  EXPECT_EQ(terrain->mesh->vertices[1], Vec3(0, -1, 0.0));
+  EXPECT_EQ(terrain->mesh->vertices[4], Vec3(0, 1, 0.3));  // top row: 0 65535 0
+}
+
+TEST(ConfigLoaderErrors, Heightfield) {
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: g
+    shape: {type: heightfield, heights: [[0, 0], [0, 0]], cell_size: 1}
+)"),
+            "test.yaml:3:19: bodies[0].shape.type: a heightfield is only allowed on a static body "
+            "(add static: true)");
+  const std::string both = errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, file: terrain/bumps.npy, heights: [[0, 0], [0, 0]], cell_size: 1}
+)");
+  EXPECT_PRED2(startsWith, both, "test.yaml:4:19: bodies[0].shape.type: a heightfield takes exactly one of file");
+  const std::string neither = errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, cell_size: 1}
+)");
+  EXPECT_PRED2(startsWith, neither, "test.yaml:4:19: bodies[0].shape.type: a heightfield takes exactly one of file");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, heights: [[0, 0, 1], [0, 0]], cell_size: 1}
+)"),
+            "test.yaml:4:53: bodies[0].shape.heights[1]: expected 3 heights, as in the first row; got 2");
+  EXPECT_EQ(errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, heights: [[0, 0, 1]], cell_size: 1}
+)"),
+            "test.yaml:4:41: bodies[0].shape.heights: expected at least 2 rows of heights (one cell)");
+  EXPECT_PRED2(startsWith, errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, heights: [[0, 0], [0, 0]]}
+)"),
+               "test.yaml:4:12: bodies[0].shape");
+  EXPECT_PRED2(contains, errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, heights: [[0, 0], [0, 0]], cell_size: [1, 0]}
+)"),
+               "bodies[0].shape.cell_size");
+  const std::string notGrey = errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, file: meshes/ramp.obj, cell_size: 1}
+)");
+  EXPECT_PRED2(startsWith, notGrey, "test.yaml:4:38: bodies[0].shape.file: ");
+  EXPECT_PRED2(contains, notGrey, ".png or .npy");
+  EXPECT_PRED2(contains, errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, file: terrain/missing.npy, cell_size: 1}
+)"),
+               "missing.npy: cannot be opened");
+  EXPECT_PRED2(contains, errorOf(R"(
+bodies:
+  - name: g
+    static: true
+    shape: {type: heightfield, heights: [[0, 0], [0, 1e300]], cell_size: 1, height_scale: 1e6}
+)"),
+               "bodies[0].shape");
 }
 
 TEST(ConfigLoaderErrors, WholeDocument) {
