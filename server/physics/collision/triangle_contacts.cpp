@@ -122,9 +122,14 @@ ChosenAxis hullAxis(const ContactTriangle& triangle, const ConvexHull& hull,
       axis /= length;
       // Both orientations of the line; the larger separation is the line's.
       const auto [low, high] = span(triangle.vertices, axis);
+      double lowestOfHullHere = kInfinity;
       double highestOfHull = -kInfinity;
-      for (const Vec3& c : corners) highestOfHull = std::max(highestOfHull, axis.dot(c));
-      const double alongAxis = lowestOfHull(axis) - high;
+      for (const Vec3& c : corners) {
+        const double height = axis.dot(c);
+        lowestOfHullHere = std::min(lowestOfHullHere, height);
+        highestOfHull = std::max(highestOfHull, height);
+      }
+      const double alongAxis = lowestOfHullHere - high;
       const double againstAxis = low - highestOfHull;
       const double separation = std::max(alongAxis, againstAxis);
       if (separation > edge.separation) {

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "physics/collision/box_features.h"
 #include "physics/collision/contact_routines.h"
 #include "physics/collision/triangle_contacts.h"
 
@@ -46,10 +47,18 @@ void collideTriangleMeshPiece(const TriangleMeshCollider& mesh, const Transform&
   std::vector<int> near;
   mesh.bvh.forEachOverlap(query, [&near](int triangle) { near.push_back(triangle); });
   std::sort(near.begin(), near.end());
+  // A box meets triangles as the hull it is (box_features.h, the same
+  // numbering): made once here, not once per triangle.
+  ConvexGeometry boxAsHull;
+  PlacedConvex tested = piece;
+  if (const auto* box = std::get_if<BoxShape>(piece.geometry); box && !near.empty()) {
+    boxAsHull = std::make_shared<const ConvexHull>(boxHull(box->halfExtents));
+    tested.geometry = &boxAsHull;
+  }
   const std::size_t begin = out.size();
   for (const int t : near) {
     ContactManifold manifold;
-    if (!collideTriangleConvex(mesh.triangle(t, meshPose), piece, settings, manifold)) continue;
+    if (!collideTriangleConvex(mesh.triangle(t, meshPose), tested, settings, manifold)) continue;
     ContactManifold unique;
     unique.normal = manifold.normal;
     for (int k = 0; k < manifold.pointCount; ++k) {
