@@ -222,6 +222,16 @@ def yaml_seeds():
         text = text.replace("../meshes/l_block.obj", "meshes/l_block.obj")
         text = text.replace("meshes/tetra.obj", "meshes/l_block.obj")
         write("world_config", os.path.basename(path), text)
+    write("world_config", "heightfield.yaml",
+          "# A heightfield terrain (inline heights, a ridge) with a ball and a box falling onto it.\n"
+          "world: {dt: 0.001}\n"
+          "bodies:\n"
+          "  - name: terrain\n"
+          "    static: true\n"
+          "    shape: {type: heightfield, heights: [[0, 0, 0, 0], [0, 0.2, 0.3, 0], [0, 0.1, 0, 0]],\n"
+          "            cell_size: [0.5, 0.4], height_scale: 1.5, height_offset: -0.1}\n"
+          "  - {name: ball, shape: {type: sphere, radius: 0.1}, position: [0.1, 0.05, 1.0]}\n"
+          "  - {name: crate, shape: {type: box, half_extents: [0.1, 0.2, 0.1]}, position: [-0.3, 0.1, 1.5]}\n")
     write("world_config", "penalty_backtracking.yaml",
           "world: {dt: 0.01, integrator: rk4, damping: {linear: 0.1}}\n"
           "contact: {model: penalty, backtracking: true, stiffness: 1e4, damping: 100,\n"
