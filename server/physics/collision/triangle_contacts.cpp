@@ -76,11 +76,8 @@ bool facesActiveFeature(const ContactTriangle& triangle, const Vec3& direction) 
 }
 
 // The separating-axis test of a hull (a box as boxHull) against the triangle.
-ChosenAxis hullAxis(const ContactTriangle& triangle, const ConvexHull& hull,
-                    const Transform& pose) {
-  std::vector<Vec3> corners;
-  corners.reserve(hull.vertices.size());
-  for (const Vec3& v : hull.vertices) corners.push_back(pose.apply(v));
+ChosenAxis hullAxis(const ContactTriangle& triangle, const PlacedHull& placed) {
+  const std::vector<Vec3>& corners = placed.corners;
   const auto lowestOfHull = [&](const Vec3& axis) {
     double lowest = kInfinity;
     for (const Vec3& c : corners) lowest = std::min(lowest, axis.dot(c));
@@ -97,10 +94,9 @@ ChosenAxis hullAxis(const ContactTriangle& triangle, const ConvexHull& hull,
 
   ChosenAxis face;
   face.kind = AxisKind::PieceFace;
-  for (std::size_t f = 0; f < hull.faceNormals.size(); ++f) {
-    const Vec3 m = pose.rotate(hull.faceNormals[f]);
-    const double offset = hull.faceOffsets[f] + m.dot(pose.translation);
-    const double separation = span(triangle.vertices, m).first - offset;
+  for (std::size_t f = 0; f < placed.faceNormals.size(); ++f) {
+    const Vec3& m = placed.faceNormals[f];
+    const double separation = span(triangle.vertices, m).first - placed.faceOffsets[f];
     if (separation > face.separation) {
       face.separation = separation;
       face.normal = -m;
@@ -108,14 +104,14 @@ ChosenAxis hullAxis(const ContactTriangle& triangle, const ConvexHull& hull,
     }
   }
 
+  // Parallel edges of the hull give the same axes: one edge per direction.
   ChosenAxis edge;
   edge.kind = AxisKind::EdgePair;
   for (int i = 0; i < 3; ++i) {
     const Vec3 along = triangle.vertices[static_cast<std::size_t>((i + 1) % 3)] -
                        triangle.vertices[static_cast<std::size_t>(i)];
-    for (std::size_t e = 0; e < hull.edges.size(); ++e) {
-      const Vec3 other = corners[static_cast<std::size_t>(hull.edges[e][1])] -
-                         corners[static_cast<std::size_t>(hull.edges[e][0])];
+    for (std::size_t d = 0; d < placed.edgeDirections.size(); ++d) {
+      const Vec3& other = placed.edgeDirections[d];
       Vec3 axis = along.cross(other);
       const double length = axis.norm();
       if (!(length > kParallelEdgeSine * along.norm() * other.norm())) continue;
@@ -136,7 +132,7 @@ ChosenAxis hullAxis(const ContactTriangle& triangle, const ConvexHull& hull,
         edge.separation = separation;
         edge.normal = alongAxis >= againstAxis ? axis : Vec3(-axis);
         edge.triangleEdge = i;
-        edge.pieceFeature = static_cast<int>(e);
+        edge.pieceFeature = placed.edgeOfDirection[d];
       }
     }
   }
@@ -238,9 +234,40 @@ ConvexHull triangleHull(const ContactTriangle& triangle) {
   return hull;
 }
 
+void PlacedHull::place(const ConvexHull& source, const Transform& at) {
+  hull = &source;
+  pose = at;
+  corners.clear();
+  for (const Vec3& v : source.vertices) corners.push_back(pose.apply(v));
+  faceNormals.clear();
+  faceOffsets.clear();
+  for (std::size_t f = 0; f < source.faceNormals.size(); ++f) {
+    const Vec3 m = pose.rotate(source.faceNormals[f]);
+    faceNormals.push_back(m);
+    faceOffsets.push_back(source.faceOffsets[f] + m.dot(pose.translation));
+  }
+  edgeDirections.clear();
+  edgeOfDirection.clear();
+  for (std::size_t e = 0; e < source.edges.size(); ++e) {
+    const Vec3 direction = corners[static_cast<std::size_t>(source.edges[e][1])] -
+                           corners[static_cast<std::size_t>(source.edges[e][0])];
+    const double length = direction.norm();
+    bool seen = false;
+    for (const Vec3& kept : edgeDirections) {
+      if (direction.cross(kept).norm() <= 1e-12 * length * kept.norm()) {
+        seen = true;
+        break;
+      }
+    }
+    if (seen) continue;
+    edgeDirections.push_back(direction);
+    edgeOfDirection.push_back(static_cast<int>(e));
+  }
+}
+
 bool collideTriangleConvex(const ContactTriangle& triangle, const PlacedConvex& piece,
                            const ContactSettings& settings, ContactManifold& out,
-                           bool correctInternalEdges) {
+                           bool correctInternalEdges, const PlacedHull* placed) {
   out = ContactManifold{};
   const double margin = settings.margin;
   const Transform& pose = piece.pose;
@@ -256,10 +283,18 @@ bool collideTriangleConvex(const ContactTriangle& triangle, const PlacedConvex& 
         using Geometry = std::decay_t<decltype(geometry)>;
         if constexpr (std::is_same_v<Geometry, SphereShape>) {
           return sphereAxis(triangle, pose.translation, geometry.radius);
-        } else if constexpr (std::is_same_v<Geometry, BoxShape>) {
-          return hullAxis(triangle, boxHull(geometry.halfExtents), pose);
-        } else if constexpr (std::is_same_v<Geometry, std::shared_ptr<const ConvexHull>>) {
-          return hullAxis(triangle, *geometry, pose);
+        } else if constexpr (std::is_same_v<Geometry, BoxShape> ||
+                             std::is_same_v<Geometry, std::shared_ptr<const ConvexHull>>) {
+          if (placed != nullptr) return hullAxis(triangle, *placed);
+          PlacedHull local;
+          if constexpr (std::is_same_v<Geometry, BoxShape>) {
+            const ConvexHull box = boxHull(geometry.halfExtents);
+            local.place(box, pose);
+            return hullAxis(triangle, local);
+          } else {
+            local.place(*geometry, pose);
+            return hullAxis(triangle, local);
+          }
         } else {
           return distanceAxis(triangle, piece);
         }

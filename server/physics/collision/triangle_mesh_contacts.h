@@ -3,7 +3,10 @@
 // the piece, the triangle narrow phase (triangle_contacts.h) one manifold
 // per triangle. A point that two triangles both report (a sphere resting on
 // the edge they share, a box corner on a shared vertex) is kept once, by
-// the triangle of the smaller index.
+// the triangle of the smaller index. Then the manifolds whose normals agree
+// (within about 3°: one plane of the mesh under the piece) are merged into
+// one of at most four points, named by the patch's lowest triangle, as a
+// face resting on a plane would give.
 
 #include <vector>
 
@@ -21,8 +24,10 @@ struct TriangleManifold {
 };
 
 // Appends the manifolds of `piece` against the mesh placed at `meshPose`
-// (body -> world), in ascending triangle order; only triangles whose boxes
-// come within the margin of the piece's box are tried.
+// (body -> world), one per patch, in ascending order of their first
+// triangle; only triangles whose boxes come within the margin of the
+// piece's box are tried. A point's featureId has its triangle's index
+// mixed in, so that it stays unique within a merged patch.
 void collideTriangleMeshPiece(const TriangleMeshCollider& mesh, const Transform& meshPose,
                               const PlacedConvex& piece, const ContactSettings& settings,
                               std::vector<TriangleManifold>& out);
