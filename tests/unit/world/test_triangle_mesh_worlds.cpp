@@ -127,6 +127,40 @@ TEST_P(TrimeshWorlds, ABallBouncesOnATriangleFloorAsOnAPlane) {
   EXPECT_NEAR(apexMesh, apexPlane, 1e-9);
 }
 
+// A box resting across many triangles of a floor is one patch: one
+// manifold of four points, its bottom corners, as on a plane (the
+// triangles' coplanar manifolds merged, triangle_mesh_contacts.h).
+TEST_P(TrimeshWorlds, ABoxOnManyTrianglesIsOnePatchOfItsFourCorners) {
+  World onMesh(settingsFor(GetParam(), 0.0, 0.5));
+  World onPlane(settingsFor(GetParam(), 0.0, 0.5));
+  addTrimesh(onMesh, testing::flatGrid(40, 2.0));  // cells of 0.1 m: the box spans a dozen triangles
+  addPlane(onPlane);
+  const Vec3 start(0.03, -0.02, 0.1);
+  testing::addBox(onMesh, "box", Vec3(0.15, 0.1, 0.1), start);
+  testing::addBox(onPlane, "box", Vec3(0.15, 0.1, 0.1), start);
+  for (int i = 0; i < 200; ++i) {
+    onMesh.step();
+    onPlane.step();
+  }
+  ASSERT_EQ(onMesh.contacts().size(), 1u);
+  ASSERT_EQ(onPlane.contacts().size(), 1u);
+  const SolvedManifold& patch = onMesh.contacts()[0];
+  ASSERT_EQ(patch.pointCount, 4);
+  for (int p = 0; p < 4; ++p) {
+    const Vec3& point = patch.points[p].point;
+    EXPECT_NEAR(std::abs(point.x() - start.x()), 0.15, 1e-6) << p;
+    EXPECT_NEAR(std::abs(point.y() - start.y()), 0.1, 1e-6) << p;
+    EXPECT_NEAR(point.z(), 0.0, 1e-4) << p;
+  }
+  // It carries the box's weight, as the plane's does.
+  double load = 0.0, planeLoad = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    load += patch.points[p].normalImpulse;
+    planeLoad += onPlane.contacts()[0].points[p].normalImpulse;
+  }
+  EXPECT_NEAR(load, planeLoad, 1e-9 * planeLoad);
+}
+
 TEST_P(TrimeshWorlds, ABoxRestsInTheCornerOfAStep) {
   // Floor z = 0 for x < 0, a 0.5 m wall at x = 0, the top beyond: the box
   // slides 5 cm into the concave corner, pushed by a tilt of gravity
