@@ -221,6 +221,15 @@ bool sphereFrontContact(const ContactTriangle& triangle, const Vec3& centre, dou
   return true;
 }
 
+// The piece's hull: its own, or its box's made in `box`.
+const ConvexHull* pieceHull(const PlacedConvex& piece, ConvexHull& box) {
+  if (const auto* b = std::get_if<BoxShape>(piece.geometry)) {
+    box = boxHull(b->halfExtents);
+    return &box;
+  }
+  return std::get<std::shared_ptr<const ConvexHull>>(*piece.geometry).get();
+}
+
 }  // namespace
 
 ConvexHull triangleHull(const ContactTriangle& triangle) {
@@ -322,14 +331,8 @@ bool collideTriangleConvex(const ContactTriangle& triangle, const PlacedConvex& 
 
   switch (axis.kind) {
     case AxisKind::PieceFace: {
-      const ConvexHull* hull = nullptr;
       ConvexHull box;
-      if (const auto* b = std::get_if<BoxShape>(piece.geometry)) {
-        box = boxHull(b->halfExtents);
-        hull = &box;
-      } else {
-        hull = std::get<std::shared_ptr<const ConvexHull>>(*piece.geometry).get();
-      }
+      const ConvexHull* hull = pieceHull(piece, box);
       const ConvexHull::Face& face = hull->faces[static_cast<std::size_t>(axis.pieceFeature)];
       std::vector<Vec3> reference;
       for (const int v : face.vertices)
@@ -345,14 +348,8 @@ bool collideTriangleConvex(const ContactTriangle& triangle, const PlacedConvex& 
       return true;
     }
     case AxisKind::EdgePair: {
-      const ConvexHull* hull = nullptr;
       ConvexHull box;
-      if (const auto* b = std::get_if<BoxShape>(piece.geometry)) {
-        box = boxHull(b->halfExtents);
-        hull = &box;
-      } else {
-        hull = std::get<std::shared_ptr<const ConvexHull>>(*piece.geometry).get();
-      }
+      const ConvexHull* hull = pieceHull(piece, box);
       const std::size_t i = static_cast<std::size_t>(axis.triangleEdge);
       const Vec3& p = triangle.vertices[i];
       const Vec3& q = triangle.vertices[(i + 1) % 3];

@@ -12,6 +12,7 @@
 
 #include "physics/query/convex_sweep.h"
 #include "rbsim/physics/world.h"
+#include "unit/query/query_test_worlds.h"
 #include "scenes/scene_random.h"
 
 namespace rbsim {
@@ -24,21 +25,8 @@ namespace {
 // 1e-16 m over the gap), for solids of metre size.
 constexpr double kTol = 1e-10;
 
-BodyId add(World& world, const std::string& name, Shape shape, const Vec3& position,
-           const Quaternion& orientation = Quaternion::identity(), bool isStatic = false) {
-  BodyDef def;
-  def.name = name;
-  def.shape = std::move(shape);
-  def.position = position;
-  def.orientation = orientation;
-  def.isStatic = isStatic;
-  const auto id = world.createBody(def);
-  if (!id) throw std::runtime_error(id.error().message);
-  return *id;
-}
-
 BodyId addGround(World& world, double height = 0.0) {
-  return add(world, "ground", PlaneShape{Vec3::UnitZ(), height}, Vec3::Zero(), Quaternion::identity(), true);
+  return testing::addQueryBody(world, "ground", PlaneShape{Vec3::UnitZ(), height}, Vec3::Zero(), Quaternion::identity(), true);
 }
 
 ShapeCast sweep(CastShape shape, const Vec3& from, const Vec3& to,
@@ -74,7 +62,7 @@ TEST(ShapeCasts, SphereOntoAPlaneAndOntoASphere) {
   expectPoint(hit, {1, 2, 0});
 
   World pair;
-  const BodyId ball = add(pair, "ball", SphereShape{1.0}, Vec3::Zero(), Quaternion::identity(), true);
+  const BodyId ball = testing::addQueryBody(pair, "ball", SphereShape{1.0}, Vec3::Zero(), Quaternion::identity(), true);
   // Centres 1.5 apart at first touch: x² + 0.3² = 1.5², x = −√2.16.
   cast = sweep(SphereShape{0.5}, {-5, 0.3, 0}, {5, 0.3, 0});
   hit = pair.castShape(cast);
@@ -86,7 +74,7 @@ TEST(ShapeCasts, SphereOntoAPlaneAndOntoASphere) {
 
 TEST(ShapeCasts, BoxesFaceDownAndTurnedOntoAnEdge) {
   World world;
-  const BodyId block = add(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
+  const BodyId block = testing::addQueryBody(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
   // A box of half size 0.5 comes down on the block's top (z = 1): its centre at 1.5.
   ShapeCast cast = sweep(BoxShape{Vec3::Constant(0.5)}, {0.2, 0.1, 3}, {0.2, 0.1, -3});
   auto hit = world.castShape(cast);
@@ -116,7 +104,7 @@ TEST(ShapeCasts, BoxesFaceDownAndTurnedOntoAnEdge) {
 
 TEST(ShapeCasts, SphereOntoABoxEdge) {
   World world;
-  const BodyId block = add(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
+  const BodyId block = testing::addQueryBody(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
   // A sphere of radius 0.5 along x at height 1.3 meets the top edge
   // (x = −1, z = 1): (x + 1)² + 0.3² = 0.5², so x = −1.4.
   const ShapeCast cast = sweep(SphereShape{0.5}, {-5, 0, 1.3}, {5, 0, 1.3});
@@ -127,7 +115,7 @@ TEST(ShapeCasts, SphereOntoABoxEdge) {
 
 TEST(ShapeCasts, CapsuleAndCylinder) {
   World world;
-  const BodyId wall = add(world, "wall", BoxShape{Vec3(0.5, 2, 2)}, {5, 0, 0}, Quaternion::identity(), true);
+  const BodyId wall = testing::addQueryBody(world, "wall", BoxShape{Vec3(0.5, 2, 2)}, {5, 0, 0}, Quaternion::identity(), true);
   // An upright capsule of radius 0.25 reaches the wall's face x = 4.5
   // with its axis at x = 4.25; the touch is along its side.
   ShapeCast cast = sweep(CapsuleShape{0.25, 1.0}, {0, 0, 0}, {10, 0, 0});
@@ -163,7 +151,7 @@ TEST(ShapeCasts, MeshAndCompoundReportTheirPieceAndPart) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   mesh->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  const BodyId tetra = add(world, "tetra", MeshShape{"tetra", mesh}, {10, 0, 0}, Quaternion::identity(), true);
+  const BodyId tetra = testing::addQueryBody(world, "tetra", MeshShape{"tetra", mesh}, {10, 0, 0}, Quaternion::identity(), true);
   // A sphere of radius 0.1 coming down at (10.2, 0.2) meets the slanted
   // face when its centre is 0.1 above the plane: x + y + z = 1 + 0.1 √3.
   ShapeCast cast = sweep(SphereShape{0.1}, {10.2, 0.2, 5}, {10.2, 0.2, -5});
@@ -178,7 +166,7 @@ TEST(ShapeCasts, MeshAndCompoundReportTheirPieceAndPart) {
   compound.parts.push_back({SphereShape{0.5}, {-1, 0, 0}, Quaternion::identity(), {}});
   compound.parts.push_back({SphereShape{0.5}, {1, 0, 0}, Quaternion::identity(), {}});
   compound.parts.push_back({BoxShape{Vec3(0.5, 0.25, 0.25)}, {0, 0, 2}, Quaternion::identity(), {}});
-  const BodyId body = add(world, "compound", compound, Vec3::Zero(),
+  const BodyId body = testing::addQueryBody(world, "compound", compound, Vec3::Zero(),
                           Quaternion::fromAxisAngle(Vec3::UnitZ(), std::numbers::pi / 2), true);
   cast = sweep(BoxShape{Vec3::Constant(0.1)}, {0, -5, 2}, {0, 5, 2});
   hit = world.castShape(cast);
@@ -200,7 +188,7 @@ TEST(ShapeCasts, TrimeshTriangles) {
                     {3, -2, 0}, {3, 2, 0}, {4, 2, 2}};               // a slope rising along +x
   mesh->triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
   World world;
-  const BodyId ground = add(world, "ground", TriangleMeshShape{"floor", mesh}, {0, 0, 1},
+  const BodyId ground = testing::addQueryBody(world, "ground", TriangleMeshShape{"floor", mesh}, {0, 0, 1},
                             Quaternion::identity(), true);
   // Straight down onto the floor (at z = 1 in the world): the second triangle.
   ShapeCast cast = sweep(SphereShape{0.25}, {-1, 1, 5}, {-1, 1, -5});
@@ -228,7 +216,7 @@ TEST(ShapeCasts, TrimeshTriangles) {
 
 TEST(ShapeCasts, StartsInContactMissesAndStandingStill) {
   World world;
-  const BodyId block = add(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
+  const BodyId block = testing::addQueryBody(world, "block", BoxShape{Vec3::Ones()}, Vec3::Zero(), Quaternion::identity(), true);
   // Starting inside: touched at 0, the normal against the sweep.
   ShapeCast cast = sweep(SphereShape{0.2}, {0.5, 0, 0}, {5, 0, 0});
   auto hit = world.castShape(cast);
@@ -272,7 +260,7 @@ TEST(ShapeCasts, FiltersAndAllTouches) {
   nearDef.isStatic = true;
   nearDef.collisionFilter = {2, CollisionFilter::kAllBits};
   const BodyId near = *world.createBody(nearDef);
-  const BodyId far = add(world, "far", BoxShape{Vec3::Constant(0.5)}, {5, 0, 0.5}, Quaternion::identity(), true);
+  const BodyId far = testing::addQueryBody(world, "far", BoxShape{Vec3::Constant(0.5)}, {5, 0, 0.5}, Quaternion::identity(), true);
   // A sphere rolling along the ground (touching it from the start) towards the boxes.
   const ShapeCast cast = sweep(SphereShape{0.25}, {0, 0, 0.25}, {10, 0, 0.25});
   auto hit = world.castShape(cast);
@@ -320,7 +308,7 @@ TEST(ShapeCasts, TheTreeFindsWhatEveryBodyWouldGive) {
       case 1: shape = BoxShape{Vec3(size, 0.5 * size, 0.3)}; geometry = BoxShape{Vec3(size, 0.5 * size, 0.3)}; break;
       default: shape = CapsuleShape{0.5 * size, size}; geometry = CapsuleShape{0.5 * size, size}; break;
     }
-    const BodyId id = add(world, "b" + std::to_string(i), shape, position, orientation, true);
+    const BodyId id = testing::addQueryBody(world, "b" + std::to_string(i), shape, position, orientation, true);
     placed.push_back({id, geometry, Transform::fromPose(position, orientation)});
   }
   const CastShape shapes[] = {SphereShape{0.2}, BoxShape{Vec3(0.3, 0.1, 0.2)}, CapsuleShape{0.1, 0.3},

@@ -16,6 +16,7 @@
 
 #include "physics/query/ray_shapes.h"
 #include "rbsim/physics/world.h"
+#include "unit/query/query_test_worlds.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"
 
@@ -23,19 +24,6 @@ namespace rbsim {
 namespace {
 
 constexpr double kTol = 1e-12;
-
-BodyId add(World& world, const std::string& name, Shape shape, const Vec3& position,
-           const Quaternion& orientation = Quaternion::identity(), bool isStatic = false) {
-  BodyDef def;
-  def.name = name;
-  def.shape = std::move(shape);
-  def.position = position;
-  def.orientation = orientation;
-  def.isStatic = isStatic;
-  const auto id = world.createBody(def);
-  if (!id) throw std::runtime_error(id.error().message);
-  return *id;
-}
 
 void expectHit(const std::optional<RayHit>& hit, BodyId body, const Ray& ray, double fraction,
                const Vec3& normal) {
@@ -50,7 +38,7 @@ void expectHit(const std::optional<RayHit>& hit, BodyId body, const Ray& ray, do
 TEST(WorldRays, TurnedBoxes) {
   World world;
   // Turned 90° about z, the box's x half extent 1 lies along y.
-  const BodyId a = add(world, "a", BoxShape{Vec3(1, 0.5, 0.5)}, {3, 0, 0},
+  const BodyId a = testing::addQueryBody(world, "a", BoxShape{Vec3(1, 0.5, 0.5)}, {3, 0, 0},
                        Quaternion::fromAxisAngle(Vec3::UnitZ(), std::numbers::pi / 2));
   const Ray alongX{{0, 0, 0}, {10, 0, 0}};
   expectHit(world.castRay(alongX), a, alongX, 0.25, {-1, 0, 0});
@@ -60,7 +48,7 @@ TEST(WorldRays, TurnedBoxes) {
   // at distance 1 from the centre. At y = 0.2 the ray enters through the
   // face (−1, 1, 0)/√2 at x = 5 − √2 + 0.2.
   World turned;
-  const BodyId c = add(turned, "c", BoxShape{Vec3::Ones()}, {5, 0, 0},
+  const BodyId c = testing::addQueryBody(turned, "c", BoxShape{Vec3::Ones()}, {5, 0, 0},
                        Quaternion::fromAxisAngle(Vec3::UnitZ(), std::numbers::pi / 4));
   const Ray ray{{0, 0.2, 0}, {10, 0.2, 0}};
   expectHit(turned.castRay(ray), c, ray, (5 - std::sqrt(2.0) + 0.2) / 10, Vec3(-1, 1, 0).normalized());
@@ -68,12 +56,12 @@ TEST(WorldRays, TurnedBoxes) {
 
 TEST(WorldRays, EveryShapeKindThroughTheWorld) {
   World world;
-  const BodyId sphere = add(world, "sphere", SphereShape{1.0}, {0, 0, 0});
-  const BodyId cylinder = add(world, "cylinder", CylinderShape{0.5, 1.0}, {0, 10, 0},
+  const BodyId sphere = testing::addQueryBody(world, "sphere", SphereShape{1.0}, {0, 0, 0});
+  const BodyId cylinder = testing::addQueryBody(world, "cylinder", CylinderShape{0.5, 1.0}, {0, 10, 0},
                               Quaternion::fromAxisAngle(Vec3::UnitX(), std::numbers::pi / 2));
-  const BodyId capsule = add(world, "capsule", CapsuleShape{0.5, 1.0}, {0, 20, 0},
+  const BodyId capsule = testing::addQueryBody(world, "capsule", CapsuleShape{0.5, 1.0}, {0, 20, 0},
                              Quaternion::fromAxisAngle(Vec3::UnitY(), std::numbers::pi / 2));
-  const BodyId ground = add(world, "ground", PlaneShape{Vec3::UnitZ(), -5.0}, Vec3::Zero(),
+  const BodyId ground = testing::addQueryBody(world, "ground", PlaneShape{Vec3::UnitZ(), -5.0}, Vec3::Zero(),
                             Quaternion::identity(), true);
   Ray ray{{-5, 0.6, 0}, {5, 0.6, 0}};
   expectHit(world.castRay(ray), sphere, ray, 0.42, {-0.8, 0.6, 0});
@@ -103,7 +91,7 @@ TEST(WorldRays, MeshAndCompoundReportTheirPieceAndPart) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   mesh->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  const BodyId tetra = add(world, "tetra", MeshShape{"tetra", mesh}, {10, 0, 0});
+  const BodyId tetra = testing::addQueryBody(world, "tetra", MeshShape{"tetra", mesh}, {10, 0, 0});
   Ray ray{{10.2, 0.2, 5}, {10.2, 0.2, -5}};
   expectHit(world.castRay(ray), tetra, ray, 0.44, Vec3(1, 1, 1).normalized());
   ray = {{10.2, 0.3, -5}, {10.2, 0.3, 5}};
@@ -115,7 +103,7 @@ TEST(WorldRays, MeshAndCompoundReportTheirPieceAndPart) {
   compound.parts.push_back({SphereShape{0.5}, {-1, 0, 0}, Quaternion::identity(), {}});
   compound.parts.push_back({SphereShape{0.5}, {1, 0, 0}, Quaternion::identity(), {}});
   compound.parts.push_back({BoxShape{Vec3(0.5, 0.25, 0.25)}, {0, 0, 2}, Quaternion::identity(), {}});
-  const BodyId body = add(world, "compound", compound, {0, 0, 0},
+  const BodyId body = testing::addQueryBody(world, "compound", compound, {0, 0, 0},
                           Quaternion::fromAxisAngle(Vec3::UnitZ(), std::numbers::pi / 2));
   ray = {{-5, 1, 0}, {5, 1, 0}};
   auto hit = world.castRay(ray);
@@ -141,10 +129,10 @@ struct Row {
   World world;
   BodyId ground, near, middle, far;
   Row() {
-    ground = add(world, "ground", PlaneShape{}, Vec3::Zero(), Quaternion::identity(), true);
-    near = add(world, "near", BoxShape{Vec3::Constant(0.5)}, {2, 0, 1});
-    middle = add(world, "middle", SphereShape{0.5}, {4, 0, 1});
-    far = add(world, "far", BoxShape{Vec3::Constant(0.5)}, {6, 0, 1}, Quaternion::identity(), true);
+    ground = testing::addQueryBody(world, "ground", PlaneShape{}, Vec3::Zero(), Quaternion::identity(), true);
+    near = testing::addQueryBody(world, "near", BoxShape{Vec3::Constant(0.5)}, {2, 0, 1});
+    middle = testing::addQueryBody(world, "middle", SphereShape{0.5}, {4, 0, 1});
+    far = testing::addQueryBody(world, "far", BoxShape{Vec3::Constant(0.5)}, {6, 0, 1}, Quaternion::identity(), true);
   }
 };
 
@@ -216,8 +204,8 @@ TEST(WorldRays, FiltersAndTheExcludedBody) {
 
 TEST(WorldRays, TiesGoToTheBodyCreatedFirst) {
   World world;
-  const BodyId first = add(world, "first", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0});
-  add(world, "second", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0.5});  // the same face plane x = 1.5
+  const BodyId first = testing::addQueryBody(world, "first", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0});
+  testing::addQueryBody(world, "second", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0.5});  // the same face plane x = 1.5
   const Ray ray{{0, 0, 0.25}, {4, 0, 0.25}};
   EXPECT_EQ(world.castRay(ray)->body, first);
   const auto all = world.castRayAll(ray);
@@ -227,7 +215,7 @@ TEST(WorldRays, TiesGoToTheBodyCreatedFirst) {
 
 TEST(WorldRays, SeesTheBodiesWhereTheyAreNow) {
   World world;
-  const BodyId ball = add(world, "ball", SphereShape{0.5}, {0, 0, 10});
+  const BodyId ball = testing::addQueryBody(world, "ball", SphereShape{0.5}, {0, 0, 10});
   const Ray down{{0, 0, 20}, {0, 0, 0}};
   EXPECT_NEAR(world.castRay(down)->point.z(), 10.5, kTol);
   // Falling for 0.5 s: the ray follows it after every step.
@@ -240,7 +228,7 @@ TEST(WorldRays, SeesTheBodiesWhereTheyAreNow) {
   ASSERT_TRUE(world.setBodyState(ball, state));
   EXPECT_NEAR(world.castRay(down)->point.z(), 3.5, kTol);
   // A body added, then removed; a frozen body is out of the simulation.
-  const BodyId lid = add(world, "lid", BoxShape{Vec3(1, 1, 0.1)}, {0, 0, 15});
+  const BodyId lid = testing::addQueryBody(world, "lid", BoxShape{Vec3(1, 1, 0.1)}, {0, 0, 15});
   EXPECT_EQ(world.castRay(down)->body, lid);
   ASSERT_TRUE(world.removeBody(lid));
   EXPECT_EQ(world.castRay(down)->body, ball);
@@ -248,7 +236,7 @@ TEST(WorldRays, SeesTheBodiesWhereTheyAreNow) {
   EXPECT_FALSE(world.castRay(down));
   // A copy answers for itself.
   World other;
-  add(other, "x", SphereShape{1.0}, {0, 0, 5});
+  testing::addQueryBody(other, "x", SphereShape{1.0}, {0, 0, 5});
   World copy = other;
   EXPECT_NEAR(copy.castRay(down)->point.z(), 6.0, kTol);
   copy = world;
@@ -259,8 +247,8 @@ TEST(WorldRays, SeesTheBodiesWhereTheyAreNow) {
 // it was, yet the rays see it where it is now.
 TEST(WorldRays, SmallMovesInsideTheFatBoxAreSeen) {
   World world;
-  const BodyId box = add(world, "box", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0});
-  add(world, "other", SphereShape{0.5}, {0, 5, 0});
+  const BodyId box = testing::addQueryBody(world, "box", BoxShape{Vec3::Constant(0.5)}, {2, 0, 0});
+  testing::addQueryBody(world, "other", SphereShape{0.5}, {0, 5, 0});
   const Ray ray{{0, 0, 0}, {4, 0, 0}};
   EXPECT_NEAR(world.castRay(ray)->point.x(), 1.5, kTol);
   for (const double x : {2.001, 1.997, 2.004}) {

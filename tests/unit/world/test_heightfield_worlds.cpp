@@ -10,15 +10,10 @@
 
 #include "meshio/height_grid.h"
 #include "unit/solver/contact_test_worlds.h"
+#include "unit/world/terrain_test_worlds.h"
 
 namespace rbsim {
 namespace {
-
-WorldSettings settingsFor(ContactSolverKind kind, double restitution, double friction) {
-  WorldSettings settings = testing::contactSettings(restitution, friction);
-  settings.contact.solver.kind = kind;
-  return settings;
-}
 
 // A rows × columns grid of cells `cell` m wide, of heights height(x, y).
 template <class Height>
@@ -37,24 +32,15 @@ BodyId addTerrain(World& world, int samples, double cell, Height&& height) {
   return *id;
 }
 
-BodyId addPlane(World& world, const Quaternion& orientation = Quaternion::identity()) {
-  BodyDef def;
-  def.name = "ground";
-  def.shape = PlaneShape{};
-  def.isStatic = true;
-  def.orientation = orientation;
-  return *world.createBody(def);
-}
-
 class HeightfieldWorlds : public ::testing::TestWithParam<ContactSolverKind> {};
 
 TEST_P(HeightfieldWorlds, ABallBouncesOnTheFlatPartAsOnAPlane) {
-  World onTerrain(settingsFor(GetParam(), 0.8, 0.0));
-  World onPlane(settingsFor(GetParam(), 0.8, 0.0));
+  World onTerrain(testing::terrainSettings(GetParam(), 0.8, 0.0));
+  World onPlane(testing::terrainSettings(GetParam(), 0.8, 0.0));
   // 17 × 17 samples 0.25 m apart; a hill of 0.5 m in the corner x, y > 1,
   // flat (z = 0) everywhere else.
   addTerrain(onTerrain, 17, 0.25, [](double x, double y) { return x > 1.0 && y > 1.0 ? 0.5 : 0.0; });
-  addPlane(onPlane);
+  testing::addGroundPlane(onPlane);
   const Vec3 start(-0.43, 0.29, 1.0);
   const BodyId onHeights = testing::addSphere(onTerrain, "ball", 0.1, start);
   const BodyId onGround = testing::addSphere(onPlane, "ball", 0.1, start);
@@ -82,11 +68,11 @@ TEST_P(HeightfieldWorlds, ABallRollsDownASlopedGridAsDownTheSlope) {
   // −y (rising along +x); the plane's normal is the tilt of +z.
   const double slope = 0.2;
   const double angle = std::atan(slope);
-  World onTerrain(settingsFor(GetParam(), 0.0, 0.6));
-  World onPlane(settingsFor(GetParam(), 0.0, 0.6));
+  World onTerrain(testing::terrainSettings(GetParam(), 0.0, 0.6));
+  World onPlane(testing::terrainSettings(GetParam(), 0.0, 0.6));
   addTerrain(onTerrain, 41, 0.125, [&](double x, double) { return slope * x; });
   const Quaternion tilt = Quaternion::fromAxisAngle(-Vec3::UnitY(), angle);
-  addPlane(onPlane, tilt);
+  testing::addGroundPlane(onPlane, tilt);
   const double radius = 0.1;
   // Resting on the slope at (1.5, 0.13) along it: it rolls down towards −x.
   const Vec3 start = tilt.toRotationMatrix() * Vec3(1.5 / std::cos(angle), 0.13, radius);

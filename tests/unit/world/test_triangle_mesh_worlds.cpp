@@ -10,15 +10,10 @@
 #include "physics/collision/time_of_impact.h"
 #include "unit/collision/triangle_mesh_test_meshes.h"
 #include "unit/solver/contact_test_worlds.h"
+#include "unit/world/terrain_test_worlds.h"
 
 namespace rbsim {
 namespace {
-
-WorldSettings settingsFor(ContactSolverKind kind, double restitution, double friction) {
-  WorldSettings settings = testing::contactSettings(restitution, friction);
-  settings.contact.solver.kind = kind;
-  return settings;
-}
 
 BodyId addTrimesh(World& world, TriangleMesh mesh, const Quaternion& orientation = Quaternion::identity(),
                   const Vec3& position = Vec3::Zero()) {
@@ -33,15 +28,6 @@ BodyId addTrimesh(World& world, TriangleMesh mesh, const Quaternion& orientation
   return *id;
 }
 
-BodyId addPlane(World& world, const Quaternion& orientation = Quaternion::identity()) {
-  BodyDef def;
-  def.name = "terrain";
-  def.shape = PlaneShape{};
-  def.isStatic = true;
-  def.orientation = orientation;
-  return *world.createBody(def);
-}
-
 Collider buildColliderForTest(const Shape& shape) {
   auto collider = buildCollider(shape, Transform::identity(), "test");
   EXPECT_TRUE(collider) << (collider ? "" : collider.error().message);
@@ -53,10 +39,10 @@ class TrimeshWorlds : public ::testing::TestWithParam<ContactSolverKind> {};
 TEST_P(TrimeshWorlds, ASphereRollsDownATriangleSlopeAsDownAPlane) {
   // A 20 × 20 grid of triangle pairs, 5 m across, tilted by 0.2 rad about y.
   const Quaternion tilt = Quaternion::fromAxisAngle(Vec3::UnitY(), 0.2);
-  World onMesh(settingsFor(GetParam(), 0.0, 0.6));
-  World onPlane(settingsFor(GetParam(), 0.0, 0.6));
+  World onMesh(testing::terrainSettings(GetParam(), 0.0, 0.6));
+  World onPlane(testing::terrainSettings(GetParam(), 0.0, 0.6));
   addTrimesh(onMesh, testing::flatGrid(20, 2.5), tilt);
-  addPlane(onPlane, tilt);
+  testing::addGroundPlane(onPlane, tilt);
   const double radius = 0.1;
   // Resting on the slope at local (1.5, 0.13): it rolls down towards −x.
   const Vec3 start = tilt.toRotationMatrix() * Vec3(1.5, 0.13, radius);
@@ -78,10 +64,10 @@ TEST_P(TrimeshWorlds, ASphereRollsDownATriangleSlopeAsDownAPlane) {
 TEST_P(TrimeshWorlds, ABoxSlidesAcrossATriangleFloorWithoutBumping) {
   // A 10 × 10 grid of triangle pairs, 1 m cells; the box crosses cell edges
   // and diagonals at an angle.
-  World onMesh(settingsFor(GetParam(), 0.0, 0.2));
-  World onPlane(settingsFor(GetParam(), 0.0, 0.2));
+  World onMesh(testing::terrainSettings(GetParam(), 0.0, 0.2));
+  World onPlane(testing::terrainSettings(GetParam(), 0.0, 0.2));
   addTrimesh(onMesh, testing::flatGrid(10, 5.0));
-  addPlane(onPlane);
+  testing::addGroundPlane(onPlane);
   const Vec3 half(0.2, 0.15, 0.1);
   const Vec3 start(-3.0, -0.37, 0.1);
   const Vec3 velocity(3.0, 0.8, 0.0);
@@ -103,10 +89,10 @@ TEST_P(TrimeshWorlds, ABoxSlidesAcrossATriangleFloorWithoutBumping) {
 }
 
 TEST_P(TrimeshWorlds, ABallBouncesOnATriangleFloorAsOnAPlane) {
-  World onMesh(settingsFor(GetParam(), 0.8, 0.0));
-  World onPlane(settingsFor(GetParam(), 0.8, 0.0));
+  World onMesh(testing::terrainSettings(GetParam(), 0.8, 0.0));
+  World onPlane(testing::terrainSettings(GetParam(), 0.8, 0.0));
   addTrimesh(onMesh, testing::flatGrid(4, 2.0));
-  addPlane(onPlane);
+  testing::addGroundPlane(onPlane);
   const Vec3 start(0.31, -0.17, 1.0);
   const BodyId meshBall = testing::addSphere(onMesh, "ball", 0.1, start);
   const BodyId planeBall = testing::addSphere(onPlane, "ball", 0.1, start);
@@ -131,10 +117,10 @@ TEST_P(TrimeshWorlds, ABallBouncesOnATriangleFloorAsOnAPlane) {
 // manifold of four points, its bottom corners, as on a plane (the
 // triangles' coplanar manifolds merged, triangle_mesh_contacts.h).
 TEST_P(TrimeshWorlds, ABoxOnManyTrianglesIsOnePatchOfItsFourCorners) {
-  World onMesh(settingsFor(GetParam(), 0.0, 0.5));
-  World onPlane(settingsFor(GetParam(), 0.0, 0.5));
+  World onMesh(testing::terrainSettings(GetParam(), 0.0, 0.5));
+  World onPlane(testing::terrainSettings(GetParam(), 0.0, 0.5));
   addTrimesh(onMesh, testing::flatGrid(40, 2.0));  // cells of 0.1 m: the box spans a dozen triangles
-  addPlane(onPlane);
+  testing::addGroundPlane(onPlane);
   const Vec3 start(0.03, -0.02, 0.1);
   testing::addBox(onMesh, "box", Vec3(0.15, 0.1, 0.1), start);
   testing::addBox(onPlane, "box", Vec3(0.15, 0.1, 0.1), start);
@@ -165,7 +151,7 @@ TEST_P(TrimeshWorlds, ABoxRestsInTheCornerOfAStep) {
   // Floor z = 0 for x < 0, a 0.5 m wall at x = 0, the top beyond: the box
   // slides 5 cm into the concave corner, pushed by a tilt of gravity
   // (1 m/s² along x, more than friction's 0.05 × 9.81 holds), and rests there.
-  WorldSettings settings = settingsFor(GetParam(), 0.0, 0.05);
+  WorldSettings settings = testing::terrainSettings(GetParam(), 0.0, 0.05);
   settings.gravity = Vec3(1.0, 0.0, -9.81);
   World world(settings);
   addTrimesh(world, testing::stepMesh(0.5));
@@ -189,10 +175,10 @@ TEST_P(TrimeshWorlds, ABoxRestsInTheCornerOfAStep) {
 TEST_P(TrimeshWorlds, ACompoundAndACylinderLandOnTrianglesAsOnAPlane) {
   // A dumbbell (two spheres and a rod, as compound parts) and a standing
   // cylinder dropped 5 cm onto a grid, against the same on a plane.
-  World onMesh(settingsFor(GetParam(), 0.0, 0.5));
-  World onPlane(settingsFor(GetParam(), 0.0, 0.5));
+  World onMesh(testing::terrainSettings(GetParam(), 0.0, 0.5));
+  World onPlane(testing::terrainSettings(GetParam(), 0.0, 0.5));
   addTrimesh(onMesh, testing::flatGrid(6, 3.0));
-  addPlane(onPlane);
+  testing::addGroundPlane(onPlane);
   BodyDef dumbbell;
   dumbbell.name = "dumbbell";
   const Quaternion alongX = Quaternion::fromAxisAngle(Vec3::UnitY(), 0.5 * M_PI);
