@@ -120,7 +120,7 @@ void collideTriangleMeshPiece(const TriangleMeshCollider& mesh, const Transform&
   const Aabb query = placedBounds(*piece.geometry, pieceInMesh).fattened(settings.margin);
   thread_local std::vector<int> near;
   near.clear();
-  mesh.bvh.forEachOverlap(query, [&near](int triangle) { near.push_back(triangle); });
+  mesh.bvh.forEachOverlap(query, [](int triangle) { near.push_back(triangle); });
   std::sort(near.begin(), near.end());
   // A box meets triangles as the hull it is (box_features.h, the same
   // numbering): made once here, not once per triangle.
