@@ -22,12 +22,13 @@
 #include <optional>
 #include <vector>
 
+#include "ray_tally.h"
 #include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"
 
 #if RBSIM_BENCH_RAYS_BULLET
-#include <btBulletCollisionCommon.h>
+#include "bullet_queries.h"
 #endif
 
 namespace rbsim {
@@ -80,31 +81,15 @@ World pileWorld() {
   return std::move(world).value();
 }
 
-void setCounters(benchmark::State& state, int hits, double distance, std::size_t rays) {
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kRays));
-  state.counters["hit_share"] = static_cast<double>(hits) / static_cast<double>(rays);
-  state.counters["mean_distance"] = hits > 0 ? distance / hits : 0.0;
-}
-
 void BM_Rays_Rbsim_Single(benchmark::State& state) {
   const World world = pileWorld();
   const std::vector<Ray> rays = randomRays();
   (void)world.castRay(rays.front());  // the ray tree is built at the first cast
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays) {
-      const std::optional<RayHit> hit = world.castRay(ray);
-      if (hit) {
-        ++hits;
-        distance += hit->distance;
-      }
-    }
-    benchmark::DoNotOptimize(distance);
-  }
-  setCounters(state, hits, distance, rays.size());
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    if (const std::optional<RayHit> hit = world.castRay(ray)) return hit->distance;
+    return std::nullopt;
+  });
+  bench::reportTally(state, tally, rays.size());
 }
 
 void BM_Rays_Rbsim_Batch(benchmark::State& state) {
@@ -117,14 +102,13 @@ void BM_Rays_Rbsim_Batch(benchmark::State& state) {
     world.castRays(rays, hits);
     benchmark::DoNotOptimize(hits.data());
   }
-  int count = 0;
-  double distance = 0.0;
+  bench::RayTally tally;
   for (const auto& hit : hits)
     if (hit) {
-      ++count;
-      distance += hit->distance;
+      ++tally.hits;
+      tally.distance += hit->distance;
     }
-  setCounters(state, count, distance, rays.size());
+  bench::reportTally(state, tally, rays.size());
 }
 
 // The first cast after a step of the falling pile: the ray tree follows
@@ -164,27 +148,17 @@ void BM_ShapeCasts_Rbsim(benchmark::State& state, CastShape shape) {
   const World world = pileWorld();
   const std::vector<Ray> rays = randomRays();
   (void)world.castRay(rays.front());  // the tree is built at the first query
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays) {
-      const std::optional<ShapeCastHit> hit = world.castShape({shape, ray.from, ray.to, kCastTurn});
-      if (hit) {
-        ++hits;
-        distance += hit->distance;
-      }
-    }
-    benchmark::DoNotOptimize(distance);
-  }
-  setCounters(state, hits, distance, rays.size());
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    if (const std::optional<ShapeCastHit> hit = world.castShape({shape, ray.from, ray.to, kCastTurn}))
+      return hit->distance;
+    return std::nullopt;
+  });
+  bench::reportTally(state, tally, rays.size());
 }
 
 #if RBSIM_BENCH_RAYS_BULLET
-btVector3 toBullet(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
+using bench::bulletRayTest;
+using bench::toBullet;
 
 // The same scene in a btCollisionWorld: a static plane and the boxes as
 // collision objects (a ray test needs no dynamics).
@@ -218,24 +192,10 @@ struct BulletPile {
 void BM_Rays_Bullet_RayTest(benchmark::State& state) {
   BulletPile pile;
   const std::vector<Ray> rays = randomRays();
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays) {
-      const btVector3 from = toBullet(ray.from);
-      const btVector3 to = toBullet(ray.to);
-      btCollisionWorld::ClosestRayResultCallback callback(from, to);
-      pile.world.rayTest(from, to, callback);
-      if (callback.hasHit()) {
-        ++hits;
-        distance += callback.m_closestHitFraction * (to - from).length();
-      }
-    }
-    benchmark::DoNotOptimize(distance);
-  }
-  setCounters(state, hits, distance, rays.size());
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    return bulletRayTest(pile.world, ray);
+  });
+  bench::reportTally(state, tally, rays.size());
 }
 BENCHMARK(BM_Rays_Bullet_RayTest)->Unit(benchmark::kMicrosecond);
 
@@ -246,24 +206,15 @@ void BM_ShapeCasts_Bullet(benchmark::State& state, bool sphere) {
   btBoxShape box(btVector3(kCastSize, kCastSize, kCastSize));
   const btConvexShape* shape = sphere ? static_cast<btConvexShape*>(&ball) : &box;
   const btQuaternion turn(kCastTurn.x, kCastTurn.y, kCastTurn.z, kCastTurn.w);
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays) {
-      const btVector3 from = toBullet(ray.from);
-      const btVector3 to = toBullet(ray.to);
-      btCollisionWorld::ClosestConvexResultCallback callback(from, to);
-      pile.world.convexSweepTest(shape, btTransform(turn, from), btTransform(turn, to), callback);
-      if (callback.hasHit()) {
-        ++hits;
-        distance += callback.m_closestHitFraction * (to - from).length();
-      }
-    }
-    benchmark::DoNotOptimize(distance);
-  }
-  setCounters(state, hits, distance, rays.size());
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    const btVector3 from = toBullet(ray.from);
+    const btVector3 to = toBullet(ray.to);
+    btCollisionWorld::ClosestConvexResultCallback callback(from, to);
+    pile.world.convexSweepTest(shape, btTransform(turn, from), btTransform(turn, to), callback);
+    if (!callback.hasHit()) return std::nullopt;
+    return callback.m_closestHitFraction * (to - from).length();
+  });
+  bench::reportTally(state, tally, rays.size());
 }
 BENCHMARK_CAPTURE(BM_ShapeCasts_Bullet, sphere, true)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ShapeCasts_Bullet, box, false)->Unit(benchmark::kMicrosecond);

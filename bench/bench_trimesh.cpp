@@ -20,12 +20,15 @@
 #include <optional>
 #include <vector>
 
+#include "ray_tally.h"
 #include "rbsim/physics/world.h"
 #include "scenes/pile_scene.h"
 #include "scenes/scene_random.h"
 
 #if RBSIM_BENCH_TRIMESH_BULLET
 #include <btBulletDynamicsCommon.h>
+
+#include "bullet_queries.h"
 #endif
 
 namespace rbsim {
@@ -120,28 +123,16 @@ void BM_TerrainRays_Rbsim(benchmark::State& state) {
   (void)world.createBody(terrain).value();
   const std::vector<Ray> rays = terrainRays();
   (void)world.castRay(rays.front());
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays)
-      if (const auto hit = world.castRay(ray)) {
-        ++hits;
-        distance += hit->distance;
-      }
-    benchmark::DoNotOptimize(distance);
-  }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(rays.size()));
-  state.counters["hit_share"] = static_cast<double>(hits) / static_cast<double>(rays.size());
-  state.counters["mean_distance"] = hits > 0 ? distance / hits : 0.0;
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    if (const std::optional<RayHit> hit = world.castRay(ray)) return hit->distance;
+    return std::nullopt;
+  });
+  bench::reportTally(state, tally, rays.size());
 }
 BENCHMARK(BM_TerrainRays_Rbsim)->Unit(benchmark::kMicrosecond);
 
 #if RBSIM_BENCH_TRIMESH_BULLET
-btVector3 toBullet(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
+using bench::toBullet;
 
 // A mesh as Bullet's static triangle mesh (its own copy of the arrays).
 struct BulletMesh {
@@ -234,26 +225,11 @@ void BM_TerrainRays_Bullet(benchmark::State& state) {
   world.addCollisionObject(&object);
   world.updateAabbs();
   const std::vector<Ray> rays = terrainRays();
-  int hits = 0;
-  double distance = 0.0;
-  for (auto _ : state) {
-    hits = 0;
-    distance = 0.0;
-    for (const Ray& ray : rays) {
-      const btVector3 from = toBullet(ray.from), to = toBullet(ray.to);
-      btCollisionWorld::ClosestRayResultCallback callback(from, to);
-      world.rayTest(from, to, callback);
-      if (callback.hasHit()) {
-        ++hits;
-        distance += callback.m_closestHitFraction * (to - from).length();
-      }
-    }
-    benchmark::DoNotOptimize(distance);
-  }
+  const bench::RayTally tally = bench::castEveryRay(state, rays, [&](const Ray& ray) -> std::optional<double> {
+    return bench::bulletRayTest(world, ray);
+  });
   world.removeCollisionObject(&object);
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(rays.size()));
-  state.counters["hit_share"] = static_cast<double>(hits) / static_cast<double>(rays.size());
-  state.counters["mean_distance"] = hits > 0 ? distance / hits : 0.0;
+  bench::reportTally(state, tally, rays.size());
 }
 BENCHMARK(BM_TerrainRays_Bullet)->Unit(benchmark::kMicrosecond);
 #endif
