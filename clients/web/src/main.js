@@ -85,8 +85,7 @@ const connection = new Connection(`${location.protocol === "https:" ? "wss" : "w
         if (![...menu.options].some((o) => o.value === name)) menu.add(new Option(name, name));
       }
     }
-    const scan = scans.selected ? scans.latest.get(scans.selected) : null;
-    $("scan-info").textContent = scan ? `step ${scan.step}: ${scan.returns} of ${scan.beams} beams returned` : "";
+    showScanInfo();
   },
   replay(replay) {
     state.replay = replay;
@@ -145,7 +144,13 @@ $("toggle-follow").onchange = (e) => {
   viewer.follow = e.target.checked;
   if (viewer.follow && viewer.selected >= 0) viewer.focusOn(viewer.selected);
 };
-$("scan-sensor").onchange = (e) => { scans.select(e.target.value); $("scan-info").textContent = ""; };
+// What the drawn scan says of itself: set with the drawing, when a sensor is
+// chosen as when a scan arrives, so the two never disagree.
+function showScanInfo() {
+  const scan = scans.drawnScan && scans.drawnScan.name === scans.selected ? scans.drawnScan : null;
+  $("scan-info").textContent = scan ? `step ${scan.step}: ${scan.returns} of ${scan.beams} beams returned` : "";
+}
+$("scan-sensor").onchange = (e) => { scans.select(e.target.value); showScanInfo(); };
 $("toggle-plots").onchange = (e) => $("plots").classList.toggle("hidden", !e.target.checked);
 
 // Framing only moves the camera, so it works read-only and in replay too. Its
